@@ -1,0 +1,62 @@
+/*
+ * tesslod/cpu.h -- CPU reference tessellator (module tesslod::cpu)
+ *
+ * WHAT IT DOES
+ *   Evaluates a surface through the refinement patterns of tesslod/lod.h and
+ *   returns a plain indexed triangle mesh: positions, unit shading normals,
+ *   the patch each triangle came from. Each patch may have its own level;
+ *   where the two sides of an edge differ (levels, or split normals at a
+ *   crease) a connection strip zips the two edge polylines together, so a
+ *   closed input gives a closed output. Work is spread over the context's
+ *   workers; the result does not depend on the thread count.
+ *
+ * OUTPUT VERTICES
+ *   welded (default): a vertex shared by several patches is emitted once when
+ *     its position, normal and alpha are the same on every side (at a crease
+ *     each side keeps its own vertex; their positions are bitwise equal).
+ *   no_weld: every patch emits its own pattern vertices, as a GPU draws them;
+ *     invariant 1 makes shared positions bitwise equal, so welding the output
+ *     by exact position gives back a closed mesh.
+ */
+#ifndef TESSLOD_CPU_H
+#define TESSLOD_CPU_H
+
+#include "tesslod/core.h"
+#include "tesslod/lod.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct tlod_cpu_tessellate_desc {
+  uint32_t level;       /* uniform level when levels == NULL */
+  const int8_t* levels; /* optional: level per patch; -1 leaves the patch out */
+  bool no_weld;         /* see OUTPUT VERTICES */
+  bool no_stitch;       /* leave out connection strips (shows the cracks) */
+  bool no_normals;      /* skip the normal evaluation */
+} tlod_cpu_tessellate_desc;
+
+typedef struct tlod_cpu_mesh {
+  uint32_t vertex_count;
+  float* positions; /* xyz per vertex */
+  float* normals;   /* xyz per vertex; NULL with no_normals */
+  uint32_t triangle_count;
+  uint32_t* indices;          /* 3 per triangle, counter-clockwise as the input */
+  uint32_t* triangle_patch;   /* patch of each triangle; UINT32_MAX for strip triangles */
+  uint32_t pattern_triangles; /* triangles from refinement patterns */
+  uint32_t strip_triangles;   /* triangles from connection strips */
+  uint32_t strips;            /* edges that needed a strip */
+  uint32_t folds_skipped;     /* strip triangles left out as zero-area or fold-overs */
+} tlod_cpu_mesh;
+
+/* Tessellates every patch of the surface. patterns must reach the largest
+ * level asked for. The result is allocated through the context's allocator
+ * and freed with tlod_cpu_mesh_destroy(). */
+TLOD_API tlod_result tlod_cpu_tessellate(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
+                                         const tlod_cpu_tessellate_desc* desc, tlod_cpu_mesh** out);
+TLOD_API void tlod_cpu_mesh_destroy(tlod_context* ctx, tlod_cpu_mesh* mesh);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

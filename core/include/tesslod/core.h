@@ -1,0 +1,348 @@
+/*
+ * tesslod/core.h -- context, meshes and curved surfaces (module tesslod::core)
+ *
+ * WHAT IT DOES
+ *   Turns a coarse triangle or quad mesh into curved patches that can be
+ *   evaluated at any (u, v):
+ *     - Phong tessellation on triangles (Boubekeur & Alexa 2008), global or
+ *       per-vertex shape factor alpha;
+ *     - Phong tessellation on quads (Dupuy), with analytic tangent frames;
+ *     - curved PN triangles (Vlachos et al. 2001): cubic geometry, quadratic
+ *       normal field;
+ *     - flat patches (the input itself), for comparisons.
+ *   Meshes are validated once at creation; what can be repaired (bad
+ *   normals, degenerate faces) is repaired and counted, never silently.
+ *
+ * DOES NOT
+ *   - know about cameras, levels of detail or GPUs (see tesslod/lod.h and the
+ *     backends);
+ *   - read files (the `tlod` tool's importers do that);
+ *   - keep process-global state: several contexts may coexist.
+ *
+ * STEP BY STEP
+ *   1. tlod_context_create(&(tlod_context_desc){0}, &ctx)
+ *   2. tlod_mesh_create(ctx, &(tlod_mesh_desc){ .positions = ..., ... }, &mesh)
+ *      -> on failure tlod_context_last_error(ctx) names the element at fault.
+ *   3. tlod_surface_create(ctx, mesh, &(tlod_surface_desc){ .type = ... }, &surf)
+ *   4. tlod_surface_eval(surf, patch, u, v, &point)
+ *   5. tlod_surface_destroy(surf); tlod_mesh_destroy(mesh);
+ *      tlod_context_destroy(ctx)
+ *
+ * THREADING, ALLOCATION, LOGGING
+ *   A context and everything made from it belong to one thread at a time.
+ *   Const queries and tlod_surface_eval() may be called from many threads at
+ *   once. Work spread over threads inside a call goes through the context's
+ *   parallel-for (the desc's callback, or a small built-in pool) and gives the
+ *   same result for any thread count. Every allocation goes through the
+ *   desc's allocator. Messages go to the desc's logger.
+ *
+ * PARAMETERS (u, v)
+ *   Triangle (i, j, k): p(u, v) has barycentric weight u on i, v on j and
+ *   w = 1 - u - v on k. Quad (0, 1, 2, 3): bilinear weights (1-u)(1-v),
+ *   u(1-v), uv, (1-u)v. A point with a barycentric exactly 0 (a quad
+ *   coordinate exactly 0 or 1) is an edge point and is evaluated by the one
+ *   canonical edge function, so neighbouring patches produce bitwise equal
+ *   positions there when the edge is smooth (same positions, normals and
+ *   alphas on both sides). Corners return the input vertex exactly.
+ */
+#ifndef TESSLOD_CORE_H
+#define TESSLOD_CORE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifndef TLOD_API
+#define TLOD_API
+#endif
+
+#define TLOD_VERSION 1000 /* 1.0.0 */
+
+/* ------------------------------------------------------------------------ */
+/* Results                                                                  */
+/* ------------------------------------------------------------------------ */
+
+typedef enum tlod_result {
+  TLOD_SUCCESS = 0,
+  TLOD_ERROR_INVALID_ARGUMENT, /* wrong API use: NULL pointer, bad enum, ... */
+  TLOD_ERROR_OUT_OF_MEMORY,
+  TLOD_ERROR_INVALID_MESH, /* data that cannot be repaired: index out of range, NaN position */
+  TLOD_ERROR_UNSUPPORTED,  /* valid request this build or surface cannot do */
+  TLOD_ERROR_IO,           /* file could not be read or written */
+  TLOD_ERROR_PARSE,        /* malformed file */
+  TLOD_ERROR_BACKEND,      /* a backend could not start or failed */
+  TLOD_RESULT_NUM,
+  _TLOD_RESULT_FORCE_U32 = 0x7FFFFFFF
+} tlod_result;
+
+/* Short constant name of a result ("TLOD_ERROR_INVALID_MESH"). */
+TLOD_API const char* tlod_result_string(tlod_result result);
+
+/* ------------------------------------------------------------------------ */
+/* Context                                                                  */
+/* ------------------------------------------------------------------------ */
+
+typedef struct tlod_context tlod_context;
+
+/* Allocator hooks. Both NULL: malloc/free. alloc returns memory aligned to
+ * at least 16 bytes or NULL; free accepts NULL. */
+typedef struct tlod_allocator {
+  void* (*alloc_fn)(size_t size, void* user_data);
+  void (*free_fn)(void* ptr, void* user_data);
+  void* user_data;
+} tlod_allocator;
+
+typedef enum tlod_log_level {
+  TLOD_LOG_ERROR = 0,
+  TLOD_LOG_WARNING = 1,
+  TLOD_LOG_INFO = 2,
+  TLOD_LOG_DEBUG = 3,
+  _TLOD_LOG_FORCE_U32 = 0x7FFFFFFF
+} tlod_log_level;
+
+/* Log callback. NULL func: messages are dropped (errors are still available
+ * through tlod_context_last_error()). */
+typedef struct tlod_logger {
+  void (*func)(tlod_log_level level, const char* message, void* user_data);
+  void* user_data;
+} tlod_logger;
+
+/* A range of work [begin, end) run by one worker; worker < thread count. */
+typedef void (*tlod_task_fn)(void* task_data, uint32_t begin, uint32_t end, uint32_t worker);
+
+/* An engine's job system: run fn over [0, count) split in chunks of any size,
+ * return when every chunk has run. worker ids must stay below worker_count. */
+typedef struct tlod_parallel_for {
+  void (*func)(tlod_task_fn fn, void* task_data, uint32_t count, void* user_data);
+  uint32_t worker_count;
+  void* user_data;
+} tlod_parallel_for;
+
+typedef struct tlod_context_desc {
+  tlod_allocator allocator; /* default: malloc/free */
+  tlod_logger logger;       /* default: none */
+  /* Threads of the built-in pool when parallel_for.func is NULL.
+   * 0 == number of online CPUs (at most 64); 1 == run on the caller only. */
+  uint32_t thread_count;
+  tlod_parallel_for parallel_for; /* default: built-in pool */
+  const char* label;              /* shows up in log messages; default "tesslod" */
+} tlod_context_desc;
+
+/* Creates a context. desc may be NULL (all defaults). */
+TLOD_API tlod_result tlod_context_create(const tlod_context_desc* desc, tlod_context** out);
+/* Destroys a context; NULL is a no-op. Every object made from it must be
+ * destroyed first. */
+TLOD_API void tlod_context_destroy(tlod_context* ctx);
+/* The desc with every default resolved. */
+TLOD_API tlod_context_desc tlod_context_query_desc(const tlod_context* ctx);
+/* Message of the last failed call on this context, naming the element at
+ * fault ("face 17: index 4096 out of range (4000 vertices)"); "" if none. */
+TLOD_API const char* tlod_context_last_error(const tlod_context* ctx);
+
+/* ------------------------------------------------------------------------ */
+/* Mesh                                                                     */
+/* ------------------------------------------------------------------------ */
+
+typedef struct tlod_mesh tlod_mesh;
+
+typedef enum tlod_face_type {
+  TLOD_FACE_DEFAULT = 0, /* == TLOD_FACE_TRIANGLES */
+  TLOD_FACE_TRIANGLES,   /* 3 indices a face */
+  TLOD_FACE_QUADS,       /* 4 indices a face, counter-clockwise */
+  TLOD_FACE_MIXED,       /* face_sizes[f] is 3 or 4 */
+  TLOD_FACE_NUM,
+  _TLOD_FACE_FORCE_U32 = 0x7FFFFFFF
+} tlod_face_type;
+
+typedef enum tlod_normal_mode {
+  TLOD_NORMALS_DEFAULT = 0, /* == KEEP */
+  /* Use the given normals, normalised. Zero-length or non-finite ones are
+   * recomputed (angle-weighted) and counted. Without normals: ANGLE. */
+  TLOD_NORMALS_KEEP,
+  TLOD_NORMALS_ANGLE, /* recompute, weighted by the corner angle (Phong paper) */
+  TLOD_NORMALS_AREA,  /* recompute, weighted by face area */
+  TLOD_NORMALS_NUM,
+  _TLOD_NORMALS_FORCE_U32 = 0x7FFFFFFF
+} tlod_normal_mode;
+
+typedef struct tlod_mesh_desc {
+  const float* positions;   /* required: xyz per vertex */
+  uint32_t position_stride; /* bytes; 0 == 12 */
+  const float* normals;     /* optional: xyz per vertex */
+  uint32_t normal_stride;   /* bytes; 0 == 12 */
+  const float* alphas;      /* optional: Phong shape factor per vertex, [0, 1] */
+  uint32_t alpha_stride;    /* bytes; 0 == 4 */
+  uint32_t vertex_count;
+
+  const uint32_t* indices; /* required */
+  uint32_t index_count;    /* a multiple of 3 (TRIANGLES), 4 (QUADS), or sum of face_sizes */
+  tlod_face_type face_type;
+  const uint8_t* face_sizes; /* MIXED only: 3 or 4 per face */
+  uint32_t face_count;       /* MIXED only */
+
+  tlod_normal_mode normal_mode;
+  /* With computed normals: a vertex's faces whose normals differ by more
+   * than this many degrees get separate normals (a crease). 0 == no creases
+   * (one smooth normal per welded position). */
+  float crease_angle_deg;
+  /* Positions closer than this (each coordinate) are welded into one for
+   * adjacency. 0 == bitwise-equal positions only. */
+  float weld_epsilon;
+  const char* label; /* names the mesh in messages; default "mesh" */
+} tlod_mesh_desc;
+
+/* What validation found and repaired. Counts are of input elements. */
+typedef struct tlod_mesh_info {
+  uint32_t input_vertex_count;
+  uint32_t input_face_count;
+  uint32_t face_count;               /* faces kept */
+  uint32_t triangle_count;           /* of the kept faces */
+  uint32_t quad_count;               /* of the kept faces */
+  uint32_t welded_vertex_count;      /* distinct positions */
+  uint32_t degenerate_faces_dropped; /* repeated index or zero area */
+  uint32_t normals_repaired;         /* given normal zero-length or non-finite: recomputed */
+  uint32_t normals_computed;         /* vertices whose normal was computed (no input or mode) */
+  uint32_t unused_vertices;          /* referenced by no kept face */
+  uint32_t edge_count;               /* distinct welded edges */
+  uint32_t boundary_edges;           /* one face */
+  uint32_t non_manifold_edges;       /* three or more faces, or inconsistent orientation */
+  uint32_t crease_edges;             /* two faces, but split normals (or alphas) */
+  uint32_t finding_count;            /* findings stored (at most TLOD_MAX_FINDINGS) */
+  uint32_t findings_dropped;         /* findings past the limit */
+  bool closed;                       /* no boundary and no non-manifold edge */
+  float bbox_min[3];
+  float bbox_max[3];
+} tlod_mesh_info;
+
+#define TLOD_MAX_FINDINGS 64
+
+typedef enum tlod_finding_kind {
+  TLOD_FINDING_DEGENERATE_FACE = 0, /* element = face (input index) */
+  TLOD_FINDING_NORMAL_REPAIRED,     /* element = vertex */
+  TLOD_FINDING_UNUSED_VERTEX,       /* element = vertex */
+  TLOD_FINDING_BOUNDARY_EDGE,       /* element = face, element2 = edge in face */
+  TLOD_FINDING_NON_MANIFOLD_EDGE,   /* element = face, element2 = edge in face */
+  TLOD_FINDING_ALPHA_CLAMPED,       /* element = vertex */
+  TLOD_FINDING_NUM,
+  _TLOD_FINDING_FORCE_U32 = 0x7FFFFFFF
+} tlod_finding_kind;
+
+typedef struct tlod_finding {
+  tlod_finding_kind kind;
+  uint32_t element;
+  uint32_t element2;
+  char message[96];
+} tlod_finding;
+
+/* Validates and copies the arrays into a new mesh. On failure *out is NULL
+ * and tlod_context_last_error() names the element at fault. */
+TLOD_API tlod_result tlod_mesh_create(tlod_context* ctx, const tlod_mesh_desc* desc, tlod_mesh** out);
+TLOD_API void tlod_mesh_destroy(tlod_mesh* mesh);
+TLOD_API tlod_mesh_info tlod_mesh_query_info(const tlod_mesh* mesh);
+/* Finding i < info.finding_count. */
+TLOD_API tlod_finding tlod_mesh_query_finding(const tlod_mesh* mesh, uint32_t i);
+
+/* Kept faces, in input order (dropped faces are left out). */
+TLOD_API uint32_t tlod_mesh_face_count(const tlod_mesh* mesh);
+/* Input face index of kept face f (to map results back to the caller's faces). */
+TLOD_API uint32_t tlod_mesh_face_input_index(const tlod_mesh* mesh, uint32_t face);
+/* Corner count (3 or 4) and corner vertex indices of kept face f. */
+TLOD_API uint32_t tlod_mesh_face_corners(const tlod_mesh* mesh, uint32_t face, uint32_t out[4]);
+TLOD_API uint32_t tlod_mesh_vertex_count(const tlod_mesh* mesh);
+/* Final (normalised, repaired) normal, position and welded position id of a vertex. */
+TLOD_API void tlod_mesh_vertex(const tlod_mesh* mesh, uint32_t vertex, float position[3], float normal[3]);
+TLOD_API uint32_t tlod_mesh_vertex_weld_id(const tlod_mesh* mesh, uint32_t vertex);
+
+/* Edge e (0..corners-1) of face f runs from corner e to corner (e+1)%n.
+ * Neighbour across it, or UINT32_MAX for a boundary or non-manifold edge. */
+typedef struct tlod_edge_link {
+  uint32_t face; /* neighbouring kept face, UINT32_MAX if none */
+  uint8_t edge;  /* its edge index */
+  bool smooth;   /* both sides have bitwise equal normals and alphas */
+} tlod_edge_link;
+TLOD_API tlod_edge_link tlod_mesh_edge_link(const tlod_mesh* mesh, uint32_t face, uint32_t edge);
+
+/* Updates positions and/or normals of every vertex in place (dynamic meshes:
+ * skinning, FEM). Topology is kept; either pointer may be NULL. NULL
+ * normals with computed normals: they are recomputed. */
+TLOD_API tlod_result tlod_mesh_update(tlod_mesh* mesh, const float* positions, uint32_t position_stride,
+                                      const float* normals, uint32_t normal_stride);
+
+/* ------------------------------------------------------------------------ */
+/* Surfaces                                                                 */
+/* ------------------------------------------------------------------------ */
+
+typedef struct tlod_surface tlod_surface;
+
+typedef enum tlod_surface_type {
+  TLOD_SURFACE_DEFAULT = 0, /* == PHONG */
+  TLOD_SURFACE_FLAT,        /* the input faces (bilinear quads) */
+  TLOD_SURFACE_PHONG,       /* Phong triangles and Phong quads */
+  TLOD_SURFACE_PN,          /* PN triangles; quads are not supported */
+  TLOD_SURFACE_NUM,
+  _TLOD_SURFACE_FORCE_U32 = 0x7FFFFFFF
+} tlod_surface_type;
+
+typedef enum tlod_shading_normal {
+  TLOD_SHADING_NORMAL_DEFAULT = 0,  /* == INTERPOLATED (PN: the quadratic field) */
+  TLOD_SHADING_NORMAL_INTERPOLATED, /* Phong: normalize(sum of weights * normals) */
+  TLOD_SHADING_NORMAL_TRUE,         /* normalize(dP/du x dP/dv) */
+  TLOD_SHADING_NORMAL_NUM,
+  _TLOD_SHADING_NORMAL_FORCE_U32 = 0x7FFFFFFF
+} tlod_shading_normal;
+
+typedef struct tlod_surface_desc {
+  tlod_surface_type type;
+  /* Phong shape factor. Default 0.75 (the Phong paper's choice); set
+   * alpha_set = true to use 0. Per-vertex alphas from the mesh win when
+   * use_vertex_alpha is true. */
+  float alpha;
+  bool alpha_set;
+  bool use_vertex_alpha;
+  tlod_shading_normal shading_normal;
+  const char* label;
+} tlod_surface_desc;
+
+/* Per-patch precomputed data, in kept-face order. */
+typedef struct tlod_patch_info {
+  uint32_t corner_count; /* 3 or 4 */
+  /* Bound on the distance between the surface and its flat (level 0)
+   * patch, world units. The level-l pattern deviates by at most
+   * error_bound * 4^-l. PN: 9/4 * d'_max (Schwarz et al.); Phong: see DESIGN.md. */
+  float error_bound;
+  float d_max;     /* PN: max tangent control point distance; Phong: alpha-scaled max |d_e| */
+  float center[3]; /* bounding sphere of the curved patch */
+  float radius;
+} tlod_patch_info;
+
+typedef struct tlod_surface_point {
+  float position[3];
+  float normal[3];    /* unit shading normal */
+  float tangent[3];   /* dP/du (not normalised) */
+  float bitangent[3]; /* dP/dv (not normalised) */
+} tlod_surface_point;
+
+/* Precomputes every patch of the mesh (the mesh must outlive the surface). */
+TLOD_API tlod_result tlod_surface_create(tlod_context* ctx, const tlod_mesh* mesh, const tlod_surface_desc* desc,
+                                         tlod_surface** out);
+TLOD_API void tlod_surface_destroy(tlod_surface* surface);
+TLOD_API tlod_surface_desc tlod_surface_query_desc(const tlod_surface* surface);
+TLOD_API const tlod_mesh* tlod_surface_mesh(const tlod_surface* surface);
+TLOD_API uint32_t tlod_surface_patch_count(const tlod_surface* surface);
+TLOD_API tlod_patch_info tlod_surface_patch(const tlod_surface* surface, uint32_t patch);
+/* Recomputes patch data after tlod_mesh_update(); only patches touching a
+ * changed vertex are recomputed. Returns the count recomputed in *updated
+ * (may be NULL). */
+TLOD_API tlod_result tlod_surface_refresh(tlod_surface* surface, uint32_t* updated);
+
+/* Evaluates patch at (u, v): see PARAMETERS above. Thread-safe. */
+TLOD_API void tlod_surface_eval(const tlod_surface* surface, uint32_t patch, float u, float v, tlod_surface_point* out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* TESSLOD_CORE_H */

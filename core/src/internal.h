@@ -1,0 +1,126 @@
+/* Private to tesslod::core (and read by tests that say so): object layouts and plumbing. */
+#ifndef TESSLOD_CORE_INTERNAL_H
+#define TESSLOD_CORE_INTERNAL_H
+
+#include <stdarg.h>
+
+#include "tesslod/core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(__GNUC__)
+#define _TLOD_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define _TLOD_PRINTF(a, b)
+#endif
+
+typedef struct _tlod_pool _tlod_pool;
+
+struct tlod_context {
+  tlod_context_desc desc; /* resolved */
+  _tlod_pool* pool;       /* NULL when desc.parallel_for.func is set or one thread */
+  char label[64];
+  char last_error[512];
+};
+
+/* Allocation through the context's hooks. _tlod_calloc zeroes; sizes are
+ * checked for overflow (count * size). */
+void* _tlod_alloc(const tlod_context* ctx, size_t size);
+void* _tlod_calloc(const tlod_context* ctx, size_t count, size_t size);
+void _tlod_free(const tlod_context* ctx, void* ptr);
+
+/* Records the message as the context's last error, logs it and returns result. */
+tlod_result _tlod_fail(tlod_context* ctx, tlod_result result, const char* fmt, ...) _TLOD_PRINTF(3, 4);
+void _tlod_log(const tlod_context* ctx, tlod_log_level level, const char* fmt, ...) _TLOD_PRINTF(3, 4);
+
+/* Runs fn over [0, count) on the context's workers; returns when done. */
+void _tlod_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* data, uint32_t count);
+uint32_t _tlod_worker_count(const tlod_context* ctx);
+
+/* Built-in thread pool (thread_pool.c). */
+tlod_result _tlod_pool_create(tlod_context* ctx, uint32_t threads, _tlod_pool** out);
+void _tlod_pool_destroy(tlod_context* ctx, _tlod_pool* pool);
+void _tlod_pool_run(_tlod_pool* pool, tlod_task_fn fn, void* data, uint32_t count);
+
+#define _TLOD_NONE UINT32_MAX
+
+struct tlod_mesh {
+  tlod_context* ctx;
+  char label[64];
+  tlod_mesh_desc desc; /* resolved; array pointers cleared */
+
+  uint32_t vertex_count;
+  float (*positions)[3];
+  float (*normals)[3];      /* unit length, always present */
+  float* alphas;            /* per vertex, NULL when the desc had none */
+  uint32_t* weld_id;        /* smallest vertex index with the same (welded) position */
+  uint8_t* normal_computed; /* 1 where the normal was computed, not given */
+
+  uint32_t face_count;        /* kept faces */
+  uint32_t (*faces)[4];       /* corner vertex indices; [3] unused for triangles */
+  uint8_t* face_corners;      /* 3 or 4 */
+  uint32_t* face_input;       /* input face index */
+  tlod_edge_link (*links)[4]; /* per face edge */
+
+  /* Input vertex behind each vertex appended by a crease split (index
+   * v - input_vertex_count); NULL when nothing was split. */
+  uint32_t* split_source;
+
+  tlod_mesh_info info;
+  tlod_finding findings[TLOD_MAX_FINDINGS];
+};
+
+/* Adds a finding (counted past the limit). */
+void _tlod_mesh_add_finding(tlod_mesh* mesh, tlod_finding_kind kind, uint32_t element, uint32_t element2,
+                            const char* fmt, ...) _TLOD_PRINTF(5, 6);
+
+/* mesh_adjacency.c: weld ids alone, and the smooth flags after normals change. */
+tlod_result _tlod_mesh_weld(tlod_mesh* mesh);
+void _tlod_mesh_refresh_smooth(tlod_mesh* mesh);
+/* mesh_normals.c: normals with crease splits; appended vertices' sources go
+ * to *split_source. */
+tlod_result _tlod_mesh_compute_normals_split(tlod_mesh* mesh, uint32_t** split_source);
+/* mesh_adjacency.c: fills weld_id, links and the edge counts of info. */
+tlod_result _tlod_mesh_build_adjacency(tlod_mesh* mesh);
+/* mesh_normals.c: computes normals of the vertices marked in normal_computed
+ * (all when mode is ANGLE/AREA), with the desc's crease angle. */
+tlod_result _tlod_mesh_compute_normals(tlod_mesh* mesh);
+
+/* Per-patch precomputed data of a PN triangle: 10 cubic control points and
+ * the 3 quadratic normal-field mid-edge normals. Order:
+ * b300 b030 b003 b210 b120 b021 b012 b102 b201 b111 (corners i, j, k). */
+typedef struct _tlod_pn_patch {
+  float b[10][3];
+  float n[3][3]; /* n110, n011, n101 */
+} _tlod_pn_patch;
+
+struct tlod_surface {
+  tlod_context* ctx;
+  const tlod_mesh* mesh;
+  tlod_surface_desc desc; /* resolved */
+  uint32_t patch_count;
+  tlod_patch_info* info;
+  _tlod_pn_patch* pn;   /* PN only */
+  float* alpha;         /* per mesh vertex: the shape factor used */
+  float (*snapshot)[6]; /* vertex positions and normals the patches were built from */
+  char label[64];
+};
+
+/* One canonical edge function (DESIGN.md invariant 1): the point at
+ * parameter t from mesh vertex a to vertex b, where weld_id[a] < weld_id[b].
+ * The same inputs give bitwise equal outputs on every patch sharing the edge. */
+void _tlod_edge_eval(const tlod_surface* s, uint32_t a, uint32_t b, float t, float pos[3], float nrm[3]);
+/* Point on edge e of a patch, t_end = weight of the edge's end corner
+ * ((e + 1) % n); corners are returned exactly, other points through
+ * _tlod_edge_eval in canonical direction. */
+void _tlod_patch_edge_point(const tlod_surface* s, uint32_t patch, uint32_t edge, float t_end, float pos[3],
+                            float nrm[3]);
+/* General (interior) evaluation with no edge routing. */
+void _tlod_patch_eval(const tlod_surface* s, uint32_t patch, float u, float v, tlod_surface_point* out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,363 @@
+/* tesslod::core -- mesh welding and edge adjacency.
+ * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_normals.c).
+ *
+ * Welding hashes positions (exactly, or by grid cells of the weld epsilon):
+ * expected O(n). Edges are bucketed by their smaller welded end (a counting
+ * sort): O(n log n) at worst. Both give the same result for the same input
+ * whatever the hash layout.
+ *
+ * This work is based on:
+ *   T. Boubekeur, M. Alexa. Phong Tessellation. ACM TOG 27(5), 2008
+ *   (patches agree along an edge when both sides share positions, normals
+ *   and alphas: the smooth flag).
+ *   G. Thuermer, C. A. Wuethrich. Computing vertex normals from polygonal
+ *   facets. Journal of Graphics Tools 3(1), 1998.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+static uint64_t mix64(uint64_t x) {
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  x ^= x >> 31;
+  return x;
+}
+
+/* Load factor at most 1/2 keeps linear probing short. */
+static size_t table_capacity(size_t n) {
+  size_t c = 16;
+  while (c < 2 * n)
+    c <<= 1;
+  return c;
+}
+
+static tlod_result fail_oom(tlod_mesh* m, const char* what) {
+  return _tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (%s)", m->label, what);
+}
+
+/* ------------------------------------------------------------------------ */
+/* Welding                                                                  */
+/* ------------------------------------------------------------------------ */
+
+/* One representative vertex per welded position (the first seen, so the
+ * smallest index). vertex_plus1 == 0 marks an empty slot. */
+typedef struct weld_slot {
+  uint32_t tag; /* high half of the hash: most mismatches end here */
+  uint32_t vertex_plus1;
+} weld_slot;
+
+typedef struct weld_table {
+  weld_slot* slots;
+  size_t mask;
+  double inv_cell; /* epsilon welding: 1 / cell size; 0 for exact welding */
+  double eps;
+} weld_table;
+
+/* -0.0 and +0.0 must weld, so zero is hashed as +0.0. */
+static uint64_t float_key(float x) {
+  if (x == 0.0f) x = 0.0f;
+  uint32_t u;
+  memcpy(&u, &x, sizeof(u));
+  return u;
+}
+
+static uint64_t exact_hash(const float p[3]) {
+  return mix64(mix64(float_key(p[0]) | float_key(p[1]) << 32) ^ float_key(p[2]));
+}
+
+static uint64_t double_key(double x) {
+  if (x == 0.0) x = 0.0;
+  uint64_t u;
+  memcpy(&u, &x, sizeof(u));
+  return u;
+}
+
+static uint64_t cell_hash(const double c[3]) {
+  return mix64(mix64(mix64(double_key(c[0])) ^ double_key(c[1])) ^ double_key(c[2]));
+}
+
+static void cell_of(const weld_table* t, const float p[3], double c[3]) {
+  for (int i = 0; i < 3; i++)
+    c[i] = floor((double)p[i] * t->inv_cell);
+}
+
+static void table_insert(weld_table* t, uint64_t hash, uint32_t v) {
+  size_t i = (size_t)hash & t->mask;
+  while (t->slots[i].vertex_plus1)
+    i = (i + 1) & t->mask;
+  t->slots[i] = (weld_slot){(uint32_t)(hash >> 32), v + 1};
+}
+
+/* For finite floats == is bitwise equality, except that -0.0 == +0.0. */
+static uint32_t exact_find(const weld_table* t, float (*pos)[3], uint32_t v, uint64_t hash) {
+  for (size_t i = (size_t)hash & t->mask; t->slots[i].vertex_plus1; i = (i + 1) & t->mask) {
+    const float* q = pos[t->slots[i].vertex_plus1 - 1];
+    if (t->slots[i].tag == (uint32_t)(hash >> 32) && q[0] == pos[v][0] && q[1] == pos[v][1] && q[2] == pos[v][2])
+      return t->slots[i].vertex_plus1 - 1;
+  }
+  return _TLOD_NONE;
+}
+
+static bool within_eps(const weld_table* t, const float* a, const float* b) {
+  for (int i = 0; i < 3; i++)
+    if (fabs((double)a[i] - (double)b[i]) > t->eps) return false;
+  return true;
+}
+
+/* The smallest representative within eps of v (per coordinate), or NONE.
+ * Cells are a little over 2 eps wide, so on each axis a match lies in v's
+ * cell or the neighbour on the side of the cell half v is in: 8 cells to
+ * look at. Several representatives may share a cell. */
+static uint32_t eps_find(const weld_table* t, float (*pos)[3], uint32_t v) {
+  double c[3], lo[3], n[3];
+  for (int i = 0; i < 3; i++) {
+    double x = (double)pos[v][i] * t->inv_cell;
+    c[i] = floor(x);
+    lo[i] = x - c[i] < 0.5 ? c[i] - 1.0 : c[i];
+  }
+  uint32_t best = _TLOD_NONE;
+  for (int d = 0; d < 8; d++) {
+    for (int i = 0; i < 3; i++)
+      n[i] = lo[i] + ((d >> i) & 1);
+    uint64_t h = cell_hash(n);
+    uint32_t tag = (uint32_t)(h >> 32);
+    for (size_t i = (size_t)h & t->mask; t->slots[i].vertex_plus1; i = (i + 1) & t->mask) {
+      uint32_t r = t->slots[i].vertex_plus1 - 1;
+      if (t->slots[i].tag == tag && r < best && within_eps(t, pos[r], pos[v])) best = r;
+    }
+  }
+  return best;
+}
+
+static void weld_all(weld_table* t, tlod_mesh* m) {
+  for (uint32_t v = 0; v < m->vertex_count; v++) {
+    uint64_t h;
+    uint32_t rep;
+    if (t->inv_cell > 0.0) {
+      double c[3];
+      cell_of(t, m->positions[v], c);
+      h = cell_hash(c);
+      rep = eps_find(t, m->positions, v);
+    } else {
+      h = exact_hash(m->positions[v]);
+      rep = exact_find(t, m->positions, v, h);
+    }
+    if (rep == _TLOD_NONE) {
+      table_insert(t, h, v);
+      rep = v;
+    }
+    m->weld_id[v] = rep;
+  }
+}
+
+tlod_result _tlod_mesh_weld(tlod_mesh* m) {
+  if (!m->weld_id) m->weld_id = _tlod_calloc(m->ctx, m->vertex_count, sizeof(uint32_t));
+  if (!m->weld_id) return fail_oom(m, "weld ids");
+  size_t cap = table_capacity(m->vertex_count);
+  weld_table t = {.mask = cap - 1, .eps = m->desc.weld_epsilon};
+  if (t.eps > 0.0) {
+    /* A hair over 2 eps: two points within eps are then less than half a
+     * cell apart despite rounding in the product (see eps_find). */
+    t.inv_cell = 1.0 / (2.0 * t.eps * (1.0 + 1e-6));
+  }
+  t.slots = _tlod_calloc(m->ctx, cap, sizeof(weld_slot));
+  if (!t.slots) return fail_oom(m, "weld table");
+  weld_all(&t, m);
+  _tlod_free(m->ctx, t.slots);
+  return TLOD_SUCCESS;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Smooth flags                                                             */
+/* ------------------------------------------------------------------------ */
+
+static bool same_vertex_data(const tlod_mesh* m, uint32_t a, uint32_t b) {
+  if (a == b) return true;
+  if (memcmp(m->positions[a], m->positions[b], sizeof(m->positions[a])) != 0) return false;
+  if (memcmp(m->normals[a], m->normals[b], sizeof(m->normals[a])) != 0) return false;
+  return !m->alphas || memcmp(&m->alphas[a], &m->alphas[b], sizeof(float)) == 0;
+}
+
+static uint32_t edge_start(const tlod_mesh* m, uint32_t f, uint32_t e) { return m->faces[f][e]; }
+
+static uint32_t edge_end(const tlod_mesh* m, uint32_t f, uint32_t e) {
+  return m->faces[f][(e + 1) % m->face_corners[f]];
+}
+
+/* Edge e of f meets edge ge of g in the opposite direction: smooth when
+ * both sides evaluate the shared edge from bitwise equal data. */
+static bool edge_smooth(const tlod_mesh* m, uint32_t f, uint32_t e, uint32_t g, uint32_t ge) {
+  return same_vertex_data(m, edge_start(m, f, e), edge_end(m, g, ge)) &&
+         same_vertex_data(m, edge_end(m, f, e), edge_start(m, g, ge));
+}
+
+void _tlod_mesh_refresh_smooth(tlod_mesh* m) {
+  uint32_t creases = 0;
+  for (uint32_t f = 0; f < m->face_count; f++)
+    for (uint32_t e = 0; e < m->face_corners[f]; e++) {
+      tlod_edge_link* l = &m->links[f][e];
+      if (l->face == _TLOD_NONE) continue;
+      l->smooth = edge_smooth(m, f, e, l->face, l->edge);
+      creases += !l->smooth && f < l->face; /* each edge once */
+    }
+  m->info.crease_edges = creases;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Edges                                                                    */
+/* ------------------------------------------------------------------------ */
+
+/* A half-edge in the bucket of its smaller welded end: the larger end and
+ * its slot face * 4 + edge. */
+typedef struct half_edge {
+  uint32_t hi;
+  uint32_t slot;
+} half_edge;
+
+/* Half-edges grouped by smaller welded end (a counting sort), each bucket
+ * then sorted by (hi, slot): runs of equal hi are the welded edges, with
+ * their half-edges in face order. O(n) plus O(b log b) per bucket, so even
+ * a fan around one vertex stays O(n log n); memory is 8 bytes a half-edge. */
+typedef struct edge_buckets {
+  uint32_t* first; /* bucket w: half[first[w] .. first[w + 1]) */
+  half_edge* half;
+} edge_buckets;
+
+static uint32_t edge_lo(const tlod_mesh* m, uint32_t f, uint32_t e) {
+  uint32_t a = m->weld_id[edge_start(m, f, e)], b = m->weld_id[edge_end(m, f, e)];
+  return a < b ? a : b;
+}
+
+static uint32_t edge_hi(const tlod_mesh* m, uint32_t f, uint32_t e) {
+  uint32_t a = m->weld_id[edge_start(m, f, e)], b = m->weld_id[edge_end(m, f, e)];
+  return a < b ? b : a;
+}
+
+static int half_edge_cmp(const void* pa, const void* pb) {
+  const half_edge *a = pa, *b = pb;
+  if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
+  return a->slot < b->slot ? -1 : (a->slot > b->slot);
+}
+
+/* Buckets are a few half-edges on ordinary meshes: insertion sort; qsort
+ * only for large ones. Either way the order is (hi, slot): deterministic. */
+static void sort_bucket(half_edge* h, uint32_t n) {
+  if (n > 32) {
+    qsort(h, n, sizeof(*h), half_edge_cmp);
+    return;
+  }
+  for (uint32_t i = 1; i < n; i++) {
+    half_edge x = h[i];
+    uint32_t j = i;
+    for (; j > 0 && half_edge_cmp(&h[j - 1], &x) > 0; j--)
+      h[j] = h[j - 1];
+    h[j] = x;
+  }
+}
+
+static tlod_result buckets_build(tlod_mesh* m, edge_buckets* b) {
+  const tlod_context* ctx = m->ctx;
+  size_t half = (size_t)m->info.triangle_count * 3 + (size_t)m->info.quad_count * 4;
+  b->first = _tlod_calloc(ctx, (size_t)m->vertex_count + 1, sizeof(uint32_t));
+  b->half = _tlod_calloc(ctx, half, sizeof(half_edge));
+  if (!b->first || !b->half) {
+    _tlod_free(ctx, b->first);
+    _tlod_free(ctx, b->half);
+    return fail_oom(m, "edge buckets");
+  }
+  for (uint32_t f = 0; f < m->face_count; f++)
+    for (uint32_t e = 0; e < m->face_corners[f]; e++)
+      b->first[edge_lo(m, f, e)]++;
+  uint32_t total = 0;
+  for (uint32_t w = 0; w < m->vertex_count; w++) {
+    total += b->first[w];
+    b->first[w] = total; /* end of bucket w; filled backwards to its start */
+  }
+  b->first[m->vertex_count] = total;
+  for (uint32_t f = m->face_count; f-- > 0;)
+    for (uint32_t e = m->face_corners[f]; e-- > 0;)
+      b->half[--b->first[edge_lo(m, f, e)]] = (half_edge){edge_hi(m, f, e), f * 4 + e};
+  for (uint32_t w = 0; w < m->vertex_count; w++)
+    sort_bucket(b->half + b->first[w], b->first[w + 1] - b->first[w]);
+  return TLOD_SUCCESS;
+}
+
+static void note_boundary(tlod_mesh* m, uint32_t slot) {
+  uint32_t f = slot / 4, e = slot % 4;
+  m->info.boundary_edges++;
+  _tlod_mesh_add_finding(m, TLOD_FINDING_BOUNDARY_EDGE, m->face_input[f], e,
+                         "face %u edge %u (vertices %u, %u): boundary", m->face_input[f], e, edge_start(m, f, e),
+                         edge_end(m, f, e));
+}
+
+static void note_non_manifold(tlod_mesh* m, uint32_t slot, uint32_t faces, uint32_t other) {
+  uint32_t f = slot / 4, e = slot % 4;
+  m->info.non_manifold_edges++;
+  if (faces > 2)
+    _tlod_mesh_add_finding(m, TLOD_FINDING_NON_MANIFOLD_EDGE, m->face_input[f], e,
+                           "face %u edge %u (vertices %u, %u): shared by %u faces", m->face_input[f], e,
+                           edge_start(m, f, e), edge_end(m, f, e), faces);
+  else
+    _tlod_mesh_add_finding(m, TLOD_FINDING_NON_MANIFOLD_EDGE, m->face_input[f], e,
+                           "face %u edge %u: same direction in face %u (orientation flips)", m->face_input[f], e,
+                           m->face_input[other / 4]);
+}
+
+/* Two half-edges: manifold when they run in opposite directions. */
+static void link_pair(tlod_mesh* m, uint32_t s, uint32_t t) {
+  uint32_t f = s / 4, e = s % 4, g = t / 4, ge = t % 4;
+  if (m->weld_id[edge_start(m, f, e)] == m->weld_id[edge_start(m, g, ge)]) {
+    note_non_manifold(m, s, 2, t);
+    return;
+  }
+  bool smooth = edge_smooth(m, f, e, g, ge);
+  m->links[f][e] = (tlod_edge_link){.face = g, .edge = (uint8_t)ge, .smooth = smooth};
+  m->links[g][ge] = (tlod_edge_link){.face = f, .edge = (uint8_t)e, .smooth = smooth};
+  m->info.crease_edges += !smooth;
+}
+
+/* Edges in (smaller, larger welded end) order, so findings are too. */
+static void classify_edges(tlod_mesh* m, const edge_buckets* b) {
+  uint32_t edges = 0;
+  for (uint32_t w = 0; w < m->vertex_count; w++) {
+    const half_edge* h = b->half + b->first[w];
+    uint32_t n = b->first[w + 1] - b->first[w];
+    for (uint32_t i = 0, j; i < n; i = j) {
+      for (j = i + 1; j < n && h[j].hi == h[i].hi; j++) {
+      }
+      if (j - i == 1)
+        note_boundary(m, h[i].slot);
+      else if (j - i == 2)
+        link_pair(m, h[i].slot, h[i + 1].slot);
+      else
+        note_non_manifold(m, h[i].slot, j - i, _TLOD_NONE);
+      edges++;
+    }
+  }
+  m->info.edge_count = edges;
+  m->info.closed = m->info.boundary_edges == 0 && m->info.non_manifold_edges == 0;
+}
+
+tlod_result _tlod_mesh_build_adjacency(tlod_mesh* m) {
+  tlod_result r = m->weld_id ? TLOD_SUCCESS : _tlod_mesh_weld(m);
+  if (r != TLOD_SUCCESS) return r;
+  if (!m->links) m->links = _tlod_calloc(m->ctx, m->face_count, sizeof(*m->links));
+  if (!m->links) return fail_oom(m, "edge links");
+  /* Boundary, non-manifold and a triangle's unused fourth slot: no link. */
+  for (uint32_t f = 0; f < m->face_count; f++)
+    for (uint32_t e = 0; e < 4; e++)
+      m->links[f][e] = (tlod_edge_link){.face = _TLOD_NONE, .edge = UINT8_MAX, .smooth = false};
+  edge_buckets b;
+  r = buckets_build(m, &b);
+  if (r != TLOD_SUCCESS) return r;
+  m->info.boundary_edges = m->info.non_manifold_edges = m->info.crease_edges = 0;
+  classify_edges(m, &b);
+  _tlod_free(m->ctx, b.first);
+  _tlod_free(m->ctx, b.half);
+  return TLOD_SUCCESS;
+}

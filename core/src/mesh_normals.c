@@ -1,0 +1,518 @@
+/* tesslod::core -- computed vertex normals, with creases.
+ * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_normals.c).
+ *
+ * A vertex normal is the weighted sum of the unit normals of the faces
+ * around its welded position (so UV-seam duplicates get one normal),
+ * weighted by the corner angle (Thuermer & Wuethrich; the Phong
+ * tessellation paper's choice) or by face area. Sums run in face order, in
+ * double, so equal inputs give bitwise equal normals.
+ *
+ * Creases (crease_angle_deg > 0): each face corner sums only the faces
+ * around its position whose normal is within the crease angle of its own
+ * face's. One input vertex can then need several normals; at creation the
+ * corners of a vertex are grouped by their (bitwise) normal and each group
+ * past the first gets a new vertex, appended after the input ones, with the
+ * source's position and alpha. Later recomputations (tlod_mesh_update) keep
+ * that split; a vertex whose corners then disagree gets their mean.
+ *
+ * This work is based on:
+ *   T. Boubekeur, M. Alexa. Phong Tessellation. ACM TOG 27(5), 2008
+ *   (angle-weighted vertex normals).
+ *   G. Thuermer, C. A. Wuethrich. Computing vertex normals from polygonal
+ *   facets. Journal of Graphics Tools 3(1), 1998.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+#define PI_D 3.14159265358979323846
+
+/* Everything a computation needs, allocated up front so that a computation
+ * that fails has not written a normal yet. */
+typedef struct normal_job {
+  tlod_mesh* m;
+  bool area;           /* face area weights, else corner angles */
+  bool creases;        /* crease_angle_deg > 0 */
+  double cos_crease;   /* faces with dot(n_f, n_g) >= this are on the same side */
+  double (*face_n)[3]; /* unit face normal, zero when the face has none */
+  double* weight;      /* per corner slot face * 4 + corner */
+  uint32_t* w_first;   /* corner slots of welded position w: w_slots[w_first[w] .. w_first[w+1]) */
+  uint32_t* w_slots;   /* in face order */
+  double (*w_sum)[4];  /* no creases: weighted sum and total weight per welded position */
+  uint8_t* state;      /* creases: 0 no corner seen, 1 corners agree, 2 they differ */
+  double (*mean)[3];   /* creases: sum of the unit corner normals of a vertex */
+} normal_job;
+
+static bool wants_normal(const normal_job* j, uint32_t v) {
+  return j->m->normal_computed[v] || j->m->desc.normal_mode == TLOD_NORMALS_ANGLE ||
+         j->m->desc.normal_mode == TLOD_NORMALS_AREA;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Face geometry                                                            */
+/* ------------------------------------------------------------------------ */
+
+static void sub3(const float* a, const float* b, double out[3]) {
+  for (int i = 0; i < 3; i++)
+    out[i] = (double)a[i] - (double)b[i];
+}
+
+static void cross3(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static double length3(const double a[3]) { return sqrt(dot3(a, a)); }
+
+/* Interior angle at corner i; atan2 stays accurate near 0 and pi. */
+static double corner_angle(float (*p)[3], const uint32_t* c, uint32_t k, uint32_t i) {
+  double a[3], b[3], x[3];
+  sub3(p[c[(i + 1) % k]], p[c[i]], a);
+  sub3(p[c[(i + k - 1) % k]], p[c[i]], b);
+  cross3(a, b, x);
+  return atan2(length3(x), dot3(a, b));
+}
+
+/* Twice the area vector. Quads: the cross product of the diagonals (exact
+ * for planar quads); when the diagonals are parallel (a folded quad) the
+ * two triangles' sum stands in. */
+static void face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[3]) {
+  double a[3], b[3];
+  if (k == 4) {
+    sub3(p[c[2]], p[c[0]], a);
+    sub3(p[c[3]], p[c[1]], b);
+    cross3(a, b, out);
+    if (length3(out) > 1e-12 * (dot3(a, a) + dot3(b, b))) return;
+    double t[3];
+    sub3(p[c[1]], p[c[0]], a);
+    sub3(p[c[2]], p[c[0]], b);
+    cross3(a, b, out);
+    sub3(p[c[3]], p[c[0]], a);
+    cross3(b, a, t);
+    for (int i = 0; i < 3; i++)
+      out[i] += t[i];
+    return;
+  }
+  sub3(p[c[1]], p[c[0]], a);
+  sub3(p[c[2]], p[c[0]], b);
+  cross3(a, b, out);
+}
+
+static void face_geometry(normal_job* j, uint32_t f) {
+  const tlod_mesh* m = j->m;
+  uint32_t k = m->face_corners[f];
+  double x[3];
+  face_cross(m->positions, m->faces[f], k, x);
+  double len = length3(x);
+  for (int i = 0; i < 3; i++)
+    j->face_n[f][i] = len > 0.0 ? x[i] / len : 0.0;
+  for (uint32_t i = 0; i < 4; i++) {
+    double w = 0.0;
+    if (i < k) w = j->area ? 0.5 * len : corner_angle(m->positions, m->faces[f], k, i);
+    j->weight[f * 4 + i] = w;
+  }
+}
+
+/* ------------------------------------------------------------------------ */
+/* The job                                                                  */
+/* ------------------------------------------------------------------------ */
+
+static void job_free(normal_job* j) {
+  const tlod_context* ctx = j->m->ctx;
+  _tlod_free(ctx, j->face_n);
+  _tlod_free(ctx, j->weight);
+  _tlod_free(ctx, j->w_first);
+  _tlod_free(ctx, j->w_slots);
+  _tlod_free(ctx, j->w_sum);
+  _tlod_free(ctx, j->state);
+  _tlod_free(ctx, j->mean);
+}
+
+static tlod_result job_alloc(normal_job* j) {
+  tlod_mesh* m = j->m;
+  const tlod_context* ctx = m->ctx;
+  size_t nf = m->face_count, nv = m->vertex_count;
+  j->face_n = _tlod_calloc(ctx, nf, sizeof(*j->face_n));
+  j->weight = _tlod_calloc(ctx, nf * 4, sizeof(double));
+  j->w_first = _tlod_calloc(ctx, nv + 1, sizeof(uint32_t));
+  j->w_slots = _tlod_calloc(ctx, nf * 4, sizeof(uint32_t));
+  bool ok = j->face_n && j->weight && j->w_first && j->w_slots;
+  if (ok && !j->creases) {
+    j->w_sum = _tlod_calloc(ctx, nv, sizeof(*j->w_sum));
+    ok = j->w_sum != NULL;
+  } else if (ok) {
+    j->state = _tlod_calloc(ctx, nv, 1);
+    j->mean = _tlod_calloc(ctx, nv, sizeof(*j->mean));
+    ok = j->state && j->mean;
+  }
+  if (ok) return TLOD_SUCCESS;
+  job_free(j);
+  /* The constant, not _tlod_fail's return value: static analysis cannot
+   * see that it returns its argument, and callers rely on the failure. */
+  (void)_tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (normals)", m->label);
+  return TLOD_ERROR_OUT_OF_MEMORY;
+}
+
+/* Corner slots grouped by welded position (a counting sort, O(n)). Filling
+ * backwards from each group's end leaves every group in face order. */
+static void group_corners(normal_job* j) {
+  const tlod_mesh* m = j->m;
+  for (uint32_t f = 0; f < m->face_count; f++)
+    for (uint32_t i = 0; i < m->face_corners[f]; i++)
+      j->w_first[m->weld_id[m->faces[f][i]]]++;
+  uint32_t total = 0;
+  for (uint32_t w = 0; w < m->vertex_count; w++) {
+    total += j->w_first[w];
+    j->w_first[w] = total;
+  }
+  j->w_first[m->vertex_count] = total;
+  for (uint32_t f = m->face_count; f-- > 0;)
+    for (uint32_t i = m->face_corners[f]; i-- > 0;)
+      j->w_slots[--j->w_first[m->weld_id[m->faces[f][i]]]] = f * 4 + i;
+}
+
+static void sum_positions(normal_job* j) {
+  for (uint32_t w = 0; w < j->m->vertex_count; w++)
+    for (uint32_t s = j->w_first[w]; s < j->w_first[w + 1]; s++) {
+      uint32_t slot = j->w_slots[s];
+      double wt = j->weight[slot];
+      for (int i = 0; i < 3; i++)
+        j->w_sum[w][i] += wt * j->face_n[slot / 4][i];
+      j->w_sum[w][3] += wt;
+    }
+}
+
+static tlod_result job_start(normal_job* j, tlod_mesh* m) {
+  memset(j, 0, sizeof(*j));
+  j->m = m;
+  j->area = m->desc.normal_mode == TLOD_NORMALS_AREA;
+  j->creases = m->desc.crease_angle_deg > 0.0f;
+  /* A hair of slack so that faces exactly at the crease angle count as
+   * the same side whatever the rounding of their normals. */
+  j->cos_crease = cos((double)m->desc.crease_angle_deg * (PI_D / 180.0)) - 1e-9;
+  tlod_result r = job_alloc(j);
+  if (r != TLOD_SUCCESS) return r;
+  for (uint32_t f = 0; f < m->face_count; f++)
+    face_geometry(j, f);
+  group_corners(j);
+  if (!j->creases) sum_positions(j);
+  return TLOD_SUCCESS;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Normals                                                                  */
+/* ------------------------------------------------------------------------ */
+
+static bool nonzero(const double n[3]) { return n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0; }
+
+/* When the faces cancel out (or there are none): the own face's normal,
+ * else the first face at the position with one, else +z. */
+static void fallback_normal(const normal_job* j, uint32_t w, uint32_t own_face, float out[3]) {
+  const double* n = NULL;
+  if (own_face != _TLOD_NONE && nonzero(j->face_n[own_face])) n = j->face_n[own_face];
+  for (uint32_t s = j->w_first[w]; !n && s < j->w_first[w + 1]; s++)
+    if (nonzero(j->face_n[j->w_slots[s] / 4])) n = j->face_n[j->w_slots[s] / 4];
+  out[0] = n ? (float)n[0] : 0.0f;
+  out[1] = n ? (float)n[1] : 0.0f;
+  out[2] = n ? (float)n[2] : 1.0f;
+}
+
+/* sum[0..2] / |sum|, unless it is negligible against the total weight
+ * sum[3] (opposite faces cancelling). */
+static void unit_from_sum(const normal_job* j, const double sum[4], uint32_t w, uint32_t own, float out[3]) {
+  double len = length3(sum);
+  if (!(len > 1e-9 * sum[3]) || !(len > 0.0)) {
+    fallback_normal(j, w, own, out);
+    return;
+  }
+  for (int i = 0; i < 3; i++)
+    out[i] = (float)(sum[i] / len);
+}
+
+/* With creases: the normal of face corner slot, whose vertex sits at welded
+ * position w, from the faces there on its side of the crease. */
+static void corner_normal(const normal_job* j, uint32_t slot, uint32_t w, float out[3]) {
+  const double* own = j->face_n[slot / 4];
+  double sum[4] = {0.0, 0.0, 0.0, 0.0};
+  for (uint32_t s = j->w_first[w]; s < j->w_first[w + 1]; s++) {
+    const double* n = j->face_n[j->w_slots[s] / 4];
+    if (dot3(own, n) < j->cos_crease) continue;
+    double wt = j->weight[j->w_slots[s]];
+    for (int i = 0; i < 3; i++)
+      sum[i] += wt * n[i];
+    sum[3] += wt;
+  }
+  unit_from_sum(j, sum, w, slot / 4, out);
+}
+
+/* A vertex no kept face uses: the normal of all faces at its position. */
+static void unused_normal(const normal_job* j, uint32_t v, float out[3]) {
+  uint32_t w = j->m->weld_id[v];
+  double sum[4] = {0.0, 0.0, 0.0, 0.0};
+  for (uint32_t s = j->w_first[w]; s < j->w_first[w + 1]; s++) {
+    uint32_t slot = j->w_slots[s];
+    for (int i = 0; i < 3; i++)
+      sum[i] += j->weight[slot] * j->face_n[slot / 4][i];
+    sum[3] += j->weight[slot];
+  }
+  unit_from_sum(j, sum, w, _TLOD_NONE, out);
+}
+
+static bool same_normal(const float* a, const float* b) { return memcmp(a, b, 3 * sizeof(float)) == 0; }
+
+/* Without creases every corner at a position has the same normal. */
+static void assign_smooth(normal_job* j) {
+  tlod_mesh* m = j->m;
+  for (uint32_t v = 0; v < m->vertex_count; v++) {
+    uint32_t w = m->weld_id[v];
+    if (wants_normal(j, v)) unit_from_sum(j, j->w_sum[w], w, _TLOD_NONE, m->normals[v]);
+  }
+}
+
+/* Creases, topology kept: a vertex takes its corners' normal when they
+ * agree (so an unchanged mesh reproduces its normals bitwise), else their
+ * mean. */
+static void assign_creased(normal_job* j) {
+  tlod_mesh* m = j->m;
+  for (uint32_t f = 0; f < m->face_count; f++)
+    for (uint32_t i = 0; i < m->face_corners[f]; i++) {
+      uint32_t v = m->faces[f][i];
+      if (!wants_normal(j, v)) continue;
+      float n[3];
+      corner_normal(j, f * 4 + i, m->weld_id[v], n);
+      if (j->state[v] == 0) {
+        memcpy(m->normals[v], n, sizeof(n));
+        j->state[v] = 1;
+      } else if (j->state[v] == 1 && !same_normal(m->normals[v], n)) {
+        j->state[v] = 2;
+      }
+      for (int c = 0; c < 3; c++)
+        j->mean[v][c] += n[c];
+    }
+  for (uint32_t v = 0; v < m->vertex_count; v++) {
+    if (!wants_normal(j, v)) continue;
+    if (j->state[v] == 0) unused_normal(j, v, m->normals[v]);
+    double sum[4] = {j->mean[v][0], j->mean[v][1], j->mean[v][2], 1.0};
+    if (j->state[v] == 2) unit_from_sum(j, sum, m->weld_id[v], _TLOD_NONE, m->normals[v]);
+  }
+}
+
+/* ------------------------------------------------------------------------ */
+/* Crease splits (creation only)                                            */
+/* ------------------------------------------------------------------------ */
+
+/* Vertices appended by a split: new vertex input_count + k has source
+ * src[k] and normal nrm[k]; next[k] chains the splits of one source. */
+typedef struct split_list {
+  uint32_t* first; /* per input vertex: its first split, NONE if none */
+  uint32_t* next;
+  uint32_t* src;
+  float (*nrm)[3];
+  uint32_t count, capacity;
+} split_list;
+
+static void split_free_lists(const tlod_context* ctx, split_list* s) {
+  _tlod_free(ctx, s->next);
+  _tlod_free(ctx, s->src);
+  _tlod_free(ctx, s->nrm);
+}
+
+static void split_free(const tlod_context* ctx, split_list* s) {
+  _tlod_free(ctx, s->first);
+  split_free_lists(ctx, s);
+}
+
+/* A copy of the used elements of p with room for cap; p is left alone. */
+static void* regrown(const tlod_context* ctx, const void* p, size_t used, size_t cap, size_t size) {
+  void* q = _tlod_calloc(ctx, cap, size);
+  if (q && used) memcpy(q, p, used * size);
+  return q;
+}
+
+static bool split_grow(const tlod_context* ctx, split_list* s) {
+  size_t cap = s->capacity ? (size_t)s->capacity * 2 : 64;
+  uint32_t* next = regrown(ctx, s->next, s->count, cap, sizeof(uint32_t));
+  uint32_t* src = regrown(ctx, s->src, s->count, cap, sizeof(uint32_t));
+  float(*nrm)[3] = regrown(ctx, s->nrm, s->count, cap, sizeof(*s->nrm));
+  if (!next || !src || !nrm) {
+    _tlod_free(ctx, next);
+    _tlod_free(ctx, src);
+    _tlod_free(ctx, nrm);
+    return false;
+  }
+  split_free_lists(ctx, s);
+  s->next = next;
+  s->src = src;
+  s->nrm = nrm;
+  s->capacity = (uint32_t)cap;
+  return true;
+}
+
+/* The vertex carrying normal n for a corner of v: v itself or a split of
+ * it, made when no existing one matches. NONE when out of memory. */
+static uint32_t split_vertex(const tlod_context* ctx, split_list* s, uint32_t base, uint32_t v, const float n[3]) {
+  uint32_t prev = _TLOD_NONE;
+  for (uint32_t k = s->first[v]; k != _TLOD_NONE; prev = k, k = s->next[k])
+    if (same_normal(s->nrm[k], n)) return base + k;
+  if (s->count == s->capacity && !split_grow(ctx, s)) return _TLOD_NONE;
+  uint32_t k = s->count++;
+  s->next[k] = _TLOD_NONE;
+  s->src[k] = v;
+  memcpy(s->nrm[k], n, 3 * sizeof(float));
+  /* Appended, so the splits of v stay in creation order. */
+  if (prev == _TLOD_NONE)
+    s->first[v] = k;
+  else
+    s->next[prev] = k;
+  return base + k;
+}
+
+/* Groups each vertex's corners by normal; corners past the first group move
+ * to split vertices (faces are rewritten here, vertex arrays later). */
+static tlod_result split_corners(normal_job* j, split_list* s) {
+  tlod_mesh* m = j->m;
+  uint32_t n = m->vertex_count;
+  for (uint32_t f = 0; f < m->face_count; f++)
+    for (uint32_t i = 0; i < m->face_corners[f]; i++) {
+      uint32_t v = m->faces[f][i];
+      if (!wants_normal(j, v)) continue;
+      float c[3];
+      /* v < n here: a corner is rewritten only after its own normal. */
+      corner_normal(j, f * 4 + i, m->weld_id[v], c);
+      if (j->state[v] == 0) {
+        memcpy(m->normals[v], c, sizeof(c));
+        j->state[v] = 1;
+      } else if (!same_normal(m->normals[v], c)) {
+        uint32_t d = split_vertex(m->ctx, s, n, v, c);
+        if (d == _TLOD_NONE)
+          return _tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (crease splits)", m->label);
+        m->faces[f][i] = d;
+      }
+    }
+  for (uint32_t v = 0; v < n; v++)
+    if (wants_normal(j, v) && j->state[v] == 0) unused_normal(j, v, m->normals[v]);
+  return TLOD_SUCCESS;
+}
+
+/* The per-vertex arrays of a mesh, grown for the split vertices. */
+typedef struct vertex_arrays {
+  float (*positions)[3];
+  float (*normals)[3];
+  uint32_t* weld_id;
+  uint8_t* normal_computed;
+  float* alphas;
+  uint32_t* source;
+} vertex_arrays;
+
+static void arrays_free(const tlod_context* ctx, vertex_arrays* a) {
+  _tlod_free(ctx, a->positions);
+  _tlod_free(ctx, a->normals);
+  _tlod_free(ctx, a->weld_id);
+  _tlod_free(ctx, a->normal_computed);
+  _tlod_free(ctx, a->alphas);
+  _tlod_free(ctx, a->source);
+}
+
+/* All or nothing, so the mesh stays consistent when memory runs out. */
+static bool arrays_grow(const tlod_mesh* m, size_t total, uint32_t splits, vertex_arrays* a) {
+  const tlod_context* ctx = m->ctx;
+  uint32_t n = m->vertex_count;
+  a->positions = regrown(ctx, m->positions, n, total, sizeof(*m->positions));
+  a->normals = regrown(ctx, m->normals, n, total, sizeof(*m->normals));
+  a->weld_id = regrown(ctx, m->weld_id, n, total, sizeof(uint32_t));
+  a->normal_computed = regrown(ctx, m->normal_computed, n, total, 1);
+  a->alphas = m->alphas ? regrown(ctx, m->alphas, n, total, sizeof(float)) : NULL;
+  a->source = _tlod_calloc(ctx, splits, sizeof(uint32_t));
+  if (a->positions && a->normals && a->weld_id && a->normal_computed && (a->alphas || !m->alphas) && a->source)
+    return true;
+  arrays_free(ctx, a);
+  return false;
+}
+
+/* Swaps the grown arrays in and frees the old ones. */
+static void arrays_swap(tlod_mesh* m, vertex_arrays* a) {
+  vertex_arrays old = {m->positions, m->normals, m->weld_id, m->normal_computed, m->alphas, NULL};
+  m->positions = a->positions;
+  m->normals = a->normals;
+  m->weld_id = a->weld_id;
+  m->normal_computed = a->normal_computed;
+  m->alphas = a->alphas;
+  arrays_free(m->ctx, &old);
+}
+
+/* Appends the split vertices to every per-vertex array. */
+static tlod_result append_splits(tlod_mesh* m, const split_list* s, uint32_t** split_source) {
+  uint32_t n = m->vertex_count;
+  size_t total = (size_t)n + s->count;
+  if (total > UINT32_MAX)
+    return _tlod_fail(m->ctx, TLOD_ERROR_INVALID_MESH, "mesh '%s': crease splits need more than 2^32 vertices",
+                      m->label);
+  vertex_arrays a;
+  if (!arrays_grow(m, total, s->count, &a))
+    return _tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (crease splits)", m->label);
+  for (uint32_t k = 0; k < s->count; k++) {
+    uint32_t d = n + k, v = s->src[k];
+    memcpy(a.positions[d], a.positions[v], sizeof(a.positions[d]));
+    memcpy(a.normals[d], s->nrm[k], sizeof(a.normals[d]));
+    a.weld_id[d] = a.weld_id[v];
+    a.normal_computed[d] = 1;
+    if (a.alphas) a.alphas[d] = a.alphas[v];
+    a.source[k] = v;
+  }
+  *split_source = a.source;
+  arrays_swap(m, &a);
+  m->vertex_count = (uint32_t)total;
+  return TLOD_SUCCESS;
+}
+
+static tlod_result split_creases(normal_job* j, uint32_t** split_source) {
+  tlod_mesh* m = j->m;
+  split_list s = {0};
+  s.first = _tlod_calloc(m->ctx, m->vertex_count, sizeof(uint32_t));
+  if (!s.first)
+    return _tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (crease splits)", m->label);
+  memset(s.first, 0xFF, (size_t)m->vertex_count * sizeof(uint32_t)); /* all NONE */
+  tlod_result r = split_corners(j, &s);
+  if (r == TLOD_SUCCESS && s.count > 0) r = append_splits(m, &s, split_source);
+  split_free(m->ctx, &s);
+  return r;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Entry points                                                             */
+/* ------------------------------------------------------------------------ */
+
+static bool any_wanted(const normal_job* j) {
+  for (uint32_t v = 0; v < j->m->vertex_count; v++)
+    if (wants_normal(j, v)) return true;
+  return false;
+}
+
+static tlod_result compute(tlod_mesh* m, uint32_t** split_source) {
+  normal_job j = {.m = m};
+  if (!any_wanted(&j)) return TLOD_SUCCESS; /* every normal given and valid */
+  tlod_result r = job_start(&j, m);
+  if (r != TLOD_SUCCESS) return r;
+  if (!j.creases)
+    assign_smooth(&j);
+  else if (split_source)
+    r = split_creases(&j, split_source);
+  else
+    assign_creased(&j);
+  job_free(&j);
+  return r;
+}
+
+tlod_result _tlod_mesh_compute_normals(tlod_mesh* mesh) { return compute(mesh, NULL); }
+
+/* Creation: like _tlod_mesh_compute_normals, but corners that need another
+ * normal than their vertex's get a split vertex. *split_source receives the
+ * source of each appended vertex (NULL when none was needed). */
+tlod_result _tlod_mesh_compute_normals_split(tlod_mesh* mesh, uint32_t** split_source) {
+  *split_source = NULL;
+  return compute(mesh, split_source);
+}

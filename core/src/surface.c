@@ -1,0 +1,293 @@
+/* tesslod::core -- surfaces: per-patch precomputation and the evaluation
+ * entry point that routes corners, edges and interiors (DESIGN.md
+ * invariants 1 and 2). */
+#include <stdio.h>
+#include <string.h>
+
+#include "surface_eval.h"
+
+static tlod_surface_desc surface_desc_defaults(const tlod_surface_desc* in) {
+  tlod_surface_desc d = in ? *in : (tlod_surface_desc){0};
+  if (d.type == TLOD_SURFACE_DEFAULT) d.type = TLOD_SURFACE_PHONG;
+  if (!d.alpha_set) d.alpha = 0.75f;
+  d.alpha_set = true;
+  if (d.shading_normal == TLOD_SHADING_NORMAL_DEFAULT) d.shading_normal = TLOD_SHADING_NORMAL_INTERPOLATED;
+  if (!d.label) d.label = "surface";
+  return d;
+}
+
+static void gather(const tlod_surface* s, uint32_t face, _tlod_corners* c) {
+  const tlod_mesh* m = s->mesh;
+  c->n = m->face_corners[face];
+  for (uint32_t i = 0; i < c->n; i++) {
+    uint32_t vi = m->faces[face][i];
+    c->p[i] = v3_load(m->positions[vi]);
+    c->nrm[i] = v3_load(m->normals[vi]);
+    c->alpha[i] = s->alpha[vi];
+  }
+}
+
+static void sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n, float grow, tlod_patch_info* info) {
+  v3 center = c->p[0];
+  for (uint32_t i = 1; i < c->n; i++)
+    center = v3_add(center, c->p[i]);
+  center = v3_scale(center, 1.0f / (float)c->n);
+  float r = 0.0f;
+  for (uint32_t i = 0; i < c->n; i++) {
+    float d = v3_length(v3_sub(c->p[i], center));
+    r = d > r ? d : r;
+  }
+  for (uint32_t i = 0; i < extra_n; i++) {
+    float d = v3_length(v3_sub(extra[i], center));
+    r = d > r ? d : r;
+  }
+  v3_store(info->center, center);
+  /* Relative slack covers the rounding of the evaluation itself. */
+  info->radius = (r + grow) * (1.0f + 1e-5f);
+}
+
+static void build_patch(tlod_surface* s, uint32_t f) {
+  _tlod_corners c;
+  gather(s, f, &c);
+  tlod_patch_info* info = &s->info[f];
+  info->corner_count = c.n;
+  switch (s->desc.type) {
+  case TLOD_SURFACE_PN: {
+    _tlod_pn_build(&c, &s->pn[f]);
+    info->error_bound = _tlod_pn_bound(&s->pn[f], &c, &info->d_max);
+    v3 ctrl[10];
+    for (int i = 0; i < 10; i++)
+      ctrl[i] = v3_load(s->pn[f].b[i]);
+    /* Bernstein convex hull: the control points enclose the patch. */
+    sphere_of(&c, ctrl, 10, 0.0f, info);
+    break;
+  }
+  case TLOD_SURFACE_PHONG:
+    info->error_bound = c.n == 3 ? _tlod_phong_tri_bound(&c, &info->d_max) : _tlod_quad_bound(&c, &info->d_max);
+    sphere_of(&c, NULL, 0, info->error_bound, info);
+    break;
+  default:
+    /* gather() gave flat surfaces zero alphas: the quad bound is the bilinear one. */
+    info->error_bound = c.n == 4 ? _tlod_quad_bound(&c, &info->d_max) : 0.0f;
+    if (c.n == 3) info->d_max = 0.0f;
+    sphere_of(&c, NULL, 0, info->error_bound, info);
+    break;
+  }
+}
+
+typedef struct build_job {
+  tlod_surface* s;
+  const uint8_t* dirty; /* NULL: all */
+} build_job;
+
+static void build_range(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
+  (void)worker;
+  build_job* job = data;
+  for (uint32_t f = begin; f < end; f++) {
+    if (!job->dirty || job->dirty[f]) build_patch(job->s, f);
+  }
+}
+
+static tlod_result validate_surface_desc(tlod_context* ctx, const tlod_mesh* mesh, const tlod_surface_desc* d) {
+  if ((unsigned)d->type >= TLOD_SURFACE_NUM)
+    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': unknown type %d", d->label, (int)d->type);
+  if ((unsigned)d->shading_normal >= TLOD_SHADING_NORMAL_NUM)
+    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': unknown shading normal %d", d->label,
+                      (int)d->shading_normal);
+  if (!(d->alpha >= 0.0f && d->alpha <= 1.0f))
+    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': alpha %g outside [0, 1]", d->label,
+                      (double)d->alpha);
+  if (d->use_vertex_alpha && !mesh->alphas)
+    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': use_vertex_alpha but mesh '%s' has no alphas",
+                      d->label, mesh->label);
+  if (d->type == TLOD_SURFACE_PN) {
+    for (uint32_t f = 0; f < mesh->face_count; f++) {
+      if (mesh->face_corners[f] != 3)
+        return _tlod_fail(ctx, TLOD_ERROR_UNSUPPORTED,
+                          "surface '%s': PN triangles need triangles, but face %u of mesh '%s' is a quad "
+                          "(use Phong, or triangulate)",
+                          d->label, mesh->face_input[f], mesh->label);
+    }
+  }
+  return TLOD_SUCCESS;
+}
+
+void tlod_surface_destroy(tlod_surface* s) {
+  if (!s) return;
+  tlod_context* ctx = s->ctx;
+  _tlod_free(ctx, s->info);
+  _tlod_free(ctx, s->pn);
+  _tlod_free(ctx, s->alpha);
+  _tlod_free(ctx, s->snapshot);
+  _tlod_free(ctx, s);
+}
+
+static tlod_result alloc_surface(tlod_context* ctx, const tlod_mesh* mesh, tlod_surface* s) {
+  s->info = _tlod_calloc(ctx, mesh->face_count, sizeof(*s->info));
+  s->alpha = _tlod_calloc(ctx, mesh->vertex_count, sizeof(float));
+  s->snapshot = _tlod_calloc(ctx, mesh->vertex_count, sizeof(*s->snapshot));
+  if (s->desc.type == TLOD_SURFACE_PN) s->pn = _tlod_calloc(ctx, mesh->face_count, sizeof(*s->pn));
+  if (!s->info || !s->alpha || !s->snapshot || (s->desc.type == TLOD_SURFACE_PN && !s->pn))
+    return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "surface '%s': out of memory for %u patches", s->desc.label,
+                      mesh->face_count);
+  return TLOD_SUCCESS;
+}
+
+static void take_snapshot(tlod_surface* s) {
+  const tlod_mesh* m = s->mesh;
+  for (uint32_t v = 0; v < m->vertex_count; v++) {
+    memcpy(s->snapshot[v], m->positions[v], sizeof(float) * 3);
+    memcpy(s->snapshot[v] + 3, m->normals[v], sizeof(float) * 3);
+  }
+}
+
+tlod_result tlod_surface_create(tlod_context* ctx, const tlod_mesh* mesh, const tlod_surface_desc* desc,
+                                tlod_surface** out) {
+  if (!out)
+    return ctx ? _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_surface_create: out is NULL")
+               : TLOD_ERROR_INVALID_ARGUMENT;
+  *out = NULL;
+  if (!ctx) return TLOD_ERROR_INVALID_ARGUMENT;
+  if (!mesh) return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_surface_create: mesh is NULL");
+  tlod_surface_desc d = surface_desc_defaults(desc);
+  tlod_result r = validate_surface_desc(ctx, mesh, &d);
+  if (r != TLOD_SUCCESS) return r;
+  tlod_surface* s = _tlod_calloc(ctx, 1, sizeof(*s));
+  if (!s) return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "surface '%s': out of memory", d.label);
+  s->ctx = ctx;
+  s->mesh = mesh;
+  s->desc = d;
+  snprintf(s->label, sizeof(s->label), "%s", d.label);
+  s->desc.label = s->label;
+  s->patch_count = mesh->face_count;
+  r = alloc_surface(ctx, mesh, s);
+  if (r != TLOD_SUCCESS) {
+    tlod_surface_destroy(s);
+    return r;
+  }
+  for (uint32_t v = 0; v < mesh->vertex_count; v++)
+    s->alpha[v] = d.type == TLOD_SURFACE_FLAT ? 0.0f : (d.use_vertex_alpha ? mesh->alphas[v] : d.alpha);
+  take_snapshot(s);
+  build_job job = {s, NULL};
+  _tlod_parallel_for(ctx, build_range, &job, s->patch_count);
+  *out = s;
+  return TLOD_SUCCESS;
+}
+
+tlod_result tlod_surface_refresh(tlod_surface* s, uint32_t* updated) {
+  if (updated) *updated = 0;
+  if (!s) return TLOD_ERROR_INVALID_ARGUMENT;
+  const tlod_mesh* m = s->mesh;
+  uint8_t* dirty = _tlod_calloc(s->ctx, m->face_count, 1);
+  if (!dirty) return _tlod_fail(s->ctx, TLOD_ERROR_OUT_OF_MEMORY, "surface '%s': out of memory", s->label);
+  uint32_t count = 0;
+  for (uint32_t f = 0; f < m->face_count; f++) {
+    for (uint32_t i = 0; i < m->face_corners[f] && !dirty[f]; i++) {
+      uint32_t v = m->faces[f][i];
+      dirty[f] = memcmp(s->snapshot[v], m->positions[v], sizeof(float) * 3) != 0 ||
+                 memcmp(s->snapshot[v] + 3, m->normals[v], sizeof(float) * 3) != 0;
+    }
+    count += dirty[f];
+  }
+  build_job job = {s, dirty};
+  _tlod_parallel_for(s->ctx, build_range, &job, m->face_count);
+  take_snapshot(s);
+  _tlod_free(s->ctx, dirty);
+  if (updated) *updated = count;
+  return TLOD_SUCCESS;
+}
+
+tlod_surface_desc tlod_surface_query_desc(const tlod_surface* s) { return s->desc; }
+const tlod_mesh* tlod_surface_mesh(const tlod_surface* s) { return s->mesh; }
+uint32_t tlod_surface_patch_count(const tlod_surface* s) { return s->patch_count; }
+
+tlod_patch_info tlod_surface_patch(const tlod_surface* s, uint32_t patch) {
+  if (!s || patch >= s->patch_count) return (tlod_patch_info){0};
+  return s->info[patch];
+}
+
+void _tlod_edge_eval(const tlod_surface* s, uint32_t a, uint32_t b, float t, float pos[3], float nrm[3]) {
+  const tlod_mesh* m = s->mesh;
+  v3 pa = v3_load(m->positions[a]), pb = v3_load(m->positions[b]);
+  v3 na = v3_load(m->normals[a]), nb = v3_load(m->normals[b]);
+  v3 p, n;
+  switch (s->desc.type) {
+  case TLOD_SURFACE_PN:
+    _tlod_pn_edge(pa, na, pb, nb, t, &p, &n);
+    break;
+  case TLOD_SURFACE_PHONG:
+    _tlod_phong_edge(pa, na, s->alpha[a], pb, nb, s->alpha[b], t, &p, &n);
+    break;
+  default:
+    _tlod_flat_edge(pa, na, pb, nb, t, &p, &n);
+    break;
+  }
+  v3_store(pos, p);
+  v3_store(nrm, n);
+}
+
+void _tlod_patch_eval(const tlod_surface* s, uint32_t patch, float u, float v, tlod_surface_point* out) {
+  _tlod_corners c;
+  gather(s, patch, &c);
+  bool true_normal = s->desc.shading_normal == TLOD_SHADING_NORMAL_TRUE;
+  switch (s->desc.type) {
+  case TLOD_SURFACE_PN:
+    _tlod_pn_eval(&s->pn[patch], &c, u, v, out);
+    break;
+  case TLOD_SURFACE_PHONG:
+    _tlod_phong_eval(&c, u, v, true_normal, out);
+    return;
+  default:
+    _tlod_flat_eval(&c, u, v, out);
+    break;
+  }
+  if (true_normal) {
+    v3 n = v3_normalize(v3_cross(v3_load(out->tangent), v3_load(out->bitangent)));
+    if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f) v3_store(out->normal, n);
+  }
+}
+
+/* Where (u, v) lies on edge e of the patch, the weight of its end corner. */
+static bool on_edge(uint32_t n, float u, float v, uint32_t* edge, float* t_end) {
+  if (n == 3) {
+    float w = 1.0f - u - v;
+    if (w == 0.0f) return *edge = 0, *t_end = v, true; /* i -> j */
+    if (u == 0.0f) return *edge = 1, *t_end = w, true; /* j -> k */
+    if (v == 0.0f) return *edge = 2, *t_end = u, true; /* k -> i */
+    return false;
+  }
+  if (v == 0.0f) return *edge = 0, *t_end = u, true;        /* 0 -> 1 */
+  if (u == 1.0f) return *edge = 1, *t_end = v, true;        /* 1 -> 2 */
+  if (v == 1.0f) return *edge = 2, *t_end = 1.0f - u, true; /* 2 -> 3 */
+  if (u == 0.0f) return *edge = 3, *t_end = 1.0f - v, true; /* 3 -> 0 */
+  return false;
+}
+
+void _tlod_patch_edge_point(const tlod_surface* s, uint32_t patch, uint32_t edge, float t_end, float pos[3],
+                            float nrm[3]) {
+  const tlod_mesh* m = s->mesh;
+  uint32_t n = m->face_corners[patch];
+  uint32_t a = m->faces[patch][edge], b = m->faces[patch][(edge + 1) % n];
+  if (t_end == 0.0f || t_end == 1.0f) {
+    uint32_t corner = t_end == 0.0f ? a : b;
+    memcpy(pos, m->positions[corner], sizeof(float) * 3);
+    memcpy(nrm, m->normals[corner], sizeof(float) * 3);
+    return;
+  }
+  /* Canonical direction: from the smaller welded id, so both sides agree. */
+  if (m->weld_id[a] < m->weld_id[b])
+    _tlod_edge_eval(s, a, b, t_end, pos, nrm);
+  else
+    _tlod_edge_eval(s, b, a, 1.0f - t_end, pos, nrm);
+}
+
+void tlod_surface_eval(const tlod_surface* s, uint32_t patch, float u, float v, tlod_surface_point* out) {
+  _tlod_patch_eval(s, patch, u, v, out);
+  uint32_t edge;
+  float t_end, normal[3];
+  if (on_edge(s->mesh->face_corners[patch], u, v, &edge, &t_end)) {
+    /* True normals depend on the patch's own derivatives: keep them. */
+    float* nrm = s->desc.shading_normal == TLOD_SHADING_NORMAL_TRUE ? normal : out->normal;
+    _tlod_patch_edge_point(s, patch, edge, t_end, out->position, nrm);
+  }
+}

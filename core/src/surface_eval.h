@@ -1,0 +1,46 @@
+/* Private: per-surface-type evaluation kernels (phong.c, pn_triangle.c). */
+#ifndef TESSLOD_SURFACE_EVAL_H
+#define TESSLOD_SURFACE_EVAL_H
+
+#include "internal.h"
+#include "vec3.h"
+
+/* The corner data of one patch, gathered from the mesh. */
+typedef struct _tlod_corners {
+  uint32_t n; /* 3 or 4 */
+  v3 p[4];
+  v3 nrm[4];
+  float alpha[4];
+} _tlod_corners;
+
+enum { _TLOD_EVAL_DERIVS = 1 };
+
+/* Phong (Boubekeur & Alexa 2008; quads: Dupuy). The edge function is shared by
+ * triangles and quads: on an edge both reduce to it exactly. */
+void _tlod_phong_edge(v3 pa, v3 na, float alpha_a, v3 pb, v3 nb, float alpha_b, float t, v3* pos, v3* nrm);
+/* Triangle or quad by c->n. */
+void _tlod_phong_eval(const _tlod_corners* c, float u, float v, bool true_normal, tlod_surface_point* out);
+/* Bound on |surface - flat patch| and the d_max it comes from. */
+float _tlod_phong_tri_bound(const _tlod_corners* c, float* d_max);
+/* Bounds from second derivatives (phong.c): the level-l pattern is within
+ * 4^-l times the result. _tlod_tri_net_bound takes a cubic triangle net. */
+float _tlod_tri_net_bound(const double net[10][3], const _tlod_corners* c);
+float _tlod_phong_alpha_bound(const _tlod_corners* c);
+double _tlod_norm3(const double v[3]);
+double _tlod_bound_slack(const _tlod_corners* c);
+/* Quads, Phong or flat (alphas zero): from the second derivatives. */
+float _tlod_quad_bound(const _tlod_corners* c, float* d_max);
+
+/* Flat: the input triangle, the bilinear quad. */
+void _tlod_flat_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm);
+void _tlod_flat_eval(const _tlod_corners* c, float u, float v, tlod_surface_point* out);
+
+/* PN triangles (Vlachos et al. 2001), bound per Schwarz et al. 2006. */
+void _tlod_pn_build(const _tlod_corners* c, _tlod_pn_patch* out);
+void _tlod_pn_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm);
+/* Normals blend the corner normals of c with the patch's mid-edge normals. */
+void _tlod_pn_eval(const _tlod_pn_patch* patch, const _tlod_corners* c, float u, float v, tlod_surface_point* out);
+/* d_max: the paper's d'_max; returns max(9/4 d'_max, the second-derivative bound). */
+float _tlod_pn_bound(const _tlod_pn_patch* patch, const _tlod_corners* c, float* d_max);
+
+#endif

@@ -1,0 +1,140 @@
+#!/usr/bin/env python3
+"""End-to-end tests of the tlod command: exit codes, one-line errors, no
+half-written outputs, closed output for closed input, stats contents.
+Usage: cli_test.py TLOD DATA_DIR WORK_DIR"""
+import json, os, struct, subprocess, sys, glob
+
+TLOD, DATA, WORK = sys.argv[1:4]
+os.makedirs(WORK, exist_ok=True)
+passed = failed = 0
+
+
+def run(*args):
+    p = subprocess.run([TLOD, *args], capture_output=True, text=True, timeout=300)
+    return p.returncode, p.stdout, p.stderr
+
+
+def check(name, cond, detail=""):
+    global passed, failed
+    if cond:
+        passed += 1
+        print("ok   " + name)
+    else:
+        failed += 1
+        print("FAIL " + name + (": " + detail if detail else ""))
+
+
+def one_error_line(err):
+    lines = [l for l in err.splitlines() if l.strip()]
+    return len(lines) == 1 and lines[0].startswith("tlod: error: ")
+
+
+def read_obj(path):
+    verts, tris = [], []
+    with open(path) as f:
+        for line in f:
+            t = line.split()
+            if not t:
+                continue
+            if t[0] == "v":
+                verts.append(tuple(struct.unpack("<3I", struct.pack("<3f", *map(float, t[1:4])))))
+            elif t[0] == "f":
+                tris.append(tuple(int(x.split("/")[0]) - 1 for x in t[1:4]))
+    return verts, tris
+
+
+def closed_after_weld(verts, tris):
+    """Welds by exact float bits; every undirected edge must have exactly two
+    triangles, traversed in opposite directions."""
+    ids = {}
+    weld = [ids.setdefault(v, len(ids)) for v in verts]
+    directed = {}
+    for a, b, c in tris:
+        a, b, c = weld[a], weld[b], weld[c]
+        if a == b or b == c or c == a:
+            return False, "degenerate triangle after welding"
+        for e in ((a, b), (b, c), (c, a)):
+            directed[e] = directed.get(e, 0) + 1
+    for (a, b), n in directed.items():
+        if n != 1 or directed.get((b, a), 0) != 1:
+            return False, "edge %d-%d used %d/%d times" % (a, b, n, directed.get((b, a), 0))
+    return True, ""
+
+
+# usage errors
+rc, out, err = run()
+check("no arguments exits 2", rc == 2)
+rc, out, err = run("frobnicate")
+check("unknown command: exit 2, one line", rc == 2 and one_error_line(err), err)
+for cmd in ("tessellate", "info", "bench"):
+    rc, out, err = run(cmd, "--help")
+    check(cmd + " --help exits 0 with usage", rc == 0 and "usage: tlod " + cmd in out)
+box = os.path.join(DATA, "glTF-Sample-Models/Box/Box.gltf")
+for bad in (["--level", "99"], ["--level", "-1"], ["--alpha", "2"], ["--alpha", "nan"], ["--surface", "nurbs"],
+            ["--normals", "x"], ["--frob"], ["--crease"]):
+    o = os.path.join(WORK, "bad_flag.obj")
+    rc, out, err = run("tessellate", box, "-o", o, *bad)
+    check("bad flag %s: exit 2, one line, no output" % " ".join(bad),
+          rc == 2 and one_error_line(err) and not os.path.exists(o), err)
+rc, out, err = run("tessellate", box)
+check("missing -o: exit 2", rc == 2 and one_error_line(err), err)
+
+# bad input files: one clear line naming the file, exit 1, no output left behind
+bad_files = sorted(glob.glob(os.path.join(DATA, "glTF-Validator/glb/*.glb")))
+bad_files += [os.path.join(DATA, "glTF-Validator", p) for p in (
+    "json/invalid_syntax.gltf", "mesh_data/index_buffer_oob.gltf", "mesh/unresolved_indices.gltf",
+    "mesh/position_accessor_invalid_format.gltf", "mesh/accessor_unequal_count.gltf", "buffer/not_found.gltf",
+    "buffer/invalid_uri_data_bytelength.gltf", "buffer_view/invalid_length.gltf")]
+bad_files += [os.path.join(DATA, "assimp/BoxWithInfinites.glb"), os.path.join(WORK, "does_not_exist.obj"),
+              os.path.join(DATA, "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf")]
+bad_files += sorted(glob.glob(os.path.join(DATA, "obj_bad/*.obj")))
+for path in bad_files:
+    o = os.path.join(WORK, "bad_input.obj")
+    rc, out, err = run("tessellate", path, "-o", o)
+    base = os.path.basename(path)
+    check("bad input %s: exit 1, one line naming it, no output" % base,
+          rc == 1 and one_error_line(err) and base in err and not os.path.exists(o), "rc=%d %s" % (rc, err))
+    rc, out, err = run("info", path)
+    check("info on bad input %s: exit 1" % base, rc == 1 and one_error_line(err), err)
+
+# closed inputs give closed outputs (no-weld output welded by exact position)
+for surface in ("flat", "phong", "pn"):
+    for src in (box, "demo:cow", "demo:cylinder", os.path.join(DATA, "glTF-Sample-Models/BoxInterleaved/BoxInterleaved.glb")):
+        o = os.path.join(WORK, "closed_%s.obj" % surface)
+        rc, out, err = run("tessellate", src, "-o", o, "--surface", surface, "--level", "2", "--no-weld", "-q")
+        ok, why = closed_after_weld(*read_obj(o)) if rc == 0 else (False, err)
+        check("--no-weld %s %s welds to a closed mesh" % (os.path.basename(src), surface), ok, why)
+
+# stats
+o = os.path.join(WORK, "duck.obj")
+st = os.path.join(WORK, "duck.json")
+rc, out, err = run("tessellate", os.path.join(DATA, "glTF-Sample-Models/Duck/glTF-Binary/Duck.glb"), "-o", o,
+                   "--surface", "pn", "--level", "2", "--stats", st)
+ok = rc == 0 and os.path.exists(st)
+stats = json.load(open(st)) if ok else {}
+check("stats: input and output counts", ok and stats["input_counts"]["triangles"] == 4212 and
+      stats["output_counts"]["pattern_triangles"] == 4212 * 16, str(stats.get("output_counts")))
+check("stats: timings and repairs present", ok and stats["timings_ms"]["tessellate"] >= 0 and
+      "normals_repaired" in stats["repairs"])
+verts, tris = read_obj(o) if ok else ([], [])
+check("output triangle count matches stats", ok and len(tris) == stats["output_counts"]["triangles"])
+
+# zero normals are repaired and reported, not passed through
+rc, out, err = run("tessellate", os.path.join(DATA, "assimp/BoxBadNormals.glb"), "-o", os.path.join(WORK, "bn.ply"),
+                   "--stats", os.path.join(WORK, "bn.json"))
+bn = json.load(open(os.path.join(WORK, "bn.json"))) if rc == 0 else {}
+check("BoxBadNormals: 4 normals repaired", rc == 0 and bn["repairs"]["normals_repaired"] == 4, str(bn.get("repairs")))
+
+# info
+rc, out, err = run("info", "demo:cow")
+check("info demo:cow: closed, 3285 faces", rc == 0 and "closed" in out and "3285 faces" in out, out)
+
+# every output format loads back through the importer (info reads it)
+for ext in ("obj", "ply", "gltf", "glb"):
+    o = os.path.join(WORK, "fmt." + ext)
+    rc, out, err = run("tessellate", "demo:cylinder", "-o", o, "--level", "1", "-q")
+    rc2, out2, err2 = run("info", o)
+    check("output .%s reads back closed" % ext, rc == 0 and rc2 == 0 and "closed" in out2, err + err2)
+
+print("%d passed, %d failed" % (passed, failed))
+sys.exit(1 if failed else 0)

@@ -1,0 +1,56 @@
+/* A tiny C11 test harness: one executable per module, one line per failed
+ * check, and a closing "N passed, N failed" line. */
+#ifndef TLOD_TEST_H
+#define TLOD_TEST_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int _test_checks_failed;
+static int _test_passed;
+static int _test_failed;
+
+#define TEST(name) static void name(void)
+
+#define CHECK_MSG(cond, ...)                                                                                           \
+  do {                                                                                                                 \
+    if (!(cond)) {                                                                                                     \
+      fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);                                         \
+      fprintf(stderr, __VA_ARGS__);                                                                                    \
+      fputc('\n', stderr);                                                                                             \
+      _test_checks_failed++;                                                                                           \
+      return;                                                                                                          \
+    }                                                                                                                  \
+  } while (0)
+
+#define CHECK(cond) CHECK_MSG(cond, "%s", "")
+
+#define CHECK_NEAR(a, b, tol)                                                                                          \
+  do {                                                                                                                 \
+    double _a = (double)(a), _b = (double)(b), _t = (double)(tol);                                                     \
+    CHECK_MSG(fabs(_a - _b) <= _t, "%s = %.9g, %s = %.9g, tolerance %.3g", #a, _a, #b, _b, _t);                        \
+  } while (0)
+
+#define RUN(name)                                                                                                      \
+  do {                                                                                                                 \
+    int _before = _test_checks_failed;                                                                                 \
+    name();                                                                                                            \
+    if (_test_checks_failed == _before) {                                                                              \
+      _test_passed++;                                                                                                  \
+      printf("ok   %s\n", #name);                                                                                      \
+    } else {                                                                                                           \
+      _test_failed++;                                                                                                  \
+      printf("FAIL %s\n", #name);                                                                                      \
+    }                                                                                                                  \
+    fflush(stdout);                                                                                                    \
+  } while (0)
+
+#define TEST_END()                                                                                                     \
+  do {                                                                                                                 \
+    printf("%d passed, %d failed\n", _test_passed, _test_failed);                                                      \
+    return _test_failed ? 1 : 0;                                                                                       \
+  } while (0)
+
+#endif

@@ -1,0 +1,14 @@
+/* The tlod sub-commands: each takes the arguments after its name. */
+#ifndef TLOD_TOOLS_COMMANDS_H
+#define TLOD_TOOLS_COMMANDS_H
+
+#include <stdio.h>
+
+int cmd_tessellate(int argc, char** argv);
+int cmd_info(int argc, char** argv);
+int cmd_bench(int argc, char** argv);
+void tessellate_usage(FILE* f);
+void info_usage(FILE* f);
+void bench_usage(FILE* f);
+
+#endif
