@@ -57,26 +57,28 @@ static float blendf(const float* x, const weights* w, const float* k) {
 
 /* p* = (1 - a) q + a sum w_x pi_x(q), and its derivatives by the product rule
  * with d(pi_x)/dq = I - n_x n_x^T (Dupuy eq. 6-9, for triangles too). */
-void _tlod_phong_eval(const _tlod_corners* c, float u, float v, bool true_normal, tlod_surface_point* out) {
+void _tlod_phong_eval(const _tlod_corners* c, float u, float v, uint32_t flags, tlod_surface_point* out) {
   weights w = corner_weights(c->n, u, v);
-  v3 q = blend(c->p, &w, w.w), qu = blend(c->p, &w, w.du), qv = blend(c->p, &w, w.dv);
-  float a = blendf(c->alpha, &w, w.w), au = blendf(c->alpha, &w, w.du), av = blendf(c->alpha, &w, w.dv);
+  v3 q = blend(c->p, &w, w.w);
+  float a = blendf(c->alpha, &w, w.w);
   v3 pi[4] = {{0.0f, 0.0f, 0.0f}}; /* only n are set; -O2 -Werror=maybe-uninitialized otherwise */
   for (uint32_t i = 0; i < c->n; i++)
     pi[i] = v3_project(q, c->p[i], c->nrm[i]);
   v3 proj = blend(pi, &w, w.w);
+  v3_store(out->position, v3_mix2(q, 1.0f - a, proj, a));
+  v3 shading = normal_or(blend(c->nrm, &w, w.w), c->nrm[0]);
+  v3_store(out->normal, shading);
+  if (!(flags & (_TLOD_EVAL_DERIVS | _TLOD_EVAL_TRUE_NORMAL))) return;
+  v3 qu = blend(c->p, &w, w.du), qv = blend(c->p, &w, w.dv);
+  float au = blendf(c->alpha, &w, w.du), av = blendf(c->alpha, &w, w.dv);
   v3 su = blend(pi, &w, w.du), sv = blend(pi, &w, w.dv);
   for (uint32_t i = 0; i < c->n; i++) {
     su = v3_add(su, v3_scale(v3_reject(qu, c->nrm[i]), w.w[i]));
     sv = v3_add(sv, v3_scale(v3_reject(qv, c->nrm[i]), w.w[i]));
   }
-  v3 pos = v3_mix2(q, 1.0f - a, proj, a);
   v3 tu = v3_add(v3_mix2(qu, 1.0f - a, su, a), v3_scale(v3_sub(proj, q), au));
   v3 tv = v3_add(v3_mix2(qv, 1.0f - a, sv, a), v3_scale(v3_sub(proj, q), av));
-  v3 shading = normal_or(blend(c->nrm, &w, w.w), c->nrm[0]);
-  v3 nrm = true_normal ? normal_or(v3_cross(tu, tv), shading) : shading;
-  v3_store(out->position, pos);
-  v3_store(out->normal, nrm);
+  if (flags & _TLOD_EVAL_TRUE_NORMAL) v3_store(out->normal, normal_or(v3_cross(tu, tv), shading));
   v3_store(out->tangent, tu);
   v3_store(out->bitangent, tv);
 }
@@ -206,7 +208,7 @@ float _tlod_quad_bound(const _tlod_corners* c, float* d_max) {
   for (int i = 0; i < 4; i++) {
     for (int j = 0; j < 4; j++) {
       tlod_surface_point pt;
-      _tlod_phong_eval(c, (float)i / 3.0f, (float)j / 3.0f, false, &pt);
+      _tlod_phong_eval(c, (float)i / 3.0f, (float)j / 3.0f, 0, &pt);
       for (int k = 0; k < 3; k++)
         f[i][j][k] = pt.position[k];
     }

@@ -67,20 +67,9 @@ void _tlod_pn_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm) {
 
 static v3 ld(const _tlod_pn_patch* p, int i) { return v3_load(p->b[i]); }
 
-void _tlod_pn_eval(const _tlod_pn_patch* pt, const _tlod_corners* c, float u, float v, tlod_surface_point* out) {
-  float w = 1.0f - u - v;
+/* Partials in (u, v, w); along the surface d/du = f_u - f_w, d/dv = f_v - f_w. */
+static void pn_derivs(const _tlod_pn_patch* pt, float u, float v, float w, tlod_surface_point* out) {
   float uu = u * u, vv = v * v, ww = w * w;
-  v3 pos = v3_scale(ld(pt, B300), uu * u);
-  pos = v3_add(pos, v3_scale(ld(pt, B030), vv * v));
-  pos = v3_add(pos, v3_scale(ld(pt, B003), ww * w));
-  pos = v3_add(pos, v3_scale(ld(pt, B210), 3.0f * uu * v));
-  pos = v3_add(pos, v3_scale(ld(pt, B120), 3.0f * u * vv));
-  pos = v3_add(pos, v3_scale(ld(pt, B201), 3.0f * uu * w));
-  pos = v3_add(pos, v3_scale(ld(pt, B021), 3.0f * vv * w));
-  pos = v3_add(pos, v3_scale(ld(pt, B102), 3.0f * u * ww));
-  pos = v3_add(pos, v3_scale(ld(pt, B012), 3.0f * v * ww));
-  pos = v3_add(pos, v3_scale(ld(pt, B111), 6.0f * u * v * w));
-  /* Partials in (u, v, w); along the surface d/du = f_u - f_w, d/dv = f_v - f_w. */
   v3 fu = v3_scale(ld(pt, B300), 3.0f * uu);
   fu = v3_add(fu, v3_scale(ld(pt, B210), 6.0f * u * v));
   fu = v3_add(fu, v3_scale(ld(pt, B120), 3.0f * vv));
@@ -99,6 +88,24 @@ void _tlod_pn_eval(const _tlod_pn_patch* pt, const _tlod_corners* c, float u, fl
   fw = v3_add(fw, v3_scale(ld(pt, B102), 6.0f * u * w));
   fw = v3_add(fw, v3_scale(ld(pt, B012), 6.0f * v * w));
   fw = v3_add(fw, v3_scale(ld(pt, B111), 6.0f * u * v));
+  v3_store(out->tangent, v3_sub(fu, fw));
+  v3_store(out->bitangent, v3_sub(fv, fw));
+}
+
+void _tlod_pn_eval(const _tlod_pn_patch* pt, const _tlod_corners* c, float u, float v, uint32_t flags,
+                   tlod_surface_point* out) {
+  float w = 1.0f - u - v;
+  float uu = u * u, vv = v * v, ww = w * w;
+  v3 pos = v3_scale(ld(pt, B300), uu * u);
+  pos = v3_add(pos, v3_scale(ld(pt, B030), vv * v));
+  pos = v3_add(pos, v3_scale(ld(pt, B003), ww * w));
+  pos = v3_add(pos, v3_scale(ld(pt, B210), 3.0f * uu * v));
+  pos = v3_add(pos, v3_scale(ld(pt, B120), 3.0f * u * vv));
+  pos = v3_add(pos, v3_scale(ld(pt, B201), 3.0f * uu * w));
+  pos = v3_add(pos, v3_scale(ld(pt, B021), 3.0f * vv * w));
+  pos = v3_add(pos, v3_scale(ld(pt, B102), 3.0f * u * ww));
+  pos = v3_add(pos, v3_scale(ld(pt, B012), 3.0f * v * ww));
+  pos = v3_add(pos, v3_scale(ld(pt, B111), 6.0f * u * v * w));
   v3 n = v3_scale(c->nrm[0], uu);
   n = v3_add(n, v3_scale(c->nrm[1], vv));
   n = v3_add(n, v3_scale(c->nrm[2], ww));
@@ -109,8 +116,7 @@ void _tlod_pn_eval(const _tlod_pn_patch* pt, const _tlod_corners* c, float u, fl
   bool zero = unit.x == 0.0f && unit.y == 0.0f && unit.z == 0.0f;
   v3_store(out->normal, zero ? c->nrm[0] : unit);
   v3_store(out->position, pos);
-  v3_store(out->tangent, v3_sub(fu, fw));
-  v3_store(out->bitangent, v3_sub(fv, fw));
+  if (flags & (_TLOD_EVAL_DERIVS | _TLOD_EVAL_TRUE_NORMAL)) pn_derivs(pt, u, v, w, out);
 }
 
 /* Distance of each tangent control point from its edge line: d'_max; the

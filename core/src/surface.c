@@ -226,25 +226,32 @@ void _tlod_edge_eval(const tlod_surface* s, uint32_t a, uint32_t b, float t, flo
   v3_store(nrm, n);
 }
 
-void _tlod_patch_eval(const tlod_surface* s, uint32_t patch, float u, float v, tlod_surface_point* out) {
-  _tlod_corners c;
-  gather(s, patch, &c);
-  bool true_normal = s->desc.shading_normal == TLOD_SHADING_NORMAL_TRUE;
+void _tlod_patch_corners(const tlod_surface* s, uint32_t patch, _tlod_corners* c) { gather(s, patch, c); }
+
+void _tlod_patch_eval_with(const tlod_surface* s, uint32_t patch, const _tlod_corners* c, float u, float v,
+                           uint32_t flags, tlod_surface_point* out) {
+  if (s->desc.shading_normal == TLOD_SHADING_NORMAL_TRUE) flags |= _TLOD_EVAL_TRUE_NORMAL;
   switch (s->desc.type) {
   case TLOD_SURFACE_PN:
-    _tlod_pn_eval(&s->pn[patch], &c, u, v, out);
+    _tlod_pn_eval(&s->pn[patch], c, u, v, flags, out);
     break;
   case TLOD_SURFACE_PHONG:
-    _tlod_phong_eval(&c, u, v, true_normal, out);
+    _tlod_phong_eval(c, u, v, flags, out);
     return;
   default:
-    _tlod_flat_eval(&c, u, v, out);
+    _tlod_flat_eval(c, u, v, out);
     break;
   }
-  if (true_normal) {
+  if (flags & _TLOD_EVAL_TRUE_NORMAL) {
     v3 n = v3_normalize(v3_cross(v3_load(out->tangent), v3_load(out->bitangent)));
     if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f) v3_store(out->normal, n);
   }
+}
+
+void _tlod_patch_eval(const tlod_surface* s, uint32_t patch, float u, float v, tlod_surface_point* out) {
+  _tlod_corners c;
+  gather(s, patch, &c);
+  _tlod_patch_eval_with(s, patch, &c, u, v, _TLOD_EVAL_DERIVS, out);
 }
 
 /* Where (u, v) lies on edge e of the patch, the weight of its end corner. */

@@ -13,13 +13,14 @@ typedef struct _tlod_corners {
   float alpha[4];
 } _tlod_corners;
 
-enum { _TLOD_EVAL_DERIVS = 1 };
+/* Evaluation flags: tangents wanted; shading normal from the tangents. */
+enum { _TLOD_EVAL_DERIVS = 1, _TLOD_EVAL_TRUE_NORMAL = 2 };
 
 /* Phong (Boubekeur & Alexa 2008; quads: Dupuy). The edge function is shared by
  * triangles and quads: on an edge both reduce to it exactly. */
 void _tlod_phong_edge(v3 pa, v3 na, float alpha_a, v3 pb, v3 nb, float alpha_b, float t, v3* pos, v3* nrm);
 /* Triangle or quad by c->n. */
-void _tlod_phong_eval(const _tlod_corners* c, float u, float v, bool true_normal, tlod_surface_point* out);
+void _tlod_phong_eval(const _tlod_corners* c, float u, float v, uint32_t flags, tlod_surface_point* out);
 /* Bound on |surface - flat patch| and the d_max it comes from. */
 float _tlod_phong_tri_bound(const _tlod_corners* c, float* d_max);
 /* Bounds from second derivatives (phong.c): the level-l pattern is within
@@ -39,8 +40,15 @@ void _tlod_flat_eval(const _tlod_corners* c, float u, float v, tlod_surface_poin
 void _tlod_pn_build(const _tlod_corners* c, _tlod_pn_patch* out);
 void _tlod_pn_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm);
 /* Normals blend the corner normals of c with the patch's mid-edge normals. */
-void _tlod_pn_eval(const _tlod_pn_patch* patch, const _tlod_corners* c, float u, float v, tlod_surface_point* out);
+void _tlod_pn_eval(const _tlod_pn_patch* patch, const _tlod_corners* c, float u, float v, uint32_t flags,
+                   tlod_surface_point* out);
 /* d_max: the paper's d'_max; returns max(9/4 d'_max, the second-derivative bound). */
 float _tlod_pn_bound(const _tlod_pn_patch* patch, const _tlod_corners* c, float* d_max);
+
+/* surface.c: a patch's corner data, and evaluation with those corners
+ * gathered once (tangents only when flags ask). */
+void _tlod_patch_corners(const tlod_surface* s, uint32_t patch, _tlod_corners* c);
+void _tlod_patch_eval_with(const tlod_surface* s, uint32_t patch, const _tlod_corners* c, float u, float v,
+                           uint32_t flags, tlod_surface_point* out);
 
 #endif

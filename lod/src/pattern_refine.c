@@ -222,6 +222,7 @@ tlod_result tlod_patterns_create(tlod_context* ctx, const tlod_patterns_desc* de
   for (uint32_t s = 0; map && r == TLOD_SUCCESS && s < TLOD_PATTERN_SHAPE_NUM; ++s)
     r = build_set(p, (tlod_pattern_shape)s, map);
   _tlod_free(ctx, map);
+  if (r == TLOD_SUCCESS) r = _tlod_patterns_build_connections(p);
   if (r != TLOD_SUCCESS) {
     tlod_patterns_destroy(p);
     return r;
@@ -240,6 +241,7 @@ void tlod_patterns_destroy(tlod_patterns* patterns) {
     for (uint32_t l = 0; l <= TLOD_MAX_LEVEL; ++l)
       _tlod_free(ctx, set->indices[l]);
   }
+  _tlod_patterns_free_connections(patterns);
   _tlod_free(ctx, patterns);
 }
 

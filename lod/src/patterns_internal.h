@@ -37,7 +37,14 @@ struct tlod_patterns {
   tlod_context* ctx;
   uint32_t max_level;
   _tlod_pattern_set sets[TLOD_PATTERN_SHAPE_NUM];
+  /* Connection patterns per (la, lb): triangles of point references. */
+  uint32_t (*connect[TLOD_MAX_LEVEL + 1][TLOD_MAX_LEVEL + 1])[3];
+  uint32_t connect_count[TLOD_MAX_LEVEL + 1][TLOD_MAX_LEVEL + 1];
 };
+
+/* pattern_connect.c: builds and frees every (la, lb) connection pattern. */
+tlod_result _tlod_patterns_build_connections(tlod_patterns* p);
+void _tlod_patterns_free_connections(tlod_patterns* p);
 
 #ifdef __cplusplus
 }

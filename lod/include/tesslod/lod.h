@@ -77,6 +77,158 @@ TLOD_API uint32_t tlod_patterns_edge(const tlod_patterns* patterns, tlod_pattern
  * vertex + index arrays would take for the same levels. */
 TLOD_API size_t tlod_patterns_memory(const tlod_patterns* patterns, size_t* separate_bytes);
 
+/* ------------------------------------------------------------------------ */
+/* Connection patterns                                                      */
+/* ------------------------------------------------------------------------ */
+
+/* A strip joining edge polyline a (level la: points 0..2^la) to polyline b
+ * (level lb, given in a's direction), zipped by parameter: triangles as
+ * point references, r <= 2^la is a[r], else b[r - 2^la - 1]. Oriented so a
+ * is traversed backwards (a bounds the face on the strip's left). The two
+ * triangles at the shared corners, degenerate by construction, are left
+ * out. Patterns are built once per (la, lb) and shared (Schwarz et al.). */
+TLOD_API const uint32_t* tlod_patterns_connection(const tlod_patterns* patterns, uint32_t la, uint32_t lb,
+                                                  uint32_t* triangle_count);
+
+/* ------------------------------------------------------------------------ */
+/* Scheduler                                                                */
+/* ------------------------------------------------------------------------ */
+
+typedef enum tlod_lod_policy {
+  TLOD_POLICY_DEFAULT = 0, /* == HYBRID */
+  /* The smallest l with 4^-l e_max <= epsilon (Schwarz et al.). */
+  TLOD_POLICY_ERROR,
+  /* l = ceil(max d_i) over the patch's corners, d_i the silhouette depth
+   * (Boubekeur & Alexa): refine only near contours. */
+  TLOD_POLICY_SILHOUETTE,
+  /* ERROR with epsilon relaxed away from silhouettes: eps_p = eps *
+   * relax^(1 - s), s = max d_i / m over the patch's corners. At a contour
+   * (s = 1) the bound holds with eps; a patch facing the camera (s = 0) uses
+   * relax * eps, where shading hides the flat geometry. */
+  TLOD_POLICY_HYBRID,
+  TLOD_POLICY_NUM,
+  _TLOD_POLICY_FORCE_U32 = 0x7FFFFFFF
+} tlod_lod_policy;
+
+typedef enum tlod_morph_mode {
+  TLOD_MORPH_DEFAULT = 0, /* == TIME */
+  TLOD_MORPH_NONE,        /* levels switch at once */
+  /* A level change blends over morph_ms of frame time (dt), whatever the
+   * frame rate: the patch's continuous level moves 1 per morph_ms. */
+  TLOD_MORPH_TIME,
+  /* The continuous level is log4(e_max / eps) itself (fractional levels). */
+  TLOD_MORPH_CONTINUOUS,
+  TLOD_MORPH_NUM,
+  _TLOD_MORPH_FORCE_U32 = 0x7FFFFFFF
+} tlod_morph_mode;
+
+typedef struct tlod_scheduler_desc {
+  float epsilon_px;   /* screen-space error bound, pixels; 0 == 0.5 */
+  uint32_t max_level; /* 0 == the patterns' max level */
+  tlod_lod_policy policy;
+  float silhouette_depth; /* m of d_i = (1 - |n.v|) m; 0 == max_level */
+  float hybrid_relax;     /* HYBRID epsilon factor away from contours; 0 == 16 (2 levels) */
+  tlod_morph_mode morph;
+  float morph_ms;             /* TIME: duration of one level step; 0 == 200 */
+  uint32_t triangle_budget;   /* 0 == none; else epsilon is raised until the frame fits */
+  float frame_time_target_ms; /* 0 == none; else epsilon follows measured frame times */
+  bool no_frustum_cull;       /* keep patches outside the frustum */
+  const char* label;
+} tlod_scheduler_desc;
+
+/* One camera. Matrices are column-major (OpenGL): clip = proj * view * world. */
+typedef struct tlod_view_desc {
+  float view[16];
+  float proj[16];                           /* perspective or orthographic (proj[15] == 1) */
+  uint32_t viewport_width, viewport_height; /* pixels */
+  /* Take view 0's levels and morph state (a shadow map or second eye whose
+   * silhouettes must match the main view's); culling stays per view. */
+  bool lock_to_main;
+} tlod_view_desc;
+
+typedef struct tlod_frame_desc {
+  const tlod_view_desc* views; /* view 0 is the main view */
+  uint32_t view_count;
+  float dt_ms;             /* time since the last frame (geomorphs) */
+  float measured_frame_ms; /* last frame's measured time (frame_time_target); 0 == unknown */
+} tlod_frame_desc;
+
+/* Patches drawn with one refinement pattern. */
+typedef struct tlod_draw_bucket {
+  tlod_pattern_shape shape;
+  uint32_t level;
+  uint32_t first, count; /* range of tlod_draw_list.instances */
+} tlod_draw_bucket;
+
+typedef struct tlod_draw_instance {
+  uint32_t patch;
+  uint32_t level;
+  /* Blend of the vertices first inserted at `level`: 0 = at their parents'
+   * midpoint (the coarser level exactly), 1 = on the surface. */
+  float morph;
+  float edge_morph[4]; /* the same for the level's new vertices on edge e */
+} tlod_draw_instance;
+
+/* A connection strip between edge ea of patch a and edge eb of patch b,
+ * drawn with tlod_patterns_connection(la, lb), polyline b reversed. */
+typedef struct tlod_draw_strip {
+  uint32_t patch_a, patch_b;
+  uint8_t edge_a, edge_b;
+  uint8_t level_a, level_b;
+  bool crease; /* split normals (or alphas), not a level difference */
+} tlod_draw_strip;
+
+typedef enum tlod_stage {
+  TLOD_STAGE_SILHOUETTE = 0, /* d_i per vertex */
+  TLOD_STAGE_METRIC,         /* e_max and culling per patch */
+  TLOD_STAGE_LEVELS,         /* levels, budget search */
+  TLOD_STAGE_MORPH,          /* geomorph state */
+  TLOD_STAGE_STRIPS,         /* buckets and strips */
+  TLOD_STAGE_NUM
+} tlod_stage;
+
+typedef struct tlod_draw_list {
+  uint32_t patch_count;
+  const int8_t* levels;                /* per patch: drawn level, -1 when culled */
+  const float* e_max;                  /* per patch: projected error bound at level 0, pixels */
+  const float* vertex_depth;           /* per mesh vertex: d_i */
+  const tlod_draw_instance* instances; /* visible patches, bucket by bucket */
+  uint32_t instance_count;
+  const tlod_draw_bucket* buckets;
+  uint32_t bucket_count;
+  const tlod_draw_strip* strips;
+  uint32_t strip_count;
+  /* Statistics. */
+  uint64_t pattern_triangles, strip_triangles;
+  uint32_t culled;
+  uint32_t level_histogram[TLOD_MAX_LEVEL + 1];
+  float e_max_min, e_max_max; /* over visible patches */
+  float effective_epsilon;    /* after budget and frame-time control */
+  double stage_ms[TLOD_STAGE_NUM];
+} tlod_draw_list;
+
+typedef struct tlod_scheduler tlod_scheduler;
+
+/* The surface and patterns must outlive the scheduler. */
+TLOD_API tlod_result tlod_scheduler_create(tlod_context* ctx, const tlod_surface* surface,
+                                           const tlod_patterns* patterns, const tlod_scheduler_desc* desc,
+                                           tlod_scheduler** out);
+TLOD_API void tlod_scheduler_destroy(tlod_scheduler* scheduler);
+TLOD_API tlod_scheduler_desc tlod_scheduler_query_desc(const tlod_scheduler* scheduler);
+/* Plans one frame for every view. The draw lists stay valid until the next
+ * update or destroy. Deterministic for the same inputs and history, for
+ * any thread count. */
+TLOD_API tlod_result tlod_scheduler_update(tlod_scheduler* scheduler, const tlod_frame_desc* frame);
+TLOD_API const tlod_draw_list* tlod_scheduler_draw_list(const tlod_scheduler* scheduler, uint32_t view);
+/* Forgets the geomorph history (the next update starts at its targets). */
+TLOD_API void tlod_scheduler_reset(tlod_scheduler* scheduler);
+
+/* Pure helpers (also used by tests as the reference). */
+/* The level rule: 0 when e_max <= eps, else the smallest l with 4^-l e_max <= eps, at most max_level. */
+TLOD_API uint32_t tlod_level_for_error(float e_max, float epsilon, uint32_t max_level);
+/* Pixels per world unit at view depth z (perspective) or everywhere (orthographic). */
+TLOD_API float tlod_projection_scale(const float proj[16], uint32_t viewport_height, float depth);
+
 #ifdef __cplusplus
 }
 #endif

@@ -31,6 +31,9 @@ extern "C" {
 typedef struct tlod_cpu_tessellate_desc {
   uint32_t level;       /* uniform level when levels == NULL */
   const int8_t* levels; /* optional: level per patch; -1 leaves the patch out */
+  /* optional: a scheduler's draw list (tesslod/lod.h) realised exactly: its
+   * levels, geomorph blends and strips; level and levels are then ignored. */
+  const tlod_draw_list* draw_list;
   bool no_weld;         /* see OUTPUT VERTICES */
   bool no_stitch;       /* leave out connection strips (shows the cracks) */
   bool no_normals;      /* skip the normal evaluation */
@@ -41,12 +44,13 @@ typedef struct tlod_cpu_mesh {
   float* positions; /* xyz per vertex */
   float* normals;   /* xyz per vertex; NULL with no_normals */
   uint32_t triangle_count;
-  uint32_t* indices;          /* 3 per triangle, counter-clockwise as the input */
-  uint32_t* triangle_patch;   /* patch of each triangle; UINT32_MAX for strip triangles */
-  uint32_t pattern_triangles; /* triangles from refinement patterns */
-  uint32_t strip_triangles;   /* triangles from connection strips */
-  uint32_t strips;            /* edges that needed a strip */
-  uint32_t folds_skipped;     /* strip triangles left out as zero-area or fold-overs */
+  uint32_t* indices;                           /* 3 per triangle, counter-clockwise as the input */
+  uint32_t* triangle_patch;                    /* patch of each triangle; UINT32_MAX for strip triangles */
+  uint32_t pattern_triangles;                  /* triangles from refinement patterns */
+  uint32_t strip_triangles;                    /* triangles from connection strips */
+  uint32_t strips;                             /* edges that needed a strip */
+  uint32_t folds_skipped;                      /* strip triangles left out: two corners at one position */
+  uint32_t vertex_capacity, triangle_capacity; /* allocated, for tlod_cpu_tessellate_into */
 } tlod_cpu_mesh;
 
 /* Tessellates every patch of the surface. patterns must reach the largest
@@ -54,6 +58,12 @@ typedef struct tlod_cpu_mesh {
  * and freed with tlod_cpu_mesh_destroy(). */
 TLOD_API tlod_result tlod_cpu_tessellate(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
                                          const tlod_cpu_tessellate_desc* desc, tlod_cpu_mesh** out);
+/* The same into a mesh from an earlier call, whose arrays are reused when
+ * large enough and grown otherwise: a per-frame caller then pays no
+ * allocation or page faults. On failure the mesh is left empty (counts 0). */
+TLOD_API tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surface,
+                                              const tlod_patterns* patterns, const tlod_cpu_tessellate_desc* desc,
+                                              tlod_cpu_mesh* mesh);
 TLOD_API void tlod_cpu_mesh_destroy(tlod_context* ctx, tlod_cpu_mesh* mesh);
 
 #ifdef __cplusplus

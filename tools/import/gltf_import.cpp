@@ -1,0 +1,1026 @@
+// gltf_import.cpp -- glTF 2.0 reader: a C shim over tinygltf (C++17, no exception leaves this file).
+// Owned by the import/export layer (tools/import/).
+//
+// tinygltf parses the JSON and fetches the buffers; it does not check that
+// accessors fit their bufferViews, that bufferViews fit their buffers, that
+// indices are in range, that node references exist or that the node graph
+// is a tree, and it does not apply sparse accessors. All of that is done
+// here, before any byte is read. The GLB container is also checked here
+// first: tinygltf 2.7 forgets the 8-byte chunk header when it bounds the BIN
+// chunk and would read past the end of a truncated file.
+#include <tiny_gltf.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "import_internal.h"
+
+namespace {
+
+// Internal error: thrown to the one catch in _tlod_import_gltf.
+struct ImportError {
+  tlod_result code;
+  std::string message;
+};
+
+std::string format(const char* fmt, ...) _TLOD_IMPORT_PRINTF(1, 2);
+std::string format(const char* fmt, ...) {
+  char buf[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  return buf;
+}
+
+[[noreturn]] void fail(tlod_result code, const std::string& message) { throw ImportError{code, message}; }
+
+// ---------------------------------------------------------------------------
+// Matrices: column-major 4x4 in double, like glTF's node.matrix.
+
+struct Mat4 {
+  double m[16];
+};
+
+Mat4 identity() {
+  Mat4 r{};
+  r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
+  return r;
+}
+
+bool is_identity(const Mat4& a) {
+  const Mat4 i = identity();
+  return std::memcmp(a.m, i.m, sizeof a.m) == 0;
+}
+
+Mat4 multiply(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int c = 0; c < 4; ++c)
+    for (int row = 0; row < 4; ++row) {
+      double s = 0.0;
+      for (int k = 0; k < 4; ++k)
+        s += a.m[k * 4 + row] * b.m[c * 4 + k];
+      r.m[c * 4 + row] = s;
+    }
+  return r;
+}
+
+// Upper 3x3 entry at (row, col).
+double at(const Mat4& a, int row, int col) { return a.m[col * 4 + row]; }
+
+double det3(const Mat4& a) {
+  return at(a, 0, 0) * (at(a, 1, 1) * at(a, 2, 2) - at(a, 1, 2) * at(a, 2, 1)) -
+         at(a, 0, 1) * (at(a, 1, 0) * at(a, 2, 2) - at(a, 1, 2) * at(a, 2, 0)) +
+         at(a, 0, 2) * (at(a, 1, 0) * at(a, 2, 1) - at(a, 1, 1) * at(a, 2, 0));
+}
+
+// Normal matrix as the cofactor matrix times sign(det): it equals
+// |det| * inverse-transpose, so the direction after renormalising is the
+// same, and it still gives a usable normal when the matrix is singular.
+void normal_matrix(const Mat4& a, double out[3][3]) {
+  const double sign = det3(a) < 0.0 ? -1.0 : 1.0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const int r0 = (r + 1) % 3, r1 = (r + 2) % 3, c0 = (c + 1) % 3, c1 = (c + 2) % 3;
+      out[r][c] = sign * (at(a, r0, c0) * at(a, r1, c1) - at(a, r0, c1) * at(a, r1, c0));
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Output being built.
+
+struct Output {
+  std::vector<float> positions;
+  std::vector<float> normals; // kept the size of positions
+  std::vector<uint32_t> indices;
+  std::vector<tlod_import_part> parts;
+  bool any_normals = false;
+  uint32_t strips_fans_converted = 0;
+  uint32_t primitives_skipped = 0;
+  std::string warnings;
+  uint32_t warning_count = 0;
+
+  void warn(const std::string& w) {
+    warnings += w;
+    warnings += '\n';
+    warning_count++;
+  }
+};
+
+// One mesh reached through the node hierarchy.
+struct Instance {
+  int node; // -1: mesh listed without nodes
+  int mesh;
+  Mat4 world;
+};
+
+// A primitive's data after reading, before it is appended.
+struct PrimitiveData {
+  std::vector<float> positions;
+  std::vector<float> normals; // empty: none
+  std::vector<uint32_t> triangles;
+};
+
+const char* mode_name(int mode) {
+  static const char* const names[] = {"POINTS",    "LINES",          "LINE_LOOP",   "LINE_STRIP",
+                                      "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
+  return mode >= 0 && mode <= 6 ? names[mode] : "unknown";
+}
+
+size_t component_size(int type) {
+  switch (type) {
+  case TINYGLTF_COMPONENT_TYPE_BYTE:
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+    return 1;
+  case TINYGLTF_COMPONENT_TYPE_SHORT:
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+    return 2;
+  case TINYGLTF_COMPONENT_TYPE_INT:
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+  case TINYGLTF_COMPONENT_TYPE_FLOAT:
+    return 4;
+  case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+    return 8;
+  default:
+    return 0;
+  }
+}
+
+const char* component_name(int type) {
+  switch (type) {
+  case TINYGLTF_COMPONENT_TYPE_BYTE:
+    return "byte";
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+    return "unsigned byte";
+  case TINYGLTF_COMPONENT_TYPE_SHORT:
+    return "short";
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+    return "unsigned short";
+  case TINYGLTF_COMPONENT_TYPE_INT:
+    return "int";
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    return "unsigned int";
+  case TINYGLTF_COMPONENT_TYPE_FLOAT:
+    return "float";
+  case TINYGLTF_COMPONENT_TYPE_DOUBLE:
+    return "double";
+  default:
+    return "unknown";
+  }
+}
+
+const char* type_name(int type) {
+  switch (type) {
+  case TINYGLTF_TYPE_SCALAR:
+    return "SCALAR";
+  case TINYGLTF_TYPE_VEC2:
+    return "VEC2";
+  case TINYGLTF_TYPE_VEC3:
+    return "VEC3";
+  case TINYGLTF_TYPE_VEC4:
+    return "VEC4";
+  case TINYGLTF_TYPE_MAT2:
+    return "MAT2";
+  case TINYGLTF_TYPE_MAT3:
+    return "MAT3";
+  case TINYGLTF_TYPE_MAT4:
+    return "MAT4";
+  default:
+    return "unknown";
+  }
+}
+
+// Little-endian decoding through bytes: no alignment or aliasing assumptions.
+uint32_t load_u32(const unsigned char* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+float load_f32(const unsigned char* p) {
+  const uint32_t u = load_u32(p);
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
+uint32_t load_index(const unsigned char* p, int component_type) {
+  switch (component_type) {
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+    return p[0];
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+    return uint32_t(p[0]) | uint32_t(p[1]) << 8;
+  default:
+    return load_u32(p);
+  }
+}
+
+bool is_index_type(int t) {
+  return t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+         t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+}
+
+// An accessor's bytes after every range check: element i starts at
+// base + i * stride. base == nullptr: no bufferView, all zeros (glTF rule).
+struct Span {
+  const unsigned char* base = nullptr;
+  size_t stride = 0;
+  size_t count = 0;
+};
+
+// ---------------------------------------------------------------------------
+
+class Reader {
+public:
+  Reader(const tinygltf::Model& model, Output& out) : m_(model), out_(out) {}
+
+  void run() {
+    check_required_extensions();
+    check_buffer_views();
+    const std::vector<Instance> instances = collect_instances();
+    for (const Instance& inst : instances)
+      add_instance(inst);
+    if (out_.parts.empty()) fail_nothing_imported();
+    if (first_line_mode_ >= 0)
+      out_.warn(format("%s: mode %d (%s) is not a surface: skipped (%u point/line primitive(s) "
+                       "skipped in all)",
+                       first_line_where_.c_str(), first_line_mode_, mode_name(first_line_mode_), lines_skipped_));
+  }
+
+private:
+  const tinygltf::Model& m_;
+  Output& out_;
+  int first_line_mode_ = -1; // first POINTS/LINES primitive seen, for the error
+  std::string first_line_where_;
+  uint32_t lines_skipped_ = 0;
+  std::string first_skip_reason_;
+
+  // -- scene graph ----------------------------------------------------------
+
+  void check_required_extensions() const {
+    for (const std::string& e : m_.extensionsRequired) {
+      if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression")
+        fail(TLOD_ERROR_UNSUPPORTED, format("requires extension %s, which this importer does not support", e.c_str()));
+    }
+  }
+
+  // All of them, used or not: a bufferView past its buffer is a broken file
+  // (and the message names the real fault, not a later symptom).
+  void check_buffer_views() const {
+    for (size_t i = 0; i < m_.bufferViews.size(); ++i)
+      buffer_view(int(i), "");
+  }
+
+  Mat4 local_matrix(int index) const {
+    const tinygltf::Node& n = m_.nodes[size_t(index)];
+    if (!n.matrix.empty()) {
+      if (n.matrix.size() != 16)
+        fail(TLOD_ERROR_PARSE, format("node %d: matrix has %zu numbers (16 expected)", index, n.matrix.size()));
+      Mat4 r{};
+      for (int i = 0; i < 16; ++i)
+        r.m[i] = n.matrix[size_t(i)];
+      return r;
+    }
+    return trs_matrix(index, n);
+  }
+
+  static void check_size(int index, const char* what, size_t got, size_t want) {
+    if (got != 0 && got != want)
+      fail(TLOD_ERROR_PARSE, format("node %d: %s has %zu numbers (%zu expected)", index, what, got, want));
+  }
+
+  // T * R * S with R from the (renormalised) unit quaternion.
+  static Mat4 trs_matrix(int index, const tinygltf::Node& n) {
+    check_size(index, "translation", n.translation.size(), 3);
+    check_size(index, "rotation", n.rotation.size(), 4);
+    check_size(index, "scale", n.scale.size(), 3);
+    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
+    for (size_t i = 0; i < n.translation.size(); ++i)
+      t[i] = n.translation[i];
+    for (size_t i = 0; i < n.rotation.size(); ++i)
+      q[i] = n.rotation[i];
+    for (size_t i = 0; i < n.scale.size(); ++i)
+      s[i] = n.scale[i];
+    const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(len > 0.0) || !std::isfinite(len))
+      fail(TLOD_ERROR_PARSE, format("node %d: rotation is not a unit quaternion", index));
+    const double x = q[0] / len, y = q[1] / len, z = q[2] / len, w = q[3] / len;
+    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    Mat4 out = identity();
+    for (int c = 0; c < 3; ++c)
+      for (int row = 0; row < 3; ++row)
+        out.m[c * 4 + row] = r[row][c] * s[c];
+    for (int row = 0; row < 3; ++row)
+      out.m[12 + row] = t[row];
+    return out;
+  }
+
+  std::vector<int> root_nodes() const {
+    if (!m_.scenes.empty()) {
+      // tinygltf stores -1 when "scene" is absent: glTF says use scene 0 then.
+      const int s = m_.defaultScene == -1 ? 0 : m_.defaultScene;
+      if (s < 0 || size_t(s) >= m_.scenes.size())
+        fail(TLOD_ERROR_PARSE, format("default scene %d does not exist (%zu scenes)", s, m_.scenes.size()));
+      return m_.scenes[size_t(s)].nodes;
+    }
+    // No scenes: every node that is nobody's child.
+    std::vector<char> is_child(m_.nodes.size(), 0);
+    for (size_t i = 0; i < m_.nodes.size(); ++i)
+      for (int c : m_.nodes[i].children)
+        if (c >= 0 && size_t(c) < m_.nodes.size()) is_child[size_t(c)] = 1;
+    std::vector<int> roots;
+    for (size_t i = 0; i < m_.nodes.size(); ++i)
+      if (!is_child[i]) roots.push_back(int(i));
+    return roots;
+  }
+
+  // Depth-first with an explicit stack (a deep hierarchy must not overflow
+  // the C stack); each node may be reached once, which also stops cycles and
+  // exponential re-instancing through shared children.
+  std::vector<Instance> collect_instances() const {
+    std::vector<Instance> instances;
+    if (m_.scenes.empty() && m_.nodes.empty()) {
+      for (size_t i = 0; i < m_.meshes.size(); ++i)
+        instances.push_back({-1, int(i), identity()});
+      return instances;
+    }
+    struct Item {
+      int node, parent;
+      Mat4 world;
+    };
+    std::vector<Item> stack;
+    const std::vector<int> roots = root_nodes();
+    for (size_t i = roots.size(); i-- > 0;)
+      stack.push_back({roots[i], -1, identity()});
+    std::vector<char> visited(m_.nodes.size(), 0);
+    while (!stack.empty()) {
+      const Item item = stack.back();
+      stack.pop_back();
+      check_node_ref(item.node, item.parent);
+      if (visited[size_t(item.node)])
+        fail(TLOD_ERROR_PARSE, format("node %d is reached twice (the node hierarchy must be a tree)", item.node));
+      visited[size_t(item.node)] = 1;
+      const tinygltf::Node& n = m_.nodes[size_t(item.node)];
+      const Mat4 world = multiply(item.world, local_matrix(item.node));
+      if (n.mesh != -1) instances.push_back(make_instance(item.node, world));
+      for (size_t i = n.children.size(); i-- > 0;)
+        stack.push_back({n.children[i], item.node, world});
+    }
+    return instances;
+  }
+
+  void check_node_ref(int node, int parent) const {
+    if (node >= 0 && size_t(node) < m_.nodes.size()) return;
+    if (parent < 0) fail(TLOD_ERROR_PARSE, format("scene node %d does not exist (%zu nodes)", node, m_.nodes.size()));
+    fail(TLOD_ERROR_PARSE, format("node %d: child %d does not exist (%zu nodes)", parent, node, m_.nodes.size()));
+  }
+
+  Instance make_instance(int node, const Mat4& world) const {
+    const tinygltf::Node& n = m_.nodes[size_t(node)];
+    if (n.mesh < 0 || size_t(n.mesh) >= m_.meshes.size())
+      fail(TLOD_ERROR_PARSE, format("node %d: mesh %d does not exist (%zu meshes)", node, n.mesh, m_.meshes.size()));
+    if (n.skin >= 0) {
+      // glTF: a skinned mesh ignores its node's transform; without posing
+      // the joints the mesh-space positions are the bind pose.
+      out_.warn(format("node %d: skinned mesh %d imported in its bind pose", node, n.mesh));
+      return {node, n.mesh, identity()};
+    }
+    return {node, n.mesh, world};
+  }
+
+  // -- primitives -----------------------------------------------------------
+
+  void add_instance(const Instance& inst) {
+    const tinygltf::Mesh& mesh = m_.meshes[size_t(inst.mesh)];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      const std::string where = format("mesh %d primitive %zu", inst.mesh, p);
+      if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
+        skip_line_primitive(where, prim.mode);
+        continue;
+      }
+      if (prim.mode < TINYGLTF_MODE_TRIANGLES || prim.mode > TINYGLTF_MODE_TRIANGLE_FAN)
+        fail(TLOD_ERROR_PARSE, format("%s: mode %d is not a glTF primitive mode", where.c_str(), prim.mode));
+      add_primitive(inst, int(p), prim, where);
+    }
+  }
+
+  void skip_line_primitive(const std::string& where, int mode) {
+    if (first_line_mode_ < 0) {
+      first_line_mode_ = mode;
+      first_line_where_ = where;
+    }
+    lines_skipped_++;
+    out_.primitives_skipped++;
+  }
+
+  void skip_primitive(const std::string& where, const char* reason) {
+    const std::string w = format("%s: skipped: %s", where.c_str(), reason);
+    if (first_skip_reason_.empty()) first_skip_reason_ = w;
+    out_.warn(w);
+    out_.primitives_skipped++;
+  }
+
+  // With nothing imported, the first warning (e.g. "BOM skipped") is often
+  // the explanation: it goes into the message.
+  [[noreturn]] void fail_nothing_imported() const {
+    const std::string note = out_.warnings.empty() ? "" : "; " + out_.warnings.substr(0, out_.warnings.find('\n'));
+    fail_nothing_imported_note(note);
+  }
+
+  [[noreturn]] void fail_nothing_imported_note(const std::string& note) const {
+    if (first_line_mode_ >= 0)
+      fail(TLOD_ERROR_UNSUPPORTED, format("%s: mode %d (%s) is not a surface, and the file has no triangle primitives",
+                                          first_line_where_.c_str(), first_line_mode_, mode_name(first_line_mode_)));
+    if (!first_skip_reason_.empty())
+      fail(TLOD_ERROR_INVALID_MESH, format("no triangles to import (%s)", first_skip_reason_.c_str()));
+    fail(TLOD_ERROR_INVALID_MESH, format("no triangle primitives to import (%zu meshes, %zu nodes, %zu scenes)%s",
+                                         m_.meshes.size(), m_.nodes.size(), m_.scenes.size(), note.c_str()));
+  }
+
+  void add_primitive(const Instance& inst, int p, const tinygltf::Primitive& prim, const std::string& where) {
+    const auto pos = prim.attributes.find("POSITION");
+    if (pos == prim.attributes.end()) {
+      skip_primitive(where, "no POSITION attribute");
+      return;
+    }
+    const size_t vcount = check_attribute_counts(prim, where, pos->second);
+    PrimitiveData data;
+    data.positions = read_floats(pos->second, where + ": POSITION", 3);
+    check_finite(data.positions, pos->second, where);
+    data.normals = read_normals(prim, where, vcount);
+    std::vector<uint32_t> idx = read_indices(prim, where, vcount);
+    data.triangles = triangulate(prim.mode, std::move(idx), where);
+    if (data.triangles.empty()) {
+      skip_primitive(where, "no complete triangle");
+      return;
+    }
+    append(inst, p, prim, data, where);
+  }
+
+  // glTF: every attribute of a primitive has the same count.
+  size_t check_attribute_counts(const tinygltf::Primitive& prim, const std::string& where, int position) const {
+    check_accessor_ref(position, where + ": POSITION");
+    const size_t count = m_.accessors[size_t(position)].count;
+    for (const auto& attr : prim.attributes) {
+      check_accessor_ref(attr.second, where + ": " + attr.first);
+      const size_t c = m_.accessors[size_t(attr.second)].count;
+      if (c != count)
+        fail(TLOD_ERROR_PARSE, format("%s: %s accessor %d has %zu elements, POSITION accessor %d has %zu",
+                                      where.c_str(), attr.first.c_str(), attr.second, c, position, count));
+    }
+    if (count == 0) fail(TLOD_ERROR_PARSE, format("%s: POSITION accessor %d has no elements", where.c_str(), position));
+    if (count > _TLOD_IMPORT_MAX_VERTICES)
+      fail(TLOD_ERROR_UNSUPPORTED, format("%s: POSITION accessor %d has %zu elements (at most %zu)", where.c_str(),
+                                          position, count, size_t(_TLOD_IMPORT_MAX_VERTICES)));
+    return count;
+  }
+
+  void check_accessor_ref(int index, const std::string& what) const {
+    if (index < 0 || size_t(index) >= m_.accessors.size())
+      fail(TLOD_ERROR_PARSE,
+           format("%s: accessor %d does not exist (%zu accessors)", what.c_str(), index, m_.accessors.size()));
+  }
+
+  void check_finite(const std::vector<float>& p, int accessor, const std::string& where) const {
+    for (size_t i = 0; i < p.size(); i += 3)
+      if (!std::isfinite(p[i]) || !std::isfinite(p[i + 1]) || !std::isfinite(p[i + 2]))
+        fail(TLOD_ERROR_INVALID_MESH,
+             format("%s: POSITION accessor %d element %zu is not finite (%g, %g, %g)", where.c_str(), accessor, i / 3,
+                    double(p[i]), double(p[i + 1]), double(p[i + 2])));
+  }
+
+  std::vector<float> read_normals(const tinygltf::Primitive& prim, const std::string& where, size_t vcount) {
+    const auto it = prim.attributes.find("NORMAL");
+    if (it == prim.attributes.end()) return {};
+    const tinygltf::Accessor& a = m_.accessors[size_t(it->second)];
+    if (a.type != TINYGLTF_TYPE_VEC3 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+      // Normals can be recomputed, so a bad format costs shading, not the mesh.
+      out_.warn(format("%s: NORMAL accessor %d is %s %s, not float VEC3: normals ignored", where.c_str(), it->second,
+                       component_name(a.componentType), type_name(a.type)));
+      return {};
+    }
+    std::vector<float> n = read_floats(it->second, where + ": NORMAL", 3);
+    if (n.size() != vcount * 3) return {}; // cannot happen: counts were checked
+    return n;
+  }
+
+  std::vector<uint32_t> read_indices(const tinygltf::Primitive& prim, const std::string& where, size_t vcount) const {
+    std::vector<uint32_t> idx;
+    if (prim.indices < 0) {
+      idx.resize(vcount);
+      for (size_t i = 0; i < vcount; ++i)
+        idx[i] = uint32_t(i);
+      return idx;
+    }
+    idx = read_index_accessor(prim.indices, where);
+    for (size_t i = 0; i < idx.size(); ++i)
+      if (idx[i] >= vcount)
+        fail(TLOD_ERROR_INVALID_MESH,
+             format("%s: indices accessor %d element %zu: index %u out of range (%zu vertices)", where.c_str(),
+                    prim.indices, i, idx[i], vcount));
+    return idx;
+  }
+
+  // TRIANGLES: whole triangles (trailing indices dropped with a warning);
+  // STRIP and FAN: the glTF 2.0 spec's vertex order, which keeps winding.
+  std::vector<uint32_t> triangulate(int mode, std::vector<uint32_t> idx, const std::string& where) {
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      if (idx.size() % 3 != 0) {
+        out_.warn(format("%s: %zu indices is not a multiple of 3: last %zu dropped", where.c_str(), idx.size(),
+                         idx.size() % 3));
+        idx.resize(idx.size() - idx.size() % 3);
+      }
+      return idx;
+    }
+    out_.strips_fans_converted++;
+    std::vector<uint32_t> tris;
+    if (idx.size() < 3) return tris;
+    tris.reserve((idx.size() - 2) * 3);
+    for (size_t i = 0; i + 2 < idx.size(); ++i) {
+      if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        const size_t odd = i % 2;
+        tris.insert(tris.end(), {idx[i], idx[i + 1 + odd], idx[i + 2 - odd]});
+      } else {
+        tris.insert(tris.end(), {idx[i + 1], idx[i + 2], idx[0]});
+      }
+    }
+    return tris;
+  }
+
+  // -- accessors ------------------------------------------------------------
+
+  // what: the referrer for messages ("" for none).
+  const tinygltf::BufferView& buffer_view(int index, const std::string& what) const {
+    const std::string pre = what.empty() ? "" : what + ": ";
+    if (index < 0 || size_t(index) >= m_.bufferViews.size())
+      fail(TLOD_ERROR_PARSE,
+           format("%sbufferView %d does not exist (%zu bufferViews)", pre.c_str(), index, m_.bufferViews.size()));
+    const tinygltf::BufferView& bv = m_.bufferViews[size_t(index)];
+    if (bv.buffer < 0 || size_t(bv.buffer) >= m_.buffers.size())
+      fail(TLOD_ERROR_PARSE, format("%sbufferView %d: buffer %d does not exist (%zu buffers)", pre.c_str(), index,
+                                    bv.buffer, m_.buffers.size()));
+    const size_t size = m_.buffers[size_t(bv.buffer)].data.size();
+    if (bv.byteOffset > size || bv.byteLength > size - bv.byteOffset)
+      fail(TLOD_ERROR_PARSE, format("%sbufferView %d (offset %zu, length %zu) runs past the end of buffer %d "
+                                    "(%zu bytes)",
+                                    pre.c_str(), index, bv.byteOffset, bv.byteLength, bv.buffer, size));
+    return bv;
+  }
+
+  const unsigned char* view_data(const tinygltf::BufferView& bv) const {
+    return m_.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset;
+  }
+
+  // byteOffset + stride * (count - 1) + element <= bufferView length, in an
+  // order of tests that cannot overflow.
+  Span resolve(int index, const std::string& what, size_t element) const {
+    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+    Span s;
+    s.count = a.count;
+    if (a.bufferView < 0) {
+      if (a.count > _TLOD_IMPORT_MAX_ZERO_FILLED)
+        fail(TLOD_ERROR_UNSUPPORTED,
+             format("%s: accessor %d has %zu elements and no bufferView", what.c_str(), index, a.count));
+      return s; // zeros, possibly replaced by sparse values
+    }
+    const std::string w = format("%s: accessor %d", what.c_str(), index);
+    const tinygltf::BufferView& bv = buffer_view(a.bufferView, w);
+    s.stride = bv.byteStride ? bv.byteStride : element;
+    if (s.stride < element)
+      fail(TLOD_ERROR_PARSE, format("%s: bufferView %d byteStride %zu is less than the %zu-byte "
+                                    "element",
+                                    w.c_str(), a.bufferView, bv.byteStride, element));
+    const size_t len = bv.byteLength;
+    const bool fits = a.count == 0 || (a.byteOffset <= len && element <= len - a.byteOffset &&
+                                       a.count - 1 <= (len - a.byteOffset - element) / s.stride);
+    if (!fits)
+      fail(TLOD_ERROR_PARSE, format("%s (offset %zu, %zu elements of %zu bytes, stride %zu) runs past the end of "
+                                    "bufferView %d (%zu bytes)",
+                                    w.c_str(), a.byteOffset, a.count, element, s.stride, a.bufferView, len));
+    s.base = view_data(bv) + a.byteOffset;
+    return s;
+  }
+
+  std::vector<float> read_floats(int index, const std::string& what, int components) const {
+    check_accessor_ref(index, what);
+    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != components)
+      fail(TLOD_ERROR_UNSUPPORTED, format("%s: accessor %d is %s %s (float %s required)", what.c_str(), index,
+                                          component_name(a.componentType), type_name(a.type), type_name(components)));
+    const size_t nc = size_t(components);
+    const Span s = resolve(index, what, 4 * nc);
+    std::vector<float> out(s.count * nc, 0.0f);
+    if (s.base)
+      for (size_t i = 0; i < s.count; ++i)
+        for (size_t c = 0; c < nc; ++c)
+          out[i * nc + c] = load_f32(s.base + i * s.stride + 4 * c);
+    apply_sparse_floats(index, what, nc, out);
+    return out;
+  }
+
+  std::vector<uint32_t> read_index_accessor(int index, const std::string& what) const {
+    const std::string w = what + ": indices";
+    check_accessor_ref(index, w);
+    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+    if (a.type != TINYGLTF_TYPE_SCALAR || !is_index_type(a.componentType))
+      fail(TLOD_ERROR_PARSE, format("%s: accessor %d is %s %s (unsigned byte/short/int SCALAR "
+                                    "required)",
+                                    w.c_str(), index, component_name(a.componentType), type_name(a.type)));
+    const size_t cs = component_size(a.componentType);
+    const Span s = resolve(index, w, cs);
+    if (s.count > _TLOD_IMPORT_MAX_INDICES)
+      fail(TLOD_ERROR_UNSUPPORTED, format("%s: accessor %d has %zu indices", w.c_str(), index, s.count));
+    std::vector<uint32_t> out(s.count, 0u);
+    if (s.base)
+      for (size_t i = 0; i < s.count; ++i)
+        out[i] = load_index(s.base + i * s.stride, a.componentType);
+    apply_sparse_indices(index, w, out);
+    return out;
+  }
+
+  // Sparse substitution: both sparse arrays are tightly packed (glTF), and
+  // every sparse index must address an element of the accessor.
+  struct SparseSpans {
+    const unsigned char* indices;
+    const unsigned char* values;
+    size_t count, index_size;
+    int index_type;
+  };
+
+  SparseSpans resolve_sparse(int index, const std::string& what, size_t element) const {
+    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+    const std::string w = format("%s: accessor %d: sparse", what.c_str(), index);
+    const int n = a.sparse.count;
+    if (n < 1 || size_t(n) > a.count)
+      fail(TLOD_ERROR_PARSE, format("%s count %d out of range (accessor has %zu elements)", w.c_str(), n, a.count));
+    const int it = a.sparse.indices.componentType;
+    if (!is_index_type(it))
+      fail(TLOD_ERROR_PARSE,
+           format("%s indices are %s (unsigned byte/short/int required)", w.c_str(), component_name(it)));
+    SparseSpans s{nullptr, nullptr, size_t(n), component_size(it), it};
+    s.indices =
+        sparse_range(a.sparse.indices.bufferView, a.sparse.indices.byteOffset, s.count * s.index_size, w + " indices");
+    s.values = sparse_range(a.sparse.values.bufferView, a.sparse.values.byteOffset, s.count * element, w + " values");
+    return s;
+  }
+
+  const unsigned char* sparse_range(int view, int offset, size_t bytes, const std::string& what) const {
+    const tinygltf::BufferView& bv = buffer_view(view, what);
+    if (offset < 0 || size_t(offset) > bv.byteLength || bytes > bv.byteLength - size_t(offset))
+      fail(TLOD_ERROR_PARSE, format("%s (offset %d, %zu bytes) run past the end of bufferView %d (%zu bytes)",
+                                    what.c_str(), offset, bytes, view, bv.byteLength));
+    return view_data(bv) + offset;
+  }
+
+  size_t sparse_target(const SparseSpans& s, size_t i, int index, const std::string& what) const {
+    const size_t count = m_.accessors[size_t(index)].count;
+    const uint32_t t = load_index(s.indices + i * s.index_size, s.index_type);
+    if (t >= count)
+      fail(TLOD_ERROR_PARSE, format("%s: accessor %d: sparse index %zu is %u, out of range (%zu elements)",
+                                    what.c_str(), index, i, t, count));
+    return t;
+  }
+
+  void apply_sparse_floats(int index, const std::string& what, size_t nc, std::vector<float>& out) const {
+    if (!m_.accessors[size_t(index)].sparse.isSparse) return;
+    const SparseSpans s = resolve_sparse(index, what, 4 * nc);
+    for (size_t i = 0; i < s.count; ++i) {
+      const size_t t = sparse_target(s, i, index, what);
+      for (size_t c = 0; c < nc; ++c)
+        out[t * nc + c] = load_f32(s.values + (i * nc + c) * 4);
+    }
+  }
+
+  void apply_sparse_indices(int index, const std::string& what, std::vector<uint32_t>& out) const {
+    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+    if (!a.sparse.isSparse) return;
+    const size_t cs = component_size(a.componentType);
+    const SparseSpans s = resolve_sparse(index, what, cs);
+    for (size_t i = 0; i < s.count; ++i)
+      out[sparse_target(s, i, index, what)] = load_index(s.values + i * cs, a.componentType);
+  }
+
+  // -- output ---------------------------------------------------------------
+
+  void append(const Instance& inst, int p, const tinygltf::Primitive& prim, const PrimitiveData& d,
+              const std::string& where) {
+    const size_t first_vertex = out_.positions.size() / 3;
+    const size_t vcount = d.positions.size() / 3;
+    if (first_vertex + vcount > _TLOD_IMPORT_MAX_VERTICES ||
+        out_.indices.size() + d.triangles.size() > _TLOD_IMPORT_MAX_INDICES)
+      fail(TLOD_ERROR_UNSUPPORTED, format("%s: the scene has more than %zu vertices or %zu indices", where.c_str(),
+                                          size_t(_TLOD_IMPORT_MAX_VERTICES), size_t(_TLOD_IMPORT_MAX_INDICES)));
+    tlod_import_part part{};
+    part_name(inst, p, part.name);
+    part.first_vertex = uint32_t(first_vertex);
+    part.vertex_count = uint32_t(vcount);
+    part.first_face = uint32_t(out_.indices.size() / 3);
+    part.face_count = uint32_t(d.triangles.size() / 3);
+    part.had_normals = !d.normals.empty();
+    base_color(prim, where, part.base_color);
+    append_vertices(inst, d, where);
+    append_triangles(inst, d.triangles, uint32_t(first_vertex));
+    out_.parts.push_back(part);
+  }
+
+  void append_vertices(const Instance& inst, const PrimitiveData& d, const std::string& where) {
+    if (is_identity(inst.world)) {
+      // Bitwise pass-through: no rounding through double.
+      out_.positions.insert(out_.positions.end(), d.positions.begin(), d.positions.end());
+      if (d.normals.empty())
+        out_.normals.resize(out_.positions.size(), 0.0f);
+      else
+        out_.normals.insert(out_.normals.end(), d.normals.begin(), d.normals.end());
+    } else {
+      transform_positions(inst.world, d.positions, where);
+      transform_normals(inst.world, d.normals, d.positions.size());
+    }
+    if (!d.normals.empty()) out_.any_normals = true;
+  }
+
+  void transform_positions(const Mat4& w, const std::vector<float>& p, const std::string& where) {
+    for (size_t i = 0; i < p.size(); i += 3) {
+      const double x = p[i], y = p[i + 1], z = p[i + 2];
+      for (int r = 0; r < 3; ++r) {
+        const double v = w.m[r] * x + w.m[4 + r] * y + w.m[8 + r] * z + w.m[12 + r];
+        const float f = float(v);
+        if (!std::isfinite(f))
+          fail(TLOD_ERROR_INVALID_MESH,
+               format("%s: vertex %zu is not finite after the node transform", where.c_str(), i / 3));
+        out_.positions.push_back(f);
+      }
+    }
+  }
+
+  void transform_normals(const Mat4& w, const std::vector<float>& n, size_t count) {
+    if (n.empty()) {
+      out_.normals.resize(out_.normals.size() + count, 0.0f);
+      return;
+    }
+    double nm[3][3];
+    normal_matrix(w, nm);
+    for (size_t i = 0; i < n.size(); i += 3) {
+      double v[3];
+      for (int r = 0; r < 3; ++r)
+        v[r] = nm[r][0] * n[i] + nm[r][1] * n[i + 1] + nm[r][2] * n[i + 2];
+      const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      // Zero or non-finite: stored as zero, which core recomputes.
+      const bool ok = len > 0.0 && std::isfinite(len);
+      for (int r = 0; r < 3; ++r)
+        out_.normals.push_back(ok ? float(v[r] / len) : 0.0f);
+    }
+  }
+
+  // A mirroring transform turns counter-clockwise faces clockwise: swap two
+  // corners to keep them front-facing.
+  void append_triangles(const Instance& inst, const std::vector<uint32_t>& t, uint32_t base) {
+    const bool flip = det3(inst.world) < 0.0;
+    for (size_t i = 0; i < t.size(); i += 3) {
+      out_.indices.push_back(base + t[i]);
+      out_.indices.push_back(base + (flip ? t[i + 2] : t[i + 1]));
+      out_.indices.push_back(base + (flip ? t[i + 1] : t[i + 2]));
+    }
+  }
+
+  void part_name(const Instance& inst, int p, char name[64]) const {
+    const tinygltf::Mesh& mesh = m_.meshes[size_t(inst.mesh)];
+    std::string s;
+    if (inst.node >= 0 && !m_.nodes[size_t(inst.node)].name.empty())
+      s = m_.nodes[size_t(inst.node)].name;
+    else if (!mesh.name.empty())
+      s = mesh.name;
+    else
+      s = format("mesh %d", inst.mesh);
+    if (mesh.primitives.size() > 1) s += format("/%d", p);
+    std::snprintf(name, 64, "%s", s.c_str());
+  }
+
+  void base_color(const tinygltf::Primitive& prim, const std::string& where, float c[4]) {
+    c[0] = c[1] = c[2] = c[3] = 1.0f;
+    if (prim.material < 0) return;
+    if (size_t(prim.material) >= m_.materials.size()) {
+      out_.warn(format("%s: material %d does not exist: default colour used", where.c_str(), prim.material));
+      return;
+    }
+    const std::vector<double>& f = m_.materials[size_t(prim.material)].pbrMetallicRoughness.baseColorFactor;
+    if (f.size() == 4)
+      for (int i = 0; i < 4; ++i)
+        c[i] = float(f[size_t(i)]);
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Loading through tinygltf.
+
+// Images are not needed for geometry: skip decoding (and its failure modes).
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+  return true;
+}
+
+struct FsState {
+  std::string base_dir;
+};
+
+// Only regular files: a URI naming a device ("../../dev/zero") must not be
+// read until memory runs out.
+bool regular_file(const std::string& path, std::uintmax_t* size) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || ec) return false;
+  const std::uintmax_t n = std::filesystem::file_size(path, ec);
+  if (size) *size = n;
+  return !ec;
+}
+
+// tinygltf also looks for external files in the working folder ("./x.bin");
+// only the model's own folder is accepted, so results do not depend on cwd.
+bool fs_file_exists(const std::string& path, void* user) {
+  const FsState* st = static_cast<const FsState*>(user);
+  if (!st->base_dir.empty() && path.compare(0, 2, "./") == 0) return false;
+  return regular_file(path, nullptr);
+}
+
+std::string fs_expand(const std::string& path, void*) { return path; }
+
+bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  std::uintmax_t size = 0;
+  if (!regular_file(path, &size) || size > _TLOD_IMPORT_MAX_FILE_BYTES) {
+    if (err)
+      *err +=
+          format("'%s' is not a regular file of at most %zu bytes", path.c_str(), size_t(_TLOD_IMPORT_MAX_FILE_BYTES));
+    return false;
+  }
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) {
+    if (err) *err += format("cannot open '%s': %s", path.c_str(), std::strerror(errno));
+    return false;
+  }
+  out->assign(size_t(size), 0);
+  const size_t got = size ? std::fread(out->data(), 1, out->size(), f) : 0;
+  std::fclose(f);
+  if (got != out->size()) {
+    if (err) *err += format("cannot read '%s'", path.c_str());
+    return false;
+  }
+  return true;
+}
+
+bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "writing is disabled";
+  return false;
+}
+
+// The GLB container, checked completely before tinygltf sees it.
+void check_glb(const unsigned char* d, size_t size) {
+  if (size < 12) fail(TLOD_ERROR_PARSE, format("truncated GLB header (%zu bytes, 12 needed)", size));
+  if (std::memcmp(d, "glTF", 4) != 0) fail(TLOD_ERROR_PARSE, "not a GLB file (bad magic)");
+  const uint32_t version = load_u32(d + 4), length = load_u32(d + 8);
+  if (version != 2) fail(TLOD_ERROR_UNSUPPORTED, format("GLB version %u is not supported (2 expected)", version));
+  if (length != size)
+    fail(TLOD_ERROR_PARSE, format("GLB header length %u does not match the file size %zu", length, size));
+  if (size < 20) fail(TLOD_ERROR_PARSE, "truncated GLB chunk header");
+  const size_t json_len = load_u32(d + 12);
+  if (load_u32(d + 16) != 0x4E4F534Au) fail(TLOD_ERROR_PARSE, "first GLB chunk is not JSON");
+  if (json_len > size - 20)
+    fail(TLOD_ERROR_PARSE, format("GLB JSON chunk (%zu bytes) runs past the end of the file", json_len));
+  const size_t rest = size - 20 - json_len;
+  if (rest == 0) return;
+  if (rest < 8) fail(TLOD_ERROR_PARSE, "truncated GLB chunk header after the JSON chunk");
+  const size_t bin_len = load_u32(d + 20 + json_len);
+  if (load_u32(d + 24 + json_len) != 0x004E4942u) fail(TLOD_ERROR_UNSUPPORTED, "second GLB chunk is not BIN");
+  if (bin_len > rest - 8)
+    fail(TLOD_ERROR_PARSE, format("GLB BIN chunk (%zu bytes) runs past the end of the file", bin_len));
+}
+
+// nlohmann::json and tinygltf's extras conversion recurse once per nesting
+// level: "[[[[..." a few 10^5 deep overflows the stack. Real glTF nests
+// about 8 deep; anything past kMaxJsonDepth is refused before parsing.
+constexpr int kMaxJsonDepth = 256;
+
+void check_json_depth(const unsigned char* s, size_t n) {
+  int depth = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < n; ++i) {
+    const unsigned char c = s[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i; // skip the escaped character
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        fail(TLOD_ERROR_UNSUPPORTED, format("JSON nested deeper than %d levels (byte %zu)", kMaxJsonDepth, i));
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+std::string one_line(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
+    s.pop_back();
+  for (size_t i = 0; (i = s.find('\n', i)) != std::string::npos;)
+    s.replace(i, 1, "; ");
+  return s;
+}
+
+std::string folder_of(const char* path) {
+  const char* slash = std::strrchr(path, '/');
+  return slash ? std::string(path, size_t(slash - path)) : std::string();
+}
+
+void load_model(const _tlod_import_job* job, const std::vector<unsigned char>& file, tinygltf::Model& model,
+                Output& out) {
+  const bool glb =
+      _tlod_str_ends_with_nocase(job->path, ".glb") || (file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0);
+  FsState st{folder_of(job->path)};
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skip_image, nullptr);
+  loader.SetFsCallbacks({fs_file_exists, fs_expand, fs_read, fs_write, &st});
+  std::string err, warn;
+  bool ok;
+  if (glb) {
+    check_glb(file.data(), file.size());
+    check_json_depth(file.data() + 20, load_u32(file.data() + 12));
+    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, file.data(), static_cast<unsigned int>(file.size()),
+                                     st.base_dir);
+  } else {
+    size_t skip = 0;
+    if (file.size() >= 3 && std::memcmp(file.data(), "\xEF\xBB\xBF", 3) == 0) {
+      out.warn("UTF-8 byte order mark skipped (glTF JSON must not have one)");
+      skip = 3;
+    }
+    check_json_depth(file.data() + skip, file.size() - skip);
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(file.data()) + skip,
+                                    static_cast<unsigned int>(file.size() - skip), st.base_dir);
+  }
+  if (!warn.empty()) out.warn("tinygltf: " + one_line(warn));
+  if (!ok) fail(TLOD_ERROR_PARSE, "glTF parse error: " + one_line(err.empty() ? "unknown" : err));
+}
+
+void warn_unused_features(const tinygltf::Model& model, Output& out) {
+  for (const tinygltf::Mesh& mesh : model.meshes)
+    for (const tinygltf::Primitive& prim : mesh.primitives)
+      if (!prim.targets.empty()) {
+        out.warn("morph targets ignored (base shape imported)");
+        return;
+      }
+}
+
+tlod_result finish(const _tlod_import_job* job, Output& out) {
+  _tlod_import_data d{};
+  d.vertex_count = uint32_t(out.positions.size() / 3);
+  d.positions = out.positions.data();
+  d.normals = out.any_normals ? out.normals.data() : nullptr;
+  d.index_count = uint32_t(out.indices.size());
+  d.indices = out.indices.data();
+  d.face_count = uint32_t(out.indices.size() / 3);
+  d.part_count = uint32_t(out.parts.size());
+  d.parts = out.parts.data();
+  d.strips_fans_converted = out.strips_fans_converted;
+  d.primitives_skipped = out.primitives_skipped;
+  d.warnings = out.warnings.c_str();
+  d.warning_count = out.warning_count;
+  return _tlod_import_finish(job, &d);
+}
+
+tlod_result import_gltf(const _tlod_import_job* job) {
+  unsigned char* bytes = nullptr;
+  size_t size = 0;
+  const tlod_result res = _tlod_import_read_file(job, &bytes, &size);
+  if (res != TLOD_SUCCESS) return res;
+  std::vector<unsigned char> file(bytes, bytes + size);
+  std::free(bytes);
+  if (file.size() > 0xFFFFFFFFu) fail(TLOD_ERROR_UNSUPPORTED, "glTF file larger than 4 GiB");
+  Output out;
+  tinygltf::Model model;
+  load_model(job, file, model, out);
+  warn_unused_features(model, out);
+  Reader(model, out).run();
+  return finish(job, out);
+}
+
+} // namespace
+
+extern "C" tlod_result _tlod_import_gltf(const _tlod_import_job* job) {
+  try {
+    return import_gltf(job);
+  } catch (const ImportError& e) {
+    return _tlod_import_fail(job, e.code, "%s", e.message.c_str());
+  } catch (const std::bad_alloc&) {
+    return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory");
+  } catch (const std::exception& e) {
+    return _tlod_import_fail(job, TLOD_ERROR_PARSE, "glTF parse error: %s", e.what());
+  } catch (...) {
+    return _tlod_import_fail(job, TLOD_ERROR_PARSE, "glTF parse error: unknown exception");
+  }
+}

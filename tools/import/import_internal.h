@@ -1,0 +1,83 @@
+/* import_internal.h -- plumbing shared by the importers (private to tools/import/).
+ * Owned by the import/export layer. Plain C so the C++ shims and the C
+ * readers share one result builder; no C++ type crosses this header. */
+#ifndef TESSLOD_TOOLS_IMPORT_INTERNAL_H
+#define TESSLOD_TOOLS_IMPORT_INTERNAL_H
+
+#include <stdarg.h>
+
+#include "tlod_import.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(__GNUC__)
+#define _TLOD_IMPORT_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define _TLOD_IMPORT_PRINTF(a, b)
+#endif
+
+/* Files larger than this are refused before reading (keeps a corrupt size
+ * field or a wrong path from exhausting memory). */
+#define _TLOD_IMPORT_MAX_FILE_BYTES ((size_t)1 << 31)
+/* Output limits: past these an import fails cleanly instead of asking the
+ * allocator for gigabytes (a corrupt count or a node instanced 10^6 times). */
+#define _TLOD_IMPORT_MAX_VERTICES ((size_t)1 << 26)
+#define _TLOD_IMPORT_MAX_INDICES ((size_t)1 << 28)
+/* glTF accessors without a bufferView read as zeros: a count this large
+ * there is corruption, not data. */
+#define _TLOD_IMPORT_MAX_ZERO_FILLED ((size_t)1 << 20)
+
+/* What a reader produced, in temporary memory; _tlod_import_finish copies it
+ * into allocator memory. */
+typedef struct _tlod_import_data {
+  uint32_t vertex_count;
+  const float* positions;
+  const float* normals; /* NULL: no part had normals */
+  uint32_t index_count;
+  const uint32_t* indices;
+  uint32_t face_count;
+  const uint8_t* face_sizes; /* NULL: all triangles */
+  uint32_t part_count;
+  const tlod_import_part* parts;
+  uint32_t polygons_triangulated;
+  uint32_t strips_fans_converted;
+  uint32_t primitives_skipped;
+  const char* warnings; /* newline-separated, may be NULL */
+  uint32_t warning_count;
+} _tlod_import_data;
+
+/* Where a reader reports to: the caller's allocator, output and error buffer. */
+typedef struct _tlod_import_job {
+  const char* path;         /* as given */
+  const char* name;         /* file name without folders, for messages */
+  tlod_allocator allocator; /* resolved: never NULL hooks */
+  tlod_import_result** out;
+  char* error;
+  size_t error_size;
+} _tlod_import_job;
+
+/* Copies d into a new result (allocator memory) and stores it in *job->out. */
+tlod_result _tlod_import_finish(const _tlod_import_job* job, const _tlod_import_data* d);
+
+/* Writes "<name>: <message>" to job->error and returns result. */
+tlod_result _tlod_import_fail(const _tlod_import_job* job, tlod_result result, const char* fmt, ...)
+    _TLOD_IMPORT_PRINTF(3, 4);
+
+/* Reads a whole file into malloc memory (+1 zero byte past the end so text
+ * parsers may stop on it). Fails with TLOD_ERROR_IO naming the file. */
+tlod_result _tlod_import_read_file(const _tlod_import_job* job, unsigned char** data, size_t* size);
+
+/* The readers, one per format. */
+tlod_result _tlod_import_gltf(const _tlod_import_job* job);
+tlod_result _tlod_import_obj(const _tlod_import_job* job);
+tlod_result _tlod_import_ply(const _tlod_import_job* job);
+
+/* Case-insensitive "does s end with suffix" (format from the extension). */
+bool _tlod_str_ends_with_nocase(const char* s, const char* suffix);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
