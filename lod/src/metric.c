@@ -79,6 +79,11 @@ bool _tlod_sphere_visible(const _tlod_camera* cam, const float c[3], float r) {
   return true;
 }
 
+float _tlod_facing(const _tlod_camera* cam, const float p[3], const float n[3]) {
+  if (cam->ortho) return -(n[0] * cam->forward[0] + n[1] * cam->forward[1] + n[2] * cam->forward[2]);
+  return n[0] * (cam->eye[0] - p[0]) + n[1] * (cam->eye[1] - p[1]) + n[2] * (cam->eye[2] - p[2]);
+}
+
 float _tlod_silhouette_depth(const _tlod_camera* cam, const float p[3], const float n[3], float m) {
   float d[3];
   if (cam->ortho) {

@@ -27,7 +27,7 @@ static tlod_scheduler_desc scheduler_desc_defaults(const tlod_scheduler_desc* in
   if (d.epsilon_px == 0.0f) d.epsilon_px = 0.5f;
   if (d.max_level == 0) d.max_level = tlod_patterns_max_level(p);
   if (d.policy == TLOD_POLICY_DEFAULT) d.policy = TLOD_POLICY_HYBRID;
-  if (d.silhouette_depth == 0.0f) d.silhouette_depth = (float)d.max_level;
+  if (d.silhouette_depth == 0.0f) d.silhouette_depth = (float)(1u << d.max_level);
   if (d.hybrid_relax == 0.0f) d.hybrid_relax = 16.0f;
   if (d.morph == TLOD_MORPH_DEFAULT) d.morph = TLOD_MORPH_TIME;
   if (d.morph_ms == 0.0f) d.morph_ms = 200.0f;
@@ -151,8 +151,17 @@ static void metric_task(void* data, uint32_t begin, uint32_t end, uint32_t worke
     vs->e_max[f] = _tlod_patch_e_max(&vs->cam, j->view->view, j->view->proj, j->view->viewport_height, &info);
     uint32_t corners[4], n = tlod_mesh_face_corners(s->mesh, f, corners);
     float d = 0.0f;
-    for (uint32_t c = 0; c < n; c++)
+    bool front = false, back = false;
+    for (uint32_t c = 0; c < n; c++) {
       d = vs->depth[corners[c]] > d ? vs->depth[corners[c]] : d;
+      float p[3], nrm[3];
+      tlod_mesh_vertex(s->mesh, corners[c], p, nrm);
+      float facing = _tlod_facing(&vs->cam, p, nrm);
+      front = front || facing > 0.0f;
+      back = back || facing <= 0.0f;
+    }
+    /* Normals facing both ways: the contour crosses the patch. */
+    if (front && back) d = s->desc.silhouette_depth;
     vs->contour[f] = d / s->desc.silhouette_depth;
   }
 }
@@ -163,8 +172,9 @@ static float target_level(const tlod_scheduler* s, float e_max, float contour, f
   const tlod_scheduler_desc* d = &s->desc;
   uint32_t lmax = d->max_level;
   if (d->policy == TLOD_POLICY_SILHOUETTE) {
-    float depth = contour * d->silhouette_depth;
-    float t = depth < cap ? depth : cap;
+    float segments = contour * d->silhouette_depth;
+    float t = segments > 1.0f ? log2f(segments) : 0.0f;
+    t = t < cap ? t : cap;
     t = t > (float)lmax ? (float)lmax : t;
     return d->morph == TLOD_MORPH_CONTINUOUS ? t : ceilf(t);
   }

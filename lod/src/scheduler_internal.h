@@ -15,6 +15,8 @@ typedef struct _tlod_camera {
 void _tlod_camera_from_view(const float view[16], const float proj[16], _tlod_camera* cam);
 float _tlod_view_depth(const float view[16], const float p[3]);
 bool _tlod_sphere_visible(const _tlod_camera* cam, const float c[3], float r);
+/* n . (eye - p) (orthographic: n . -forward): > 0 where the normal faces the camera. */
+float _tlod_facing(const _tlod_camera* cam, const float p[3], const float n[3]);
 float _tlod_silhouette_depth(const _tlod_camera* cam, const float p[3], const float n[3], float m);
 /* Projected error bound of a patch at level 0, pixels (nearest depth of its sphere). */
 float _tlod_patch_e_max(const _tlod_camera* cam, const float view[16], const float proj[16], uint32_t height,

@@ -79,6 +79,7 @@ void cli_mesh_free(cli_mesh* m) {
   free(m->normals);
   free(m->indices);
   free(m->face_sizes);
+  free(m->face_source);
   memset(m, 0, sizeof(*m));
 }
 
@@ -159,6 +160,7 @@ int cli_load(const char* in, cli_mesh* out) {
   snprintf(out->name, sizeof(out->name), "%s", in);
   int rc = !strncmp(in, "demo:", 5) ? load_demo(in + 5, out) : load_file(in, out);
   if (rc != CLI_OK) cli_mesh_free(out);
+  out->source_face_count = out->face_sizes ? out->face_count : out->index_count / 3;
   return rc;
 }
 
@@ -168,13 +170,20 @@ int cli_split_quads(cli_mesh* m) {
   for (uint32_t f = 0; f < m->face_count; f++)
     quads += m->face_sizes[f] == 4;
   uint32_t* idx = malloc(sizeof(uint32_t) * ((size_t)m->index_count + 2u * quads + 1));
-  if (!idx) return cli_error(CLI_FAILED, "out of memory");
+  uint32_t* source = malloc(sizeof(uint32_t) * ((size_t)m->face_count + quads + 1));
+  if (!idx || !source) {
+    free(idx);
+    free(source);
+    return cli_error(CLI_FAILED, "out of memory");
+  }
   uint32_t src = 0, dst = 0;
   for (uint32_t f = 0; f < m->face_count; f++) {
     const uint32_t* q = m->indices + src;
+    source[dst / 3] = f;
     if (m->face_sizes[f] == 4) {
       uint32_t tris[6] = {q[0], q[1], q[2], q[0], q[2], q[3]};
       memcpy(idx + dst, tris, sizeof(tris));
+      source[dst / 3 + 1] = f;
       dst += 6;
     } else {
       memcpy(idx + dst, q, sizeof(uint32_t) * 3);
@@ -182,6 +191,7 @@ int cli_split_quads(cli_mesh* m) {
     }
     src += m->face_sizes[f];
   }
+  m->face_source = source;
   free(m->indices);
   free(m->face_sizes);
   m->indices = idx;
@@ -211,11 +221,13 @@ int cli_create_mesh(tlod_context* ctx, const cli_mesh* m, tlod_normal_mode norma
   return CLI_OK;
 }
 
-void cli_print_findings(FILE* f, const tlod_mesh* mesh) {
+void cli_print_findings(FILE* f, const tlod_mesh* mesh, uint32_t limit) {
   tlod_mesh_info info = tlod_mesh_query_info(mesh);
-  for (uint32_t i = 0; i < info.finding_count; i++) {
+  uint32_t shown = info.finding_count < limit ? info.finding_count : limit;
+  for (uint32_t i = 0; i < shown; i++) {
     tlod_finding fd = tlod_mesh_query_finding(mesh, i);
     fprintf(f, "  finding: %s\n", fd.message);
   }
-  if (info.findings_dropped) fprintf(f, "  ... and %u more findings\n", info.findings_dropped);
+  uint32_t more = info.finding_count - shown + info.findings_dropped;
+  if (more) fprintf(f, "  ... and %u more findings (tlod info --findings N shows more)\n", more);
 }

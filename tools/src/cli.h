@@ -32,7 +32,9 @@ typedef struct cli_mesh {
   uint32_t index_count;
   uint32_t* indices;
   uint32_t face_count;
-  uint8_t* face_sizes; /* NULL: all triangles */
+  uint8_t* face_sizes;        /* NULL: all triangles */
+  uint32_t* face_source;      /* after cli_split_quads: loaded face of each face; NULL: identity */
+  uint32_t source_face_count; /* faces as loaded */
   uint32_t quads_split;
   char warnings[1024];
 } cli_mesh;
@@ -50,5 +52,6 @@ double cli_now_ms(void);
 /* Creates a core mesh from a loaded one; prints the core's message on failure. */
 int cli_create_mesh(tlod_context* ctx, const cli_mesh* m, tlod_normal_mode normals, float crease_deg, tlod_mesh** out);
 /* Writes a mesh's validation findings (and the counts) as text. */
-void cli_print_findings(FILE* f, const tlod_mesh* mesh);
+/* At most limit of them (the mesh keeps the first TLOD_MAX_FINDINGS). */
+void cli_print_findings(FILE* f, const tlod_mesh* mesh, uint32_t limit);
 #endif

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_lod.h"
 #include "cli.h"
 #include "commands.h"
 #include "tesslod/cpu.h"
@@ -14,7 +15,10 @@ typedef struct bench_options {
   const char* csv;
   uint32_t levels[8], level_count;
   uint32_t threads[8], thread_count;
-  uint32_t repeat, warmup;
+  uint32_t repeat, warmup, frames;
+  const char* suite;
+  const char* table1[16];
+  uint32_t table1_count;
 } bench_options;
 
 typedef struct timing {
@@ -31,7 +35,13 @@ void bench_usage(FILE* f) {
              "  --threads N,N      thread counts (default 1,2)\n"
              "  --repeat N         timed runs per case (default 3)\n"
              "  --warmup N         untimed runs first (default 1)\n"
-             "  --csv FILE         also write one CSV row per case\n");
+             "  --csv FILE         also write one CSV row per case\n"
+             "  --suite S          eval (default) | scheduler | table1 | all\n"
+             "                     scheduler: time per frame on 10k, 100k, 1M patches (torus), orbiting camera\n"
+             "                     table1: Schwarz et al.'s Table 1 (PN, 1600x1144, 0.5 px): base, adaptive per\n"
+             "                     policy, uniform at the worst patch's level, strip overhead\n"
+             "  --frames N         scheduler frames per case (default 20)\n"
+             "  --model IN         a table1 model (repeatable; default demo:cow)\n");
 }
 
 static bool parse_list(const char* option, const char* text, uint32_t lo, uint32_t hi, uint32_t* out, uint32_t* count) {
@@ -68,6 +78,16 @@ static int parse(int argc, char** argv, bench_options* o) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 1000, &o->repeat)) return CLI_USAGE;
     } else if (!strcmp(a, "--warmup")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 0, 1000, &o->warmup)) return CLI_USAGE;
+    } else if (!strcmp(a, "--suite")) {
+      static const char* const suites[] = {"eval", "scheduler", "table1", "all", NULL};
+      if (!(v = cli_value(argc, argv, &i)) || cli_parse_enum(a, v, suites) < 0) return CLI_USAGE;
+      o->suite = v;
+    } else if (!strcmp(a, "--frames")) {
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 100000, &o->frames)) return CLI_USAGE;
+    } else if (!strcmp(a, "--model")) {
+      if (!(v = cli_value(argc, argv, &i))) return CLI_USAGE;
+      if (o->table1_count == 16) return cli_error(CLI_USAGE, "--model: at most 16 models");
+      o->table1[o->table1_count++] = v;
     } else if (!strcmp(a, "--csv")) {
       if (!(o->csv = cli_value(argc, argv, &i))) return CLI_USAGE;
     } else if (a[0] == '-' && a[1]) {
@@ -233,10 +253,30 @@ static int bench_threads(bench_state* b, uint32_t threads) {
   return rc;
 }
 
+static int run_lod_suites(const bench_options* o, double bandwidth, FILE* csv) {
+  static const char* const default_models[] = {"demo:cow"};
+  bench_lod_options lo = {o->threads, o->thread_count, o->frames, o->table1_count ? o->table1 : default_models,
+                          o->table1_count ? o->table1_count : 1};
+  bool all = !strcmp(o->suite, "all");
+  int rc = CLI_OK;
+  if (all || !strcmp(o->suite, "scheduler")) rc = bench_scheduler(&lo, bandwidth, csv);
+  if (rc == CLI_OK && (all || !strcmp(o->suite, "table1"))) rc = bench_table1(&lo, csv);
+  return rc;
+}
+
 int cmd_bench(int argc, char** argv) {
   bench_options o;
   int rc = parse(argc, argv, &o);
   if (rc != CLI_OK) return rc;
+  if (strcmp(o.suite, "eval") != 0 && strcmp(o.suite, "all") != 0) {
+    FILE* csv = o.csv ? fopen(o.csv, "w") : NULL;
+    if (o.csv && !csv) return cli_error(CLI_FAILED, "cannot write '%s'", o.csv);
+    double bw = memcpy_bandwidth();
+    printf("tlod bench --suite %s: memcpy %.2f GB/s\n", o.suite, bw * 1e-9);
+    rc = run_lod_suites(&o, bw, csv);
+    if (csv && fclose(csv) != 0 && rc == CLI_OK) rc = cli_error(CLI_FAILED, "cannot write '%s'", o.csv);
+    return rc;
+  }
   bench_state b = {.o = &o};
   if ((rc = cli_load(o.in, &b.in)) != CLI_OK || (rc = cli_split_quads(&b.in)) != CLI_OK) return rc;
   if (o.csv && !(b.csv = fopen(o.csv, "w"))) {

@@ -7,13 +7,14 @@
 
 void info_usage(FILE* f) {
   fprintf(f,
-          "usage: tlod info IN [--normals keep|angle|area] [--crease DEG]\n"
+          "usage: tlod info IN [--normals keep|angle|area] [--crease DEG] [--findings N]\n"
           "Prints counts, bounds, topology (boundary, non-manifold and crease edges) and what\n"
-          "validation found and repaired. IN: a .gltf .glb .obj .ply file or %s.\n",
+          "validation found and repaired (the first N findings, default 10). IN: a .gltf .glb .obj .ply\n"
+          "file or %s.\n",
           cli_demo_names());
 }
 
-static void print_info(const char* in, const cli_mesh* m, const tlod_mesh* mesh) {
+static void print_info(const char* in, const cli_mesh* m, const tlod_mesh* mesh, uint32_t findings) {
   tlod_mesh_info i = tlod_mesh_query_info(mesh);
   printf("%s\n", in);
   printf("  input:     %u vertices, %u faces\n", i.input_vertex_count, i.input_face_count);
@@ -27,13 +28,14 @@ static void print_info(const char* in, const cli_mesh* m, const tlod_mesh* mesh)
          i.normals_repaired);
   printf("  repairs:   %u degenerate faces dropped, %u unused vertices\n", i.degenerate_faces_dropped,
          i.unused_vertices);
-  cli_print_findings(stdout, mesh);
+  cli_print_findings(stdout, mesh, findings);
   if (m->warnings[0]) printf("  import warnings:\n%s\n", m->warnings);
 }
 
 int cmd_info(int argc, char** argv) {
   const char* in = NULL;
   float crease = 0.0f;
+  uint32_t findings = 10;
   tlod_normal_mode normals = TLOD_NORMALS_KEEP;
   static const char* const normal_names[] = {"keep", "angle", "area", NULL};
   for (int i = 0; i < argc; i++) {
@@ -42,6 +44,9 @@ int cmd_info(int argc, char** argv) {
     if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
       info_usage(stdout);
       return CLI_OK;
+    } else if (!strcmp(argv[i], "--findings")) {
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint("--findings", v, 0, TLOD_MAX_FINDINGS, &findings))
+        return CLI_USAGE;
     } else if (!strcmp(argv[i], "--crease")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_float("--crease", v, 0.0, 180.0, &crease)) return CLI_USAGE;
     } else if (!strcmp(argv[i], "--normals")) {
@@ -62,7 +67,8 @@ int cmd_info(int argc, char** argv) {
   cli_mesh m;
   tlod_mesh* mesh = NULL;
   int rc = cli_load(in, &m);
-  if (rc == CLI_OK && (rc = cli_create_mesh(ctx, &m, normals, crease, &mesh)) == CLI_OK) print_info(in, &m, mesh);
+  if (rc == CLI_OK && (rc = cli_create_mesh(ctx, &m, normals, crease, &mesh)) == CLI_OK)
+    print_info(in, &m, mesh, findings);
   tlod_mesh_destroy(mesh);
   cli_mesh_free(&m);
   tlod_context_destroy(ctx);

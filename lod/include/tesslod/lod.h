@@ -98,13 +98,16 @@ typedef enum tlod_lod_policy {
   TLOD_POLICY_DEFAULT = 0, /* == HYBRID */
   /* The smallest l with 4^-l e_max <= epsilon (Schwarz et al.). */
   TLOD_POLICY_ERROR,
-  /* l = ceil(max d_i) over the patch's corners, d_i the silhouette depth
-   * (Boubekeur & Alexa): refine only near contours. */
+  /* Refine only near contours (Boubekeur & Alexa): d_i is a vertex's desired
+   * tessellation factor, segments per edge; the patch takes
+   * l = ceil(log2(max d_i)) over its corners (0 when max d_i <= 1). */
   TLOD_POLICY_SILHOUETTE,
   /* ERROR with epsilon relaxed away from silhouettes: eps_p = eps *
-   * relax^(1 - s), s = max d_i / m over the patch's corners. At a contour
-   * (s = 1) the bound holds with eps; a patch facing the camera (s = 0) uses
-   * relax * eps, where shading hides the flat geometry. */
+   * relax^(1 - s), s = max d_i / m over the patch's corners, and s = 1 where
+   * the corner normals face both towards and away from the camera (the
+   * contour crosses the patch). At contours the bound holds with eps, as
+   * for ERROR; a patch facing the camera (s = 0) uses relax * eps, where
+   * shading hides the flat geometry. */
   TLOD_POLICY_HYBRID,
   TLOD_POLICY_NUM,
   _TLOD_POLICY_FORCE_U32 = 0x7FFFFFFF
@@ -126,7 +129,7 @@ typedef struct tlod_scheduler_desc {
   float epsilon_px;   /* screen-space error bound, pixels; 0 == 0.5 */
   uint32_t max_level; /* 0 == the patterns' max level */
   tlod_lod_policy policy;
-  float silhouette_depth; /* m of d_i = (1 - |n.v|) m; 0 == max_level */
+  float silhouette_depth; /* m of d_i = (1 - |n.v|) m, segments per edge; 0 == 2^max_level */
   float hybrid_relax;     /* HYBRID epsilon factor away from contours; 0 == 16 (2 levels) */
   tlod_morph_mode morph;
   float morph_ms;             /* TIME: duration of one level step; 0 == 200 */
