@@ -133,11 +133,8 @@ static void silhouette_task(void* data, uint32_t begin, uint32_t end, uint32_t w
   (void)worker;
   stage_job* j = data;
   const tlod_mesh* m = j->s->mesh;
-  for (uint32_t i = begin; i < end; i++) {
-    float p[3], n[3];
-    tlod_mesh_vertex(m, i, p, n);
-    j->vs->depth[i] = _tlod_silhouette_depth(&j->vs->cam, p, n, j->s->desc.silhouette_depth);
-  }
+  for (uint32_t i = begin; i < end; i++)
+    j->vs->depth[i] = _tlod_silhouette_depth(&j->vs->cam, m->positions[i], m->normals[i], j->s->desc.silhouette_depth);
 }
 
 static void metric_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
@@ -146,17 +143,16 @@ static void metric_task(void* data, uint32_t begin, uint32_t end, uint32_t worke
   const tlod_scheduler* s = j->s;
   _tlod_view_state* vs = j->vs;
   for (uint32_t f = begin; f < end; f++) {
-    tlod_patch_info info = tlod_surface_patch(s->surface, f);
-    vs->visible[f] = s->desc.no_frustum_cull || _tlod_sphere_visible(&vs->cam, info.center, info.radius);
-    vs->e_max[f] = _tlod_patch_e_max(&vs->cam, j->view->view, j->view->proj, j->view->viewport_height, &info);
-    uint32_t corners[4], n = tlod_mesh_face_corners(s->mesh, f, corners);
+    const tlod_patch_info* info = &s->surface->info[f];
+    vs->visible[f] = s->desc.no_frustum_cull || _tlod_sphere_visible(&vs->cam, info->center, info->radius);
+    vs->e_max[f] = _tlod_patch_e_max(&vs->cam, j->view->view, j->view->proj, j->view->viewport_height, info);
+    const tlod_mesh* m = s->mesh;
     float d = 0.0f;
     bool front = false, back = false;
-    for (uint32_t c = 0; c < n; c++) {
-      d = vs->depth[corners[c]] > d ? vs->depth[corners[c]] : d;
-      float p[3], nrm[3];
-      tlod_mesh_vertex(s->mesh, corners[c], p, nrm);
-      float facing = _tlod_facing(&vs->cam, p, nrm);
+    for (uint32_t c = 0; c < m->face_corners[f]; c++) {
+      uint32_t v = m->faces[f][c];
+      d = vs->depth[v] > d ? vs->depth[v] : d;
+      float facing = _tlod_facing(&vs->cam, m->positions[v], m->normals[v]);
       front = front || facing > 0.0f;
       back = back || facing <= 0.0f;
     }
@@ -224,9 +220,10 @@ static float morph_of(float cont, uint32_t level) {
   return m < 0.0f ? 0.0f : (m > 1.0f ? 1.0f : m);
 }
 
+/* The scheduler reads core's arrays directly (lod is a friend of core): this
+ * is the per-frame hot path over every patch. */
 static tlod_pattern_shape shape_of(const tlod_mesh* m, uint32_t f) {
-  uint32_t corners[4];
-  return tlod_mesh_face_corners(m, f, corners) == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
+  return m->face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
 }
 
 /* Triangles of a frame whose levels are ceil(level[f]) (visible patches),
@@ -237,9 +234,8 @@ static uint64_t frame_triangles(const tlod_scheduler* s, const _tlod_view_state*
     if (!vs->visible[f]) continue;
     uint32_t lf = drawn_level(level[f]);
     tris += tlod_pattern_triangle_count(shape_of(s->mesh, f), lf);
-    uint32_t corners[4], n = tlod_mesh_face_corners(s->mesh, f, corners);
-    for (uint32_t e = 0; e < n; e++) {
-      tlod_edge_link link = tlod_mesh_edge_link(s->mesh, f, e);
+    for (uint32_t e = 0; e < s->mesh->face_corners[f]; e++) {
+      tlod_edge_link link = s->mesh->links[f][e];
       if (link.face == UINT32_MAX || link.face < f || !vs->visible[link.face]) continue;
       uint32_t lg = drawn_level(level[link.face]);
       if (!link.smooth || lf != lg) tris += s->patterns->connect_count[lf][lg];
@@ -348,9 +344,8 @@ static tlod_result fill_strips(tlod_scheduler* s, _tlod_view_state* vs) {
   dl->strip_triangles = 0;
   for (uint32_t f = 0; f < s->patch_count; f++) {
     if (!vs->visible[f]) continue;
-    uint32_t corners[4], n = tlod_mesh_face_corners(s->mesh, f, corners);
-    for (uint32_t e = 0; e < n; e++) {
-      tlod_edge_link link = tlod_mesh_edge_link(s->mesh, f, e);
+    for (uint32_t e = 0; e < s->mesh->face_corners[f]; e++) {
+      tlod_edge_link link = s->mesh->links[f][e];
       if (link.face == UINT32_MAX || link.face < f || !vs->visible[link.face]) continue;
       uint8_t la = (uint8_t)vs->levels[f], lb = (uint8_t)vs->levels[link.face];
       if (link.smooth && la == lb) continue;

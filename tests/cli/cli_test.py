@@ -136,5 +136,59 @@ for ext in ("obj", "ply", "gltf", "glb"):
     rc2, out2, err2 = run("info", o)
     check("output .%s reads back closed" % ext, rc == 0 and rc2 == 0 and "closed" in out2, err + err2)
 
+# adaptive (view-dependent) tessellation
+cow_faces = 3285
+for policy in ("error", "hybrid", "silhouette"):
+    for surface in ("phong", "pn"):
+        o = os.path.join(WORK, "adaptive_%s_%s.obj" % (policy, surface))
+        st = os.path.join(WORK, "adaptive_%s_%s.json" % (policy, surface))
+        rc, out, err = run("tessellate", "demo:cow", "-o", o, "--surface", surface, "--eye", "8,3,10",
+                           "--policy", policy, "--no-weld", "--max-level", "5", "--stats", st, "-q")
+        ok, why = closed_after_weld(*read_obj(o)) if rc == 0 else (False, err)
+        check("adaptive %s %s: closed after welding" % (policy, surface), ok, why)
+        s = json.load(open(st)) if rc == 0 else {}
+        lv = s.get("levels", [])
+        check("adaptive %s %s: levels per input face" % (policy, surface),
+              len(lv) == cow_faces and all(-1 <= l <= 5 for l in lv) and
+              sum(s["adaptive"]["level_histogram"]) + s["adaptive"]["culled"] == s["adaptive"]["patches"],
+              "%d levels" % len(lv))
+# a close camera culls part of the mesh: -1 levels, and an open output
+o = os.path.join(WORK, "close.obj")
+st = os.path.join(WORK, "close.json")
+rc, out, err = run("tessellate", "demo:cow", "-o", o, "--eye", "3,0.5,2", "--target", "3,0.5,0", "--stats", st, "-q")
+s = json.load(open(st)) if rc == 0 else {"levels": [], "adaptive": {"culled": 0}}
+check("close camera culls patches (-1 levels)", rc == 0 and s["adaptive"]["culled"] > 0 and -1 in s["levels"] and
+      max(s["levels"]) >= 1, err)
+# smaller epsilon, more triangles
+counts = []
+for eps in ("4", "1", "0.25"):
+    st = os.path.join(WORK, "eps.json")
+    rc, out, err = run("tessellate", "demo:cow", "-o", os.path.join(WORK, "eps.ply"), "--eye", "8,3,10",
+                       "--epsilon", eps, "--policy", "error", "--stats", st, "-q")
+    counts.append(json.load(open(st))["output_counts"]["triangles"] if rc == 0 else -1)
+check("triangles grow as epsilon shrinks", counts[0] < counts[1] < counts[2], str(counts))
+# without strips the adaptive output has cracks
+o = os.path.join(WORK, "nostitch.obj")
+rc, out, err = run("tessellate", "demo:cow", "-o", o, "--eye", "8,3,10", "--no-weld", "--no-stitch", "-q")
+ok, why = closed_after_weld(*read_obj(o)) if rc == 0 else (True, err)
+check("--no-stitch leaves cracks the checker sees", rc == 0 and not ok, why)
+for bad in (["--eye", "1,2"], ["--eye", "1,2,3", "--size", "0x10"], ["--eye", "1,2,3", "--policy", "x"],
+            ["--eye", "1,2,3", "--epsilon", "0"], ["--eye", "1,2,3", "--fovy", "0"]):
+    rc, out, err = run("tessellate", "demo:cow", "-o", os.path.join(WORK, "bad_adaptive.obj"), *bad)
+    check("bad adaptive flags %s: exit 2, one line" % " ".join(bad), rc == 2 and one_error_line(err), err)
+
+# bench: every case reported, with sane figures
+csv = os.path.join(WORK, "bench.csv")
+rc, out, err = run("bench", "demo:torus-20x10", "--levels", "1,2", "--threads", "1,2", "--repeat", "1", "--warmup", "0",
+                   "--csv", csv)
+rows = [l.split(",") for l in open(csv).read().splitlines()[1:]] if rc == 0 else []
+evals = [r for r in rows if r[0] == "evaluate"]
+check("bench eval: 1 mesh + 3 surface rows per thread count, 12 evaluate rows", rc == 0 and
+      len([r for r in rows if r[0] == "mesh"]) == 2 and len([r for r in rows if r[0] == "patches"]) == 6 and
+      len(evals) == 12 and all(float(r[7]) > 0 and float(r[4]) > 0 for r in evals), err + out[-300:])
+check("bench eval: ratios printed", "phong/flat" in out and "pn/flat" in out and "of memcpy" in out)
+rc, out, err = run("bench", "--suite", "table1", "--model", "demo:cylinder")
+check("bench table1: three policies", rc == 0 and out.count("table1 ") == 3 and "uniform/adaptive" in out, err)
+
 print("%d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)

@@ -149,52 +149,14 @@ static const char* type_name(tlod_surface_type t) {
 /* Exact topology of an output mesh                                         */
 /* ------------------------------------------------------------------------ */
 
-static int cmp_u64(const void* a, const void* b) {
-  uint64_t x = *(const uint64_t*)a, y = *(const uint64_t*)b;
-  return x < y ? -1 : x > y;
-}
-
 /* Welds m by bitwise equal positions and checks that the result is a closed,
  * consistently oriented 2-manifold without degenerate triangles: every
  * directed edge occurs once and its reverse occurs once. Returns true if so;
- * otherwise `why` says what is wrong. */
+ * otherwise `why` says what is wrong (shapes.h, shared with the scheduler
+ * test). */
 static bool closed_manifold(const tlod_cpu_mesh* m, char* why, size_t why_size) {
-  uint32_t* weld = malloc(sizeof *weld * (m->vertex_count + 1));
-  shape_weld_ids(m->positions, m->vertex_count, weld);
-  uint64_t* keys = malloc(sizeof *keys * (3 * (size_t)m->triangle_count + 1));
-  bool ok = m->triangle_count > 0;
-  if (!ok) snprintf(why, why_size, "no triangles");
-  for (uint32_t t = 0; t < m->triangle_count && ok; ++t) {
-    uint32_t w[3];
-    for (int c = 0; c < 3; ++c)
-      w[c] = weld[m->indices[3 * t + c]];
-    if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) {
-      snprintf(why, why_size, "triangle %u (patch %d) is degenerate after welding", t,
-               m->triangle_patch ? (int)m->triangle_patch[t] : -2);
-      ok = false;
-    }
-    for (int c = 0; c < 3; ++c)
-      keys[3 * t + c] = (uint64_t)w[c] << 32 | w[(c + 1) % 3];
-  }
-  size_t n = 3 * (size_t)m->triangle_count;
-  if (ok) qsort(keys, n, sizeof *keys, cmp_u64);
-  for (size_t k = 0; k < n && ok; ++k) {
-    if (k > 0 && keys[k] == keys[k - 1]) {
-      snprintf(why, why_size, "directed edge %u->%u used twice (non-manifold or flipped)", (uint32_t)(keys[k] >> 32),
-               (uint32_t)keys[k]);
-      ok = false;
-      break;
-    }
-    uint64_t rev = keys[k] << 32 | keys[k] >> 32;
-    if (!bsearch(&rev, keys, n, sizeof *keys, cmp_u64)) {
-      snprintf(why, why_size, "edge %u->%u has no opposite half (a crack or a boundary)", (uint32_t)(keys[k] >> 32),
-               (uint32_t)keys[k]);
-      ok = false;
-    }
-  }
-  free(keys);
-  free(weld);
-  return ok;
+  return shape_closed_manifold(m->positions, m->vertex_count, m->indices, m->triangle_count, m->triangle_patch, why,
+                               why_size);
 }
 
 /* Output normals are finite unit vectors. */

@@ -29,6 +29,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -461,6 +462,113 @@ static inline void shape_topology(const shape* s, uint32_t* welded_vertices, uin
   free(used);
   free(keys);
   free(weld);
+}
+
+/* ---------------------------------------------------------------------- */
+/* Closedness of a triangle soup, by exact position equality              */
+/* ---------------------------------------------------------------------- */
+
+/* Half-edge census of triangles welded by bitwise equal positions (shared
+ * by the tessellator and scheduler tests). A half-edge is corner c -> c + 1
+ * of triangle t, named 3 t + c. Degenerate triangles (two corners at one
+ * welded position) are counted and their half-edges left out. */
+typedef struct shape_census {
+  uint32_t degenerate; /* triangles with two corners at one position */
+  uint32_t duplicated; /* directed (welded) edges used more than once */
+  uint32_t open;       /* half-edges without an opposite half */
+  uint32_t first_degenerate;
+  uint64_t first_duplicated, first_open; /* welded ids, from << 32 | to */
+} shape_census;
+
+typedef struct shape__half_edge {
+  uint64_t key; /* welded from << 32 | to */
+  uint32_t id;  /* 3 t + c */
+} shape__half_edge;
+
+static inline int shape__cmp_half_edge(const void* a, const void* b) {
+  const shape__half_edge *x = a, *y = b;
+  if (x->key != y->key) return x->key < y->key ? -1 : 1;
+  return x->id < y->id ? -1 : x->id > y->id;
+}
+
+/* open_list (may be NULL) receives the ids of up to open_capacity open half-edges. */
+static inline shape_census shape_half_edge_census(const float* positions, uint32_t vertex_count,
+                                                  const uint32_t* indices, uint32_t triangle_count, uint32_t* open_list,
+                                                  uint32_t open_capacity) {
+  shape_census c;
+  memset(&c, 0, sizeof c);
+  uint32_t* weld = malloc(sizeof *weld * ((size_t)vertex_count + 1));
+  shape_weld_ids(positions, vertex_count, weld);
+  shape__half_edge* h = malloc(sizeof *h * (3 * (size_t)triangle_count + 1));
+  size_t n = 0;
+  for (uint32_t t = 0; t < triangle_count; ++t) {
+    uint32_t w[3];
+    for (int k = 0; k < 3; ++k)
+      w[k] = weld[indices[3 * (size_t)t + k]];
+    if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) {
+      if (c.degenerate++ == 0) c.first_degenerate = t;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      h[n].key = (uint64_t)w[k] << 32 | w[(k + 1) % 3];
+      h[n].id = 3 * t + (uint32_t)k;
+      n++;
+    }
+  }
+  qsort(h, n, sizeof *h, shape__cmp_half_edge);
+  for (size_t k = 0; k < n; ++k) {
+    if (k > 0 && h[k].key == h[k - 1].key) {
+      if (c.duplicated++ == 0) c.first_duplicated = h[k].key;
+      continue;
+    }
+    uint64_t rev = h[k].key << 32 | h[k].key >> 32;
+    size_t lo = 0, hi = n; /* first record with key >= rev */
+    while (lo < hi) {
+      size_t mid = lo + (hi - lo) / 2;
+      if (h[mid].key < rev)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    if (lo == n || h[lo].key != rev) {
+      if (c.open == 0) c.first_open = h[k].key;
+      if (open_list && c.open < open_capacity) open_list[c.open] = h[k].id;
+      c.open++;
+    }
+  }
+  free(h);
+  free(weld);
+  return c;
+}
+
+/* Welds the triangles by bitwise equal positions and checks that the result
+ * is a closed, consistently oriented 2-manifold without degenerate
+ * triangles: every directed edge occurs once and its reverse occurs once.
+ * triangle_patch (may be NULL) names a degenerate triangle's patch in `why`. */
+static inline bool shape_closed_manifold(const float* positions, uint32_t vertex_count, const uint32_t* indices,
+                                         uint32_t triangle_count, const uint32_t* triangle_patch, char* why,
+                                         size_t why_size) {
+  if (triangle_count == 0) {
+    snprintf(why, why_size, "no triangles");
+    return false;
+  }
+  shape_census c = shape_half_edge_census(positions, vertex_count, indices, triangle_count, NULL, 0);
+  if (c.degenerate) {
+    snprintf(why, why_size, "triangle %u (patch %d) is degenerate after welding (%u such)", c.first_degenerate,
+             triangle_patch ? (int)triangle_patch[c.first_degenerate] : -2, c.degenerate);
+    return false;
+  }
+  if (c.duplicated) {
+    snprintf(why, why_size, "directed edge %u->%u used twice (non-manifold or flipped; %u such)",
+             (uint32_t)(c.first_duplicated >> 32), (uint32_t)c.first_duplicated, c.duplicated);
+    return false;
+  }
+  if (c.open) {
+    snprintf(why, why_size, "edge %u->%u has no opposite half (a crack or a boundary; %u such)",
+             (uint32_t)(c.first_open >> 32), (uint32_t)c.first_open, c.open);
+    return false;
+  }
+  return true;
 }
 
 /* A mesh desc for the shape (kept normals, no creases computed, exact weld). */

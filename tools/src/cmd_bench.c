@@ -62,7 +62,9 @@ static int parse(int argc, char** argv, bench_options* o) {
                        .threads = {1, 2},
                        .thread_count = 2,
                        .repeat = 3,
-                       .warmup = 1};
+                       .warmup = 1,
+                       .frames = 20,
+                       .suite = "eval"};
   for (int i = 0; i < argc; i++) {
     const char* a = argv[i];
     const char* v = NULL;

@@ -1,0 +1,1072 @@
+/*
+ * lod_scheduler_test.c -- independent verification of the view-dependent LOD
+ * scheduler (tesslod/lod.h: tlod_scheduler_*, tlod_draw_list) and of the CPU
+ * realisation of its draw lists (tesslod/cpu.h, desc.draw_list).
+ * Owned by the verification tests. Reads private state: none (public API only).
+ *
+ * This work is based on: M. Schwarz, M. Staginski, M. Stamminger, GPU-based
+ * rendering of PN triangle meshes with adaptive tessellation, VMV 2006
+ * (sec. 3 screen-space metric, sec. 4 stitching, sec. 5 geomorphs);
+ * T. Boubekeur, M. Alexa, Phong tessellation, SIGGRAPH Asia 2008 (silhouette
+ * depth); DESIGN.md (maths, invariants 3 and 4).
+ *
+ * References. Every expected value is computed here, in double precision,
+ * from the public inputs only: the camera matrices built by this file
+ * (column-major GL look-at, perspective and orthographic, stored as float),
+ * tlod_surface_patch() (error bound, bounding sphere), the mesh's vertices
+ * and tlod_surface_eval(). The library's own helpers (tlod_level_for_error,
+ * tlod_projection_scale) are checked against the same references, never used
+ * as one.
+ *
+ * Tolerances. e_max: relative 1e-5. A level may differ by one only when the
+ * reference e_max lies within 1e-5 (relative) of a level threshold. Topology
+ * is exact: no_weld output welded by bitwise equal positions. Geomorph
+ * midpoints are compared bitwise. Screen error: see test_screen_error.
+ */
+#include <float.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <time.h>
+
+#include "shapes.h"
+#include "tesslod/cpu.h"
+#include "tesslod/lod.h"
+#include "test.h"
+
+#pragma GCC diagnostic ignored "-Wunused-function" /* TEMP */
+#define PAT_MAX 5                                  /* patterns built to this level */
+#define DEG (SHAPES_PI / 180.0)
+
+/* Stops the calling test as soon as a helper's check failed. */
+#define CALL(expr)                                                                                                     \
+  do {                                                                                                                 \
+    int _failed_before = _test_checks_failed;                                                                          \
+    expr;                                                                                                              \
+    if (_test_checks_failed != _failed_before) return;                                                                 \
+  } while (0)
+
+static double now_seconds(void) {
+  struct timespec ts;
+  timespec_get(&ts, TIME_UTC);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Contexts: counting / failing allocator, reverse-order parallel-for       */
+/* ------------------------------------------------------------------------ */
+
+/* The fail_at-th call (0-based) fails; with fail_all every later one too. */
+typedef struct counting_allocator {
+  long calls, allocs, frees, failed;
+  long fail_at; /* -1: never */
+  bool fail_all;
+} counting_allocator;
+
+static void* counting_alloc(size_t size, void* user_data) {
+  counting_allocator* c = user_data;
+  long call = c->calls++;
+  if (c->fail_at >= 0 && (call == c->fail_at || (c->fail_all && call > c->fail_at))) {
+    c->failed++;
+    return NULL;
+  }
+  void* p = malloc(size ? size : 1);
+  if (p) c->allocs++;
+  return p;
+}
+
+static void counting_free(void* ptr, void* user_data) {
+  counting_allocator* c = user_data;
+  if (ptr) c->frees++;
+  free(ptr);
+}
+
+/* Chunks of 5 in reverse order on 3 "workers". */
+typedef struct reverse_pool {
+  long calls, chunks;
+} reverse_pool;
+
+static void reverse_parallel_for(tlod_task_fn fn, void* task_data, uint32_t count, void* user_data) {
+  reverse_pool* pool = user_data;
+  pool->calls++;
+  const uint32_t chunk = 5;
+  uint32_t chunks = (count + chunk - 1) / chunk;
+  for (uint32_t c = chunks; c-- > 0;) {
+    uint32_t end = (c + 1) * chunk < count ? (c + 1) * chunk : count;
+    pool->chunks++;
+    fn(task_data, c * chunk, end, c % 3);
+  }
+}
+
+static tlod_context* new_context(uint32_t threads, counting_allocator* counter, reverse_pool* pool) {
+  tlod_context_desc desc = {.thread_count = threads};
+  if (counter) {
+    desc.allocator.alloc_fn = counting_alloc;
+    desc.allocator.free_fn = counting_free;
+    desc.allocator.user_data = counter;
+  }
+  if (pool) {
+    desc.parallel_for.func = reverse_parallel_for;
+    desc.parallel_for.worker_count = 3;
+    desc.parallel_for.user_data = pool;
+  }
+  tlod_context* ctx = NULL;
+  return tlod_context_create(&desc, &ctx) == TLOD_SUCCESS ? ctx : NULL;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Fixture: mesh, surface, patterns and a copy of the per-patch data        */
+/* ------------------------------------------------------------------------ */
+
+typedef struct fixture {
+  tlod_context* ctx;
+  const shape* s;
+  tlod_surface_type type;
+  tlod_mesh* mesh;
+  tlod_surface* surf;
+  tlod_patterns* pat;
+  uint32_t patches, vertices;
+  tlod_patch_info* info;     /* per patch */
+  uint32_t (*corner)[4];     /* per patch */
+  uint8_t* ncorner;          /* per patch: 3 or 4 */
+  tlod_edge_link (*link)[4]; /* per patch edge */
+  double (*vpos)[3];         /* per mesh vertex (validated) */
+  double (*vnrm)[3];         /* per mesh vertex (unit) */
+  tlod_cpu_mesh* out;        /* realisation, reused */
+  uint32_t* base;            /* no_weld block of each patch in `out` */
+} fixture;
+
+static const char* type_name(tlod_surface_type t) {
+  return t == TLOD_SURFACE_FLAT ? "flat" : t == TLOD_SURFACE_PN ? "pn" : "phong";
+}
+
+static tlod_pattern_shape shape_of(const fixture* fx, uint32_t p) {
+  return fx->ncorner[p] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
+}
+
+/* Re-reads what the references use (after tlod_mesh_update / refresh). */
+static void fixture_read(fixture* fx) {
+  for (uint32_t p = 0; p < fx->patches; ++p) {
+    fx->info[p] = tlod_surface_patch(fx->surf, p);
+    fx->ncorner[p] = (uint8_t)tlod_mesh_face_corners(fx->mesh, p, fx->corner[p]);
+    for (uint32_t e = 0; e < fx->ncorner[p]; ++e)
+      fx->link[p][e] = tlod_mesh_edge_link(fx->mesh, p, e);
+  }
+  for (uint32_t v = 0; v < fx->vertices; ++v) {
+    float pos[3], nrm[3];
+    tlod_mesh_vertex(fx->mesh, v, pos, nrm);
+    for (int c = 0; c < 3; ++c)
+      fx->vpos[v][c] = pos[c], fx->vnrm[v][c] = nrm[c];
+  }
+}
+
+static void fixture_free(fixture* fx) {
+  if (fx->out) tlod_cpu_mesh_destroy(fx->ctx, fx->out);
+  tlod_surface_destroy(fx->surf);
+  tlod_mesh_destroy(fx->mesh);
+  tlod_patterns_destroy(fx->pat);
+  free(fx->info);
+  free(fx->corner);
+  free(fx->ncorner);
+  free(fx->link);
+  free(fx->vpos);
+  free(fx->vnrm);
+  free(fx->base);
+  memset(fx, 0, sizeof *fx);
+}
+
+static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type) {
+  memset(fx, 0, sizeof *fx);
+  fx->ctx = ctx;
+  fx->s = s;
+  fx->type = type;
+  tlod_mesh_desc md = shape_mesh_desc(s);
+  tlod_result r = tlod_mesh_create(ctx, &md, &fx->mesh);
+  if (r == TLOD_SUCCESS) r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type}, &fx->surf);
+  if (r == TLOD_SUCCESS) r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = PAT_MAX}, &fx->pat);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "fixture %s %s: %s: %s\n", s->name, type_name(type), tlod_result_string(r),
+            tlod_context_last_error(ctx));
+    fixture_free(fx);
+    return false;
+  }
+  fx->patches = tlod_surface_patch_count(fx->surf);
+  fx->vertices = tlod_mesh_vertex_count(fx->mesh);
+  fx->info = calloc(fx->patches + 1, sizeof *fx->info);
+  fx->corner = calloc(fx->patches + 1, sizeof *fx->corner);
+  fx->ncorner = calloc(fx->patches + 1, 1);
+  fx->link = calloc(fx->patches + 1, sizeof *fx->link);
+  fx->vpos = calloc(fx->vertices + 1, sizeof *fx->vpos);
+  fx->vnrm = calloc(fx->vertices + 1, sizeof *fx->vnrm);
+  fx->base = calloc(fx->patches + 1, sizeof *fx->base);
+  fixture_read(fx);
+  return true;
+}
+
+static tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
+  tlod_scheduler* s = NULL;
+  tlod_result r = tlod_scheduler_create(fx->ctx, fx->surf, fx->pat, &d, &s);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "tlod_scheduler_create: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    return NULL;
+  }
+  return s;
+}
+
+/* One frame; NULL on failure (reported). */
+static const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* views, uint32_t count,
+                                  float dt_ms, float measured_ms) {
+  tlod_frame_desc f = {.views = views, .view_count = count, .dt_ms = dt_ms, .measured_frame_ms = measured_ms};
+  tlod_result r = tlod_scheduler_update(s, &f);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "tlod_scheduler_update: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    return NULL;
+  }
+  return tlod_scheduler_draw_list(s, 0);
+}
+
+/* Realises a draw list with no_weld (every patch its own pattern vertices,
+ * as a GPU draws them) into fx->out, and fx->base[p] = the first output
+ * vertex of patch p's block. */
+static bool realise(fixture* fx, const tlod_draw_list* dl, bool no_stitch) {
+  tlod_cpu_tessellate_desc d = {.draw_list = dl, .no_weld = true, .no_stitch = no_stitch, .no_normals = true};
+  tlod_result r = fx->out ? tlod_cpu_tessellate_into(fx->ctx, fx->surf, fx->pat, &d, fx->out)
+                          : tlod_cpu_tessellate(fx->ctx, fx->surf, fx->pat, &d, &fx->out);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "tlod_cpu_tessellate(draw_list): %s: %s\n", tlod_result_string(r),
+            tlod_context_last_error(fx->ctx));
+    return false;
+  }
+  uint32_t b = 0;
+  for (uint32_t p = 0; p < fx->patches; ++p) {
+    fx->base[p] = b;
+    if (dl->levels[p] >= 0) b += tlod_pattern_vertex_count(shape_of(fx, p), (uint32_t)dl->levels[p]);
+  }
+  fx->base[fx->patches] = b;
+  if (fx->out->vertex_count != b) {
+    fprintf(stderr, "no_weld output has %u vertices, the draw list's patterns %u\n", fx->out->vertex_count, b);
+    return false;
+  }
+  /* the block layout: each block starts with the patch's corners */
+  for (uint32_t p = 0; p < fx->patches; ++p) {
+    if (dl->levels[p] < 0) continue;
+    for (uint32_t c = 0; c < fx->ncorner[p]; ++c) {
+      const float* q = fx->out->positions + 3 * (size_t)(fx->base[p] + c);
+      const double* v = fx->vpos[fx->corner[p][c]];
+      if (q[0] != (float)v[0] || q[1] != (float)v[1] || q[2] != (float)v[2]) {
+        fprintf(stderr, "no_weld block of patch %u does not start with its corners\n", p);
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Cameras (double precision, stored as float)                              */
+/* ------------------------------------------------------------------------ */
+
+typedef struct camera {
+  double eye[3], target[3], up[3];
+  double fovy;   /* perspective, radians */
+  double half_h; /* orthographic half height */
+  double aspect, znear, zfar;
+  bool ortho;
+  uint32_t width, height;
+} camera;
+
+static void cross3(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static double len3(const double a[3]) { return sqrt(dot3(a, a)); }
+
+/* Column-major GL look-at and projection. */
+static tlod_view_desc make_view(const camera* c) {
+  tlod_view_desc v;
+  memset(&v, 0, sizeof v);
+  double f[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]}, s[3], u[3];
+  shape_normalize3(f);
+  cross3(f, c->up, s);
+  shape_normalize3(s);
+  cross3(s, f, u);
+  double m[16] = {0};
+  for (int k = 0; k < 3; ++k) {
+    m[4 * k + 0] = s[k];
+    m[4 * k + 1] = u[k];
+    m[4 * k + 2] = -f[k];
+  }
+  m[12] = -dot3(s, c->eye);
+  m[13] = -dot3(u, c->eye);
+  m[14] = dot3(f, c->eye);
+  m[15] = 1;
+  double p[16] = {0};
+  double n = c->znear, fa = c->zfar;
+  if (c->ortho) {
+    double hw = c->half_h * c->aspect;
+    p[0] = 1.0 / hw;
+    p[5] = 1.0 / c->half_h;
+    p[10] = -2.0 / (fa - n);
+    p[14] = -(fa + n) / (fa - n);
+    p[15] = 1.0;
+  } else {
+    double F = 1.0 / tan(c->fovy / 2);
+    p[0] = F / c->aspect;
+    p[5] = F;
+    p[10] = (fa + n) / (n - fa);
+    p[11] = -1.0;
+    p[14] = 2.0 * fa * n / (n - fa);
+  }
+  for (int k = 0; k < 16; ++k)
+    v.view[k] = (float)m[k], v.proj[k] = (float)p[k];
+  v.viewport_width = c->width;
+  v.viewport_height = c->height;
+  return v;
+}
+
+static camera look_from(double ex, double ey, double ez, double tx, double ty, double tz) {
+  camera c = {.eye = {ex, ey, ez},
+              .target = {tx, ty, tz},
+              .up = {0, 1, 0},
+              .fovy = 60 * DEG,
+              .aspect = 4.0 / 3.0,
+              .znear = 0.05,
+              .zfar = 200,
+              .width = 800,
+              .height = 600};
+  double f[3] = {tx - ex, ty - ey, tz - ez}, s[3];
+  cross3(f, c.up, s);
+  if (len3(s) < 1e-6 * len3(f)) c.up[0] = 1, c.up[1] = 0;
+  return c;
+}
+
+/* Kinds: 0 near, 1 far, 2 grazing, 3 inside the bounding box, 4 medium.
+ * R: the shape's bounding radius about the origin. */
+static camera random_camera(shape_rng* r, double R, int kind, bool ortho) {
+  camera c;
+  memset(&c, 0, sizeof c);
+  double dir[3], off[3];
+  shape_rng_direction(r, dir);
+  shape_rng_direction(r, off);
+  double dist = 0;
+  switch (kind) {
+  case 0: /* near: just off the surface, looking at a point of it */
+    dist = R * shape_rng_range(r, 1.05, 2.0);
+    for (int k = 0; k < 3; ++k)
+      c.eye[k] = dir[k] * dist, c.target[k] = off[k] * 0.6 * R;
+    break;
+  case 1: /* far */
+    dist = R * shape_rng_range(r, 6.0, 40.0);
+    for (int k = 0; k < 3; ++k)
+      c.eye[k] = dir[k] * dist, c.target[k] = off[k] * 0.3 * R;
+    break;
+  case 2: { /* grazing: looking at a point near the silhouette rim */
+    dist = R * shape_rng_range(r, 1.1, 3.0);
+    double t[3];
+    cross3(dir, off, t);
+    shape_normalize3(t);
+    double a = shape_rng_range(r, 0.8, 1.05), b = shape_rng_range(r, -0.3, 0.3);
+    for (int k = 0; k < 3; ++k)
+      c.eye[k] = dir[k] * dist, c.target[k] = t[k] * a * R + dir[k] * b * R;
+    break;
+  }
+  case 3: /* inside the bounding box, any direction */
+    dist = R;
+    for (int k = 0; k < 3; ++k) {
+      c.eye[k] = shape_rng_range(r, -R, R);
+      c.target[k] = c.eye[k] + off[k];
+    }
+    break;
+  default: /* medium */
+    dist = R * shape_rng_range(r, 2.0, 6.0);
+    for (int k = 0; k < 3; ++k)
+      c.eye[k] = dir[k] * dist, c.target[k] = off[k] * 0.3 * R;
+    break;
+  }
+  for (;;) {
+    shape_rng_direction(r, c.up);
+    double f[3] = {c.target[0] - c.eye[0], c.target[1] - c.eye[1], c.target[2] - c.eye[2]}, s[3];
+    cross3(f, c.up, s);
+    if (len3(s) > 0.2 * len3(f)) break;
+  }
+  c.ortho = ortho;
+  c.fovy = shape_rng_range(r, 25, 100) * DEG;
+  c.aspect = shape_rng_range(r, 0.6, 2.0);
+  c.half_h = R * shape_rng_range(r, 0.3, 1.5);
+  c.znear = R * shape_rng_range(r, 0.01, 0.2);
+  c.zfar = dist + R * shape_rng_range(r, 3.0, 50.0);
+  c.width = 320 + (uint32_t)(shape_rng_next(r) % 1600);
+  c.height = (uint32_t)fmax(64.0, floor(c.width / c.aspect));
+  return c;
+}
+
+/* ------------------------------------------------------------------------ */
+/* References                                                               */
+/* ------------------------------------------------------------------------ */
+
+typedef struct view_ref {
+  double V[16], P[16], M[16]; /* from the float matrices; M = P V */
+  double planes[6][4];        /* unit normals, inside >= 0 */
+  double eye[3];
+  double pix; /* viewport_height / 2 * proj[5]: f (perspective) or pixels per unit (ortho) */
+  double znear;
+  bool ortho;
+  double width, height;
+} view_ref;
+
+static view_ref make_ref(const tlod_view_desc* v, const camera* c) {
+  view_ref r;
+  memset(&r, 0, sizeof r);
+  for (int k = 0; k < 16; ++k)
+    r.V[k] = v->view[k], r.P[k] = v->proj[k];
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k)
+        s += r.P[4 * k + row] * r.V[4 * col + k];
+      r.M[4 * col + row] = s;
+    }
+  /* Gribb & Hartmann: row3 +- row0 / row1 / row2 */
+  for (int pl = 0; pl < 6; ++pl) {
+    int axis = pl / 2;
+    double sign = pl % 2 ? -1.0 : 1.0, l = 0;
+    for (int k = 0; k < 4; ++k)
+      r.planes[pl][k] = r.M[4 * k + 3] + sign * r.M[4 * k + axis];
+    l = sqrt(r.planes[pl][0] * r.planes[pl][0] + r.planes[pl][1] * r.planes[pl][1] + r.planes[pl][2] * r.planes[pl][2]);
+    for (int k = 0; k < 4; ++k)
+      r.planes[pl][k] /= l;
+  }
+  for (int k = 0; k < 3; ++k)
+    r.eye[k] = -(r.V[4 * k + 0] * r.V[12] + r.V[4 * k + 1] * r.V[13] + r.V[4 * k + 2] * r.V[14]);
+  r.pix = v->viewport_height / 2.0 * r.P[5];
+  r.znear = c->znear;
+  r.ortho = c->ortho;
+  r.width = v->viewport_width;
+  r.height = v->viewport_height;
+  return r;
+}
+
+/* View depth (distance in front of the camera along -z). */
+static double ref_depth(const view_ref* r, const float c[3]) {
+  return -(r->V[2] * c[0] + r->V[6] * c[1] + r->V[10] * c[2] + r->V[14]);
+}
+
+/* e_max = error_bound * f / z_near; z_near = depth(centre) - radius, at
+ * least the near plane; orthographic: error_bound * pixels per unit. */
+static double ref_emax(const view_ref* r, const tlod_patch_info* in) {
+  if (r->ortho) return in->error_bound * r->pix;
+  double z = ref_depth(r, in->center) - in->radius;
+  if (z < r->znear) z = r->znear;
+  return in->error_bound * r->pix / z;
+}
+
+/* 1: the sphere is fully outside a frustum plane (must be culled);
+ * 0: a point of the sphere lies inside the frustum (must be kept);
+ * -1: neither shown (outside near a frustum edge or corner: either is fine). */
+static int ref_cull(const view_ref* r, const float cf[3], double radius) {
+  double c[3] = {cf[0], cf[1], cf[2]};
+  double scale = 1e-6 * (1.0 + len3(c) + radius);
+  bool inside = true;
+  for (int pl = 0; pl < 6; ++pl) {
+    double d = dot3(r->planes[pl], c) + r->planes[pl][3];
+    if (d < -radius - scale) return 1;
+    if (d < 0) inside = false;
+  }
+  if (inside) return 0;
+  /* Dykstra's alternating projections onto the six half-spaces: the point
+   * of the frustum nearest to c; a witness inside the sphere means kept. */
+  double x[3] = {c[0], c[1], c[2]}, q[6][3] = {{0}};
+  for (int it = 0; it < 400; ++it)
+    for (int pl = 0; pl < 6; ++pl) {
+      double y[3] = {x[0] + q[pl][0], x[1] + q[pl][1], x[2] + q[pl][2]};
+      double d = dot3(r->planes[pl], y) + r->planes[pl][3];
+      for (int k = 0; k < 3; ++k) {
+        double yp = d < 0 ? y[k] - d * r->planes[pl][k] : y[k];
+        q[pl][k] = y[k] - yp;
+        x[k] = yp;
+      }
+    }
+  for (int pl = 0; pl < 6; ++pl)
+    if (dot3(r->planes[pl], x) + r->planes[pl][3] < -scale) return -1;
+  double dx[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+  return len3(dx) < radius * (1 - 1e-4) - scale ? 0 : -1;
+}
+
+/* The level rule: 0 when e <= eps, else the smallest l with 4^-l e <= eps,
+ * at most lmax. *ambiguous: e lies within 1e-5 (relative) of a threshold. */
+static int ref_level(double e, double eps, int lmax, bool* ambiguous) {
+  *ambiguous = false;
+  for (int k = 0; k <= lmax; ++k) {
+    double thr = ldexp(eps, 2 * k);
+    if (fabs(e - thr) <= 1e-5 * thr) *ambiguous = true;
+  }
+  if (!(e > eps)) return 0;
+  int l = 1;
+  while (ldexp(e, -2 * l) > eps && l < lmax)
+    l++;
+  return l < lmax ? l : lmax;
+}
+
+/* d_i = (1 - |n_i . (c - p_i) / |c - p_i||) m (Boubekeur & Alexa). */
+static double ref_vertex_depth(const fixture* fx, const view_ref* r, uint32_t v, double m) {
+  double d[3] = {r->eye[0] - fx->vpos[v][0], r->eye[1] - fx->vpos[v][1], r->eye[2] - fx->vpos[v][2]};
+  double l = len3(d);
+  if (l == 0) return m;
+  return (1.0 - fabs(dot3(fx->vnrm[v], d) / l)) * m;
+}
+
+/* Largest corner silhouette depth of a patch, in units of m (s in lod.h). */
+static double ref_patch_s(const fixture* fx, const view_ref* r, uint32_t p) {
+  double s = 0;
+  for (uint32_t c = 0; c < fx->ncorner[p]; ++c)
+    s = fmax(s, ref_vertex_depth(fx, r, fx->corner[p][c], 1.0));
+  return s;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Draw-list consistency (structure, counts, strips)                        */
+/* ------------------------------------------------------------------------ */
+
+/* Levels in range, one instance per visible patch, buckets covering them,
+ * statistics that add up, and strips exactly where two visible sides of an
+ * edge would otherwise not meet: smooth edges with different levels, and
+ * crease edges (split normals); a smooth edge with equal levels and no
+ * strip must have equal edge morph values on both sides. */
+static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_t lmax, char* why, size_t n) {
+  bool ok = false;
+  uint32_t* seen = calloc(fx->patches + 1, sizeof *seen);
+  uint32_t* strips_at = calloc(4 * (size_t)fx->patches + 1, sizeof *strips_at);
+  const tlod_draw_instance** inst = calloc(fx->patches + 1, sizeof *inst);
+#define FAILF(...)                                                                                                     \
+  do {                                                                                                                 \
+    snprintf(why, n, __VA_ARGS__);                                                                                     \
+    goto done;                                                                                                         \
+  } while (0)
+  if (dl->patch_count != fx->patches) FAILF("patch_count %u, surface %u", dl->patch_count, fx->patches);
+  uint32_t visible = 0, culled = 0, hist[TLOD_MAX_LEVEL + 1] = {0};
+  uint64_t tris = 0;
+  float emin = FLT_MAX, emaxv = -FLT_MAX;
+  for (uint32_t p = 0; p < fx->patches; ++p) {
+    int l = dl->levels[p];
+    if (l < -1 || l > (int)lmax) FAILF("patch %u: level %d outside [-1, %u]", p, l, lmax);
+    if (l < 0) {
+      culled++;
+      continue;
+    }
+    visible++;
+    hist[l]++;
+    tris += tlod_pattern_triangle_count(shape_of(fx, p), (uint32_t)l);
+    if (!isfinite(dl->e_max[p]) || dl->e_max[p] < 0) FAILF("patch %u: e_max %g", p, dl->e_max[p]);
+    emin = fminf(emin, dl->e_max[p]);
+    emaxv = fmaxf(emaxv, dl->e_max[p]);
+  }
+  if (culled != dl->culled) FAILF("culled %u, levels say %u", dl->culled, culled);
+  for (int l = 0; l <= TLOD_MAX_LEVEL; ++l)
+    if (hist[l] != dl->level_histogram[l])
+      FAILF("level_histogram[%d] %u, levels say %u", l, dl->level_histogram[l], hist[l]);
+  if (tris != dl->pattern_triangles)
+    FAILF("pattern_triangles %llu, levels say %llu", (unsigned long long)dl->pattern_triangles,
+          (unsigned long long)tris);
+  if (visible && (emin != dl->e_max_min || emaxv != dl->e_max_max))
+    FAILF("e_max_min/max %g/%g, visible e_max %g/%g", dl->e_max_min, dl->e_max_max, emin, emaxv);
+  if (dl->instance_count != visible) FAILF("%u instances, %u visible patches", dl->instance_count, visible);
+  for (uint32_t k = 0; k < dl->instance_count; ++k) {
+    const tlod_draw_instance* in = &dl->instances[k];
+    if (in->patch >= fx->patches) FAILF("instance %u: patch %u", k, in->patch);
+    if (seen[in->patch]++) FAILF("patch %u has two instances", in->patch);
+    if ((int)in->level != dl->levels[in->patch])
+      FAILF("instance %u: level %u, levels[%u] = %d", k, in->level, in->patch, dl->levels[in->patch]);
+    if (!(in->morph >= 0 && in->morph <= 1)) FAILF("patch %u: morph %g", in->patch, in->morph);
+    for (uint32_t e = 0; e < fx->ncorner[in->patch]; ++e)
+      if (!(in->edge_morph[e] >= 0 && in->edge_morph[e] <= 1))
+        FAILF("patch %u: edge_morph[%u] %g", in->patch, e, in->edge_morph[e]);
+    inst[in->patch] = in;
+  }
+  uint32_t next = 0;
+  for (uint32_t b = 0; b < dl->bucket_count; ++b) {
+    const tlod_draw_bucket* bk = &dl->buckets[b];
+    if (bk->first != next) FAILF("bucket %u starts at %u, expected %u", b, bk->first, next);
+    next = bk->first + bk->count;
+    if (next > dl->instance_count) FAILF("bucket %u runs past the instances", b);
+    for (uint32_t k = bk->first; k < next; ++k) {
+      const tlod_draw_instance* in = &dl->instances[k];
+      if (in->level != bk->level || shape_of(fx, in->patch) != bk->shape)
+        FAILF("instance %u (patch %u level %u) in bucket %u (shape %d level %u)", k, in->patch, in->level, b,
+              (int)bk->shape, bk->level);
+    }
+  }
+  if (next != dl->instance_count) FAILF("buckets cover %u of %u instances", next, dl->instance_count);
+  uint64_t stris = 0;
+  for (uint32_t k = 0; k < dl->strip_count; ++k) {
+    const tlod_draw_strip* st = &dl->strips[k];
+    if (st->patch_a >= fx->patches || st->patch_b >= fx->patches)
+      FAILF("strip %u: patches %u, %u", k, st->patch_a, st->patch_b);
+    if (dl->levels[st->patch_a] < 0 || dl->levels[st->patch_b] < 0)
+      FAILF("strip %u joins a culled patch (%u, %u)", k, st->patch_a, st->patch_b);
+    if (st->edge_a >= fx->ncorner[st->patch_a] || st->edge_b >= fx->ncorner[st->patch_b]) FAILF("strip %u: edges", k);
+    tlod_edge_link lk = fx->link[st->patch_a][st->edge_a];
+    if (lk.face != st->patch_b || lk.edge != st->edge_b)
+      FAILF("strip %u: patch %u edge %u is not next to patch %u edge %u", k, st->patch_a, st->edge_a, st->patch_b,
+            st->edge_b);
+    if ((int)st->level_a != dl->levels[st->patch_a] || (int)st->level_b != dl->levels[st->patch_b])
+      FAILF("strip %u: levels %u/%u, patches at %d/%d", k, st->level_a, st->level_b, dl->levels[st->patch_a],
+            dl->levels[st->patch_b]);
+    if (st->crease != !lk.smooth)
+      FAILF("strip %u: crease %d on a %s edge", k, st->crease, lk.smooth ? "smooth" : "crease");
+    strips_at[4 * st->patch_a + st->edge_a]++;
+    strips_at[4 * st->patch_b + st->edge_b]++;
+    uint32_t c = 0;
+    tlod_patterns_connection(fx->pat, st->level_a, st->level_b, &c);
+    stris += c;
+  }
+  if (stris != dl->strip_triangles)
+    FAILF("strip_triangles %llu, the strips' connection patterns %llu", (unsigned long long)dl->strip_triangles,
+          (unsigned long long)stris);
+  for (uint32_t p = 0; p < fx->patches; ++p) {
+    if (dl->levels[p] < 0) continue;
+    for (uint32_t e = 0; e < fx->ncorner[p]; ++e) {
+      tlod_edge_link lk = fx->link[p][e];
+      uint32_t count = strips_at[4 * p + e];
+      if (count > 1) FAILF("patch %u edge %u: %u strips", p, e, count);
+      if (lk.face == UINT32_MAX || dl->levels[lk.face] < 0) {
+        if (count) FAILF("patch %u edge %u: strip on a boundary or next to a culled patch", p, e);
+        continue;
+      }
+      bool need = !lk.smooth || dl->levels[p] != dl->levels[lk.face];
+      if (need && !count)
+        FAILF("patch %u edge %u (level %d) meets patch %u (level %d) across a %s edge without a strip", p, e,
+              dl->levels[p], lk.face, dl->levels[lk.face], lk.smooth ? "smooth" : "crease");
+      if (!count && inst[p]->edge_morph[e] != inst[lk.face]->edge_morph[lk.edge])
+        FAILF("patch %u edge %u: edge morph %.9g, neighbour %u edge %u: %.9g, equal levels %d and no strip", p, e,
+              inst[p]->edge_morph[e], lk.face, lk.edge, inst[lk.face]->edge_morph[lk.edge], dl->levels[p]);
+    }
+  }
+  ok = true;
+done:
+#undef FAILF
+  free(seen);
+  free(strips_at);
+  free(inst);
+  return ok;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Realised topology                                                        */
+/* ------------------------------------------------------------------------ */
+
+/* Edges of the pattern (bit e) that vertex v lies on, N = 2^patterns max. */
+static unsigned vertex_edges(tlod_pattern_shape sh, uint32_t N, const tlod_pattern_vertex* v) {
+  if (sh == TLOD_PATTERN_TRIANGLE) return (v->i + v->j == N ? 1u : 0u) | (v->i == 0 ? 2u : 0u) | (v->j == 0 ? 4u : 0u);
+  return (v->j == 0 ? 1u : 0u) | (v->i == N ? 2u : 0u) | (v->j == N ? 4u : 0u) | (v->i == 0 ? 8u : 0u);
+}
+
+/* With culling: the realised output welds into a manifold whose only open
+ * edges lie on patch edges between a visible and a culled patch. */
+static bool open_only_at_culled(const fixture* fx, const tlod_draw_list* dl, uint32_t* open_edges, char* why,
+                                size_t n) {
+  const tlod_cpu_mesh* m = fx->out;
+  uint32_t cap = 3 * m->triangle_count + 1;
+  uint32_t* list = malloc(sizeof *list * cap);
+  shape_census c = shape_half_edge_census(m->positions, m->vertex_count, m->indices, m->triangle_count, list, cap);
+  bool ok = c.degenerate == 0 && c.duplicated == 0;
+  if (!ok) snprintf(why, n, "%u degenerate triangles, %u doubled directed edges", c.degenerate, c.duplicated);
+  uint32_t N = 1u << tlod_patterns_max_level(fx->pat);
+  for (uint32_t k = 0; k < c.open && ok; ++k) {
+    uint32_t t = list[k] / 3, corner = list[k] % 3, p = m->triangle_patch[t];
+    if (p == UINT32_MAX) {
+      snprintf(why, n, "strip triangle %u has an open edge", t);
+      ok = false;
+      break;
+    }
+    uint32_t a = m->indices[3 * t + corner] - fx->base[p], b = m->indices[3 * t + (corner + 1) % 3] - fx->base[p];
+    uint32_t count;
+    const tlod_pattern_vertex* pv = tlod_patterns_vertices(fx->pat, shape_of(fx, p), &count);
+    unsigned common = vertex_edges(shape_of(fx, p), N, &pv[a]) & vertex_edges(shape_of(fx, p), N, &pv[b]);
+    bool at_culled = false;
+    for (uint32_t e = 0; e < fx->ncorner[p]; ++e)
+      if (common >> e & 1) {
+        tlod_edge_link lk = fx->link[p][e];
+        at_culled = at_culled || (lk.face != UINT32_MAX && dl->levels[lk.face] < 0);
+      }
+    if (!at_culled) {
+      snprintf(why, n, "open edge inside patch %u (pattern vertices %u-%u, edges %#x) or next to a visible patch", p, a,
+               b, common);
+      ok = false;
+    }
+  }
+  *open_edges += c.open;
+  free(list);
+  return ok;
+}
+
+static bool realised_closed(const fixture* fx, char* why, size_t n) {
+  const tlod_cpu_mesh* m = fx->out;
+  return shape_closed_manifold(m->positions, m->vertex_count, m->indices, m->triangle_count, m->triangle_patch, why, n);
+}
+
+/* ------------------------------------------------------------------------ */
+/* 0. Pure helpers against the reference                                    */
+/* ------------------------------------------------------------------------ */
+
+TEST(test_pure_helpers) {
+  shape_rng rng = {11};
+  uint32_t checked = 0, ambiguous = 0;
+  for (int k = 0; k < 20000; ++k) {
+    float eps = (float)exp(shape_rng_range(&rng, log(0.05), log(20.0)));
+    float e = k % 10 == 0 ? eps * (float)ldexp(1.0, 2 * (int)(shape_rng_next(&rng) % 6)) /* on a threshold */
+                          : (float)(eps * exp(shape_rng_range(&rng, -3.0, 9.0)));
+    uint32_t lmax = (uint32_t)(shape_rng_next(&rng) % (TLOD_MAX_LEVEL + 1));
+    bool amb;
+    int want = ref_level(e, eps, (int)lmax, &amb);
+    uint32_t got = tlod_level_for_error(e, eps, lmax);
+    ambiguous += amb;
+    CHECK_MSG(got == (uint32_t)want || (amb && abs((int)got - want) <= 1),
+              "tlod_level_for_error(%.9g, %.9g, %u) = %u, reference %d", e, eps, lmax, got, want);
+    checked++;
+  }
+  CHECK(tlod_level_for_error(0.0f, 1.0f, 5) == 0);
+  CHECK(tlod_level_for_error(1.0f, 1.0f, 5) == 0);
+  CHECK(tlod_level_for_error(4.0f, 1.0f, 5) == 1);
+  CHECK(tlod_level_for_error(4.0001f, 1.0f, 5) == 2);
+  CHECK(tlod_level_for_error(1e30f, 1.0f, 5) == 5);
+  for (int k = 0; k < 200; ++k) {
+    camera c = random_camera(&rng, 1.0, k % 5, k % 3 == 0);
+    tlod_view_desc v = make_view(&c);
+    view_ref r = make_ref(&v, &c);
+    double depth = shape_rng_range(&rng, 0.01, 100.0);
+    double want = r.ortho ? r.pix : r.pix / depth;
+    float got = tlod_projection_scale(v.proj, v.viewport_height, (float)depth);
+    CHECK_MSG(fabs(got - want) <= 1e-6 * want, "tlod_projection_scale(%s, %u, %g) = %.9g, reference %.9g",
+              r.ortho ? "ortho" : "perspective", v.viewport_height, depth, got, want);
+  }
+  printf("  %u level rules checked (%u within 1e-5 of a threshold)\n", checked, ambiguous);
+}
+
+/* ------------------------------------------------------------------------ */
+/* 1. Level choice and culling against the reference                       */
+/* ------------------------------------------------------------------------ */
+
+typedef struct ref_stats {
+  uint32_t patches, culled, kept, edge_zone, ambiguous, policy_checked;
+  double worst_rel;
+} ref_stats;
+
+/* Every patch of one draw list against the reference: structure, culling,
+ * e_max, and (ERROR policy) the level rule. */
+static void check_levels(const fixture* fx, const tlod_draw_list* dl, const view_ref* r, tlod_lod_policy policy,
+                         double eps, int lmax, bool no_cull, const char* what, ref_stats* st) {
+  char why[256];
+  CHECK_MSG(check_draw_list(fx, dl, (uint32_t)lmax, why, sizeof why), "%s: %s", what, why);
+  CHECK_MSG(dl->effective_epsilon == (float)eps, "%s: effective_epsilon %.9g without budget, epsilon %.9g", what,
+            dl->effective_epsilon, eps);
+  if (no_cull) CHECK_MSG(dl->culled == 0, "%s: no_frustum_cull, %u culled", what, dl->culled);
+  for (uint32_t p = 0; p < fx->patches; ++p) {
+    const tlod_patch_info* in = &fx->info[p];
+    int level = dl->levels[p];
+    if (!no_cull) {
+      int cull = ref_cull(r, in->center, in->radius);
+      st->edge_zone += cull < 0;
+      if (cull == 1) {
+        CHECK_MSG(level == -1, "%s: patch %u (sphere %.4g %.4g %.4g r %.4g) is outside a frustum plane, level %d", what,
+                  p, in->center[0], in->center[1], in->center[2], in->radius, level);
+        st->culled++;
+      } else if (cull == 0) {
+        CHECK_MSG(level >= 0, "%s: patch %u meets the frustum but was culled", what, p);
+        st->kept++;
+      }
+    }
+    if (level < 0) continue;
+    st->patches++;
+    double e = ref_emax(r, in);
+    double rel = fabs(dl->e_max[p] - e) / fmax(e, 1e-30);
+    if (e == 0) rel = dl->e_max[p] == 0 ? 0 : 1;
+    st->worst_rel = fmax(st->worst_rel, rel);
+    CHECK_MSG(rel <= 1e-5, "%s: patch %u e_max %.9g, reference %.9g (error bound %.6g, depth %.6g, radius %.6g)", what,
+              p, dl->e_max[p], e, in->error_bound, ref_depth(r, in->center), in->radius);
+    if (policy != TLOD_POLICY_ERROR) continue; /* other policies: test_policy_rules */
+    bool amb = false;
+    int want = ref_level(e, eps, lmax, &amb);
+    st->ambiguous += amb;
+    st->policy_checked++;
+    CHECK_MSG(level == want || (amb && abs(level - want) <= 1), "%s: patch %u level %d, reference %d (e_max %.9g)",
+              what, p, level, want, e);
+  }
+}
+
+TEST(test_level_choice) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  CHECK(ctx);
+  shape shapes[3] = {shape_icosphere(2), shape_torus(12, 8), shape_quad_sphere(2)};
+  const double radius[3] = {1.0, 1.4, 1.0};
+  const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
+  const tlod_lod_policy policies[3] = {TLOD_POLICY_ERROR, TLOD_POLICY_HYBRID, TLOD_POLICY_SILHOUETTE};
+  const char* pnames[3] = {"error", "hybrid", "silhouette"};
+  ref_stats st = {0};
+  uint32_t frames = 0, run = 0;
+  for (int si = 0; si < 3; ++si)
+    for (int ti = 0; ti < 2; ++ti, ++run) {
+      if (shapes[si].corners == 4 && types[ti] == TLOD_SURFACE_PN) continue;
+      fixture fx;
+      CHECK(fixture_make(&fx, ctx, &shapes[si], types[ti]));
+      int lmax = run % 2 ? 4 : PAT_MAX; /* 4: the desc's max_level clamps below the patterns' */
+      double eps = run % 3 == 0 ? 0.5 : run % 3 == 1 ? 1.0 : 2.0;
+      tlod_scheduler* sch[4];
+      for (int k = 0; k < 4; ++k) {
+        tlod_scheduler_desc d = {.epsilon_px = (float)eps,
+                                 .max_level = run % 2 ? 4u : 0u,
+                                 .policy = policies[k % 3],
+                                 .morph = TLOD_MORPH_NONE,
+                                 .no_frustum_cull = k == 3};
+        sch[k] = new_scheduler(&fx, d);
+        CHECK(sch[k]);
+      }
+      shape_rng rng = {100 + (uint64_t)run};
+      for (int cam = 0; cam < 40; ++cam) {
+        camera c = random_camera(&rng, radius[si], cam % 5, cam % 4 == 3);
+        tlod_view_desc v = make_view(&c);
+        view_ref r = make_ref(&v, &c);
+        for (int k = 0; k < 4; ++k) {
+          const tlod_draw_list* dl = plan(&fx, sch[k], &v, 1, 16.0f, 0.0f);
+          CHECK(dl);
+          char what[160];
+          snprintf(what, sizeof what, "%s %s %s%s camera %d (%s, kind %d)", shapes[si].name, type_name(types[ti]),
+                   pnames[k % 3], k == 3 ? " no_frustum_cull" : "", cam, c.ortho ? "ortho" : "perspective", cam % 5);
+          CALL(check_levels(&fx, dl, &r, policies[k % 3], eps, lmax, k == 3, what, &st));
+          frames++;
+        }
+      }
+      for (int k = 0; k < 4; ++k)
+        tlod_scheduler_destroy(sch[k]);
+      fixture_free(&fx);
+    }
+  printf("  %u frames, %u visible patches: worst e_max relative error %.2g; culling: %u must-cull and %u must-keep "
+         "patches confirmed, %u near a frustum edge (either); %u policy levels checked (%u within 1e-5 of a "
+         "threshold)\n",
+         frames, st.patches, st.worst_rel, st.culled, st.kept, st.edge_zone, st.policy_checked, st.ambiguous);
+  CHECK(st.culled > 100 && st.kept > 1000);
+  for (int k = 0; k < 3; ++k)
+    shape_free(&shapes[k]);
+  tlod_context_destroy(ctx);
+}
+
+/* ------------------------------------------------------------------------ */
+/* 1b. HYBRID and SILHOUETTE against the rules lod.h documents              */
+/* ------------------------------------------------------------------------ */
+
+/* lod.h: d_i = (1 - |n.v|) m with m = silhouette_depth ("0 == max_level");
+ * SILHOUETTE: l = ceil(max d_i) over the patch's corners; HYBRID: eps_p =
+ * eps relax^(1 - s), s = max d_i / m over the patch's corners. Perspective
+ * cameras (the eye position defines v). Mismatches are counted per rule and
+ * reported together. */
+TEST(test_policy_rules) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  CHECK(ctx);
+  shape sph = shape_icosphere(2);
+  fixture fx;
+  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PHONG));
+  const int lmax = 4;
+  const double m_explicit = 3.0, eps = 1.0;
+  tlod_scheduler* hyb = new_scheduler(&fx, (tlod_scheduler_desc){.epsilon_px = (float)eps,
+                                                                 .max_level = lmax,
+                                                                 .policy = TLOD_POLICY_HYBRID,
+                                                                 .morph = TLOD_MORPH_NONE,
+                                                                 .silhouette_depth = (float)m_explicit,
+                                                                 .no_frustum_cull = true});
+  tlod_scheduler* sil = new_scheduler(&fx, (tlod_scheduler_desc){.epsilon_px = (float)eps,
+                                                                 .max_level = lmax,
+                                                                 .policy = TLOD_POLICY_SILHOUETTE,
+                                                                 .morph = TLOD_MORPH_NONE,
+                                                                 .silhouette_depth = (float)m_explicit,
+                                                                 .no_frustum_cull = true});
+  tlod_scheduler* def = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = lmax, .no_frustum_cull = true});
+  CHECK(hyb && sil && def);
+  tlod_scheduler_desc dd = tlod_scheduler_query_desc(def);
+  printf("  resolved defaults: epsilon %g, policy %d, morph %d, morph_ms %g, hybrid_relax %g, silhouette_depth %g "
+         "(max_level %u)\n",
+         dd.epsilon_px, (int)dd.policy, (int)dd.morph, dd.morph_ms, dd.hybrid_relax, dd.silhouette_depth, dd.max_level);
+  bool default_m_ok = dd.silhouette_depth == (float)lmax;
+  uint32_t depth_bad = 0, sil_bad = 0, hyb_bad = 0, checked = 0, hyb_contour_bad = 0;
+  double worst_depth = 0;
+  shape_rng rng = {77};
+  char first_sil[200] = "", first_hyb[200] = "";
+  for (int cam = 0; cam < 30; ++cam) {
+    camera c = random_camera(&rng, 1.0, cam % 5 == 3 ? 4 : cam % 5, false);
+    tlod_view_desc v = make_view(&c);
+    view_ref r = make_ref(&v, &c);
+    const tlod_draw_list* dh = plan(&fx, hyb, &v, 1, 16, 0);
+    CHECK(dh);
+    char why[256];
+    CHECK_MSG(check_draw_list(&fx, dh, lmax, why, sizeof why), "hybrid: %s", why);
+    for (uint32_t vx = 0; vx < fx.vertices; ++vx) {
+      double want = ref_vertex_depth(&fx, &r, vx, m_explicit);
+      double err = fabs(dh->vertex_depth[vx] - want);
+      worst_depth = fmax(worst_depth, err);
+      depth_bad += err > 1e-4 * m_explicit;
+    }
+    for (uint32_t p = 0; p < fx.patches; ++p) {
+      double e = ref_emax(&r, &fx.info[p]), s = ref_patch_s(&fx, &r, p);
+      bool amb;
+      int want = ref_level(e, eps * pow(16.0, 1.0 - s), lmax, &amb);
+      if (!(dh->levels[p] == want || (amb && abs(dh->levels[p] - want) <= 1))) {
+        hyb_bad++;
+        /* does the patch straddle the contour (corner normals facing both ways)? */
+        bool front = false, back = false;
+        for (uint32_t k = 0; k < fx.ncorner[p]; ++k) {
+          const double* q = fx.vpos[fx.corner[p][k]];
+          double d[3] = {r.eye[0] - q[0], r.eye[1] - q[1], r.eye[2] - q[2]};
+          double f = dot3(fx.vnrm[fx.corner[p][k]], d);
+          front = front || f > 0, back = back || f <= 0;
+        }
+        hyb_contour_bad += front && back;
+        if (!first_hyb[0])
+          snprintf(first_hyb, sizeof first_hyb, "camera %d patch %u: level %d, documented rule %d (s = %.4f%s)", cam, p,
+                   dh->levels[p], want, s, front && back ? ", corner normals face both ways" : "");
+      }
+    }
+    const tlod_draw_list* ds = plan(&fx, sil, &v, 1, 16, 0);
+    CHECK(ds);
+    CHECK_MSG(check_draw_list(&fx, ds, lmax, why, sizeof why), "silhouette: %s", why);
+    for (uint32_t p = 0; p < fx.patches; ++p) {
+      double d = ref_patch_s(&fx, &r, p) * m_explicit;
+      int want = (int)fmin(ceil(d), lmax);
+      bool amb = fabs(d - floor(d + 0.5)) <= 1e-4 * m_explicit;
+      if (!(ds->levels[p] == want || (amb && abs(ds->levels[p] - want) <= 1))) {
+        sil_bad++;
+        if (!first_sil[0])
+          snprintf(first_sil, sizeof first_sil,
+                   "camera %d patch %u: level %d, documented ceil(max d_i) = %d (max d_i %.4f)", cam, p, ds->levels[p],
+                   want, d);
+      }
+      checked++;
+    }
+  }
+  printf("  %u patches x 2 policies; vertex depth (explicit m = %g): worst error %.2g, %u off\n", checked, m_explicit,
+         worst_depth, depth_bad);
+  printf("  SILHOUETTE levels off the documented l = ceil(max d_i): %u%s%s\n", sil_bad, sil_bad ? "; first: " : "",
+         first_sil);
+  printf("  HYBRID levels off the documented eps relax^(1 - max d_i/m): %u (%u of them straddle the contour)%s%s\n",
+         hyb_bad, hyb_contour_bad, hyb_bad ? "; first: " : "", first_hyb);
+  tlod_scheduler_destroy(hyb);
+  tlod_scheduler_destroy(sil);
+  tlod_scheduler_destroy(def);
+  fixture_free(&fx);
+  shape_free(&sph);
+  tlod_context_destroy(ctx);
+  CHECK_MSG(depth_bad == 0, "%u vertex depths differ from (1 - |n.v|) m", depth_bad);
+  CHECK_MSG(default_m_ok, "silhouette_depth 0 resolves to %g; lod.h documents \"0 == max_level\" (%d)",
+            dd.silhouette_depth, lmax);
+  CHECK_MSG(sil_bad == 0, "%u SILHOUETTE levels differ from lod.h's l = ceil(max d_i)", sil_bad);
+  CHECK_MSG(hyb_bad == 0, "%u HYBRID levels differ from lod.h's eps_p = eps relax^(1 - s), s = max d_i / m", hyb_bad);
+}
+
+/* ------------------------------------------------------------------------ */
+/* 2. Crack-free realisation of random frames                               */
+/* ------------------------------------------------------------------------ */
+
+typedef struct crack_stats {
+  uint32_t frames, fractional_frames, strips, nostitch_runs, nostitch_open, culled_frames, open_edges;
+  double seconds;
+} crack_stats;
+
+/* Random cameras (near, far, grazing, inside the bounding box, medium;
+ * every sixth orthographic) on one surface. Schedulers: ERROR and HYBRID,
+ * each with morph NONE and TIME (random dt, so blends are fractional), all
+ * with no_frustum_cull: every realised frame must weld into a closed
+ * manifold. A fifth (HYBRID, culling) frame may only be open where a
+ * visible patch meets a culled one. Every other camera the ERROR frame is
+ * also realised with no_stitch, which must open somewhere. */
+static void crack_suite(tlod_context* ctx, const shape* s, double R, tlod_surface_type type, int cameras, uint64_t seed,
+                        crack_stats* st) {
+  double t0 = now_seconds();
+  fixture fx;
+  CHECK(fixture_make(&fx, ctx, s, type));
+  const uint32_t lmax = 4;
+  tlod_scheduler* sch[5];
+  for (int k = 0; k < 5; ++k) {
+    tlod_scheduler_desc d = {.epsilon_px = k % 2 ? 0.75f : 1.0f,
+                             .max_level = lmax,
+                             .policy = k % 2 ? TLOD_POLICY_HYBRID : TLOD_POLICY_ERROR,
+                             .morph = k >= 2 && k < 4 ? TLOD_MORPH_TIME : TLOD_MORPH_NONE,
+                             .morph_ms = 120,
+                             .no_frustum_cull = k < 4};
+    sch[k] = new_scheduler(&fx, d);
+    CHECK(sch[k]);
+  }
+  static const char* names[5] = {"error/none", "hybrid/none", "error/time", "hybrid/time", "hybrid/culled"};
+  shape_rng rng = {seed};
+  for (int cam = 0; cam < cameras; ++cam) {
+    camera c = random_camera(&rng, R, cam % 5, cam % 6 == 5);
+    tlod_view_desc v = make_view(&c);
+    float dt = (float)shape_rng_range(&rng, 0.0, 40.0);
+    for (int k = 0; k < 5; ++k) {
+      const tlod_draw_list* dl = plan(&fx, sch[k], &v, 1, dt, 0);
+      CHECK(dl);
+      char why[256] = "";
+      CHECK_MSG(check_draw_list(&fx, dl, lmax, why, sizeof why), "%s %s %s camera %d: %s", s->name, type_name(type),
+                names[k], cam, why);
+      CHECK_MSG(realise(&fx, dl, false), "%s %s %s camera %d", s->name, type_name(type), names[k], cam);
+      if (k < 4) {
+        bool closed = realised_closed(&fx, why, sizeof why);
+        CHECK_MSG(closed, "%s %s %s camera %d (kind %d, %s): not closed: %s (%u strips)", s->name, type_name(type),
+                  names[k], cam, cam % 5, c.ortho ? "ortho" : "perspective", why, dl->strip_count);
+        st->frames++;
+        st->strips += dl->strip_count;
+        bool frac = false;
+        for (uint32_t i = 0; i < dl->instance_count; ++i)
+          frac = frac || (dl->instances[i].level > 0 && dl->instances[i].morph < 1.0f);
+        st->fractional_frames += frac;
+        if (k == 0 && cam % 2 == 0) {
+          CHECK(realise(&fx, dl, true));
+          st->nostitch_runs++;
+          st->nostitch_open += !realised_closed(&fx, why, sizeof why);
+        }
+      } else {
+        CHECK_MSG(open_only_at_culled(&fx, dl, &st->open_edges, why, sizeof why), "%s %s culled camera %d: %s", s->name,
+                  type_name(type), cam, why);
+        st->culled_frames += dl->culled > 0 && dl->culled < fx.patches;
+      }
+    }
+  }
+  for (int k = 0; k < 5; ++k)
+    tlod_scheduler_destroy(sch[k]);
+  fixture_free(&fx);
+  st->seconds += now_seconds() - t0;
+}
+
+TEST(test_crack_free) {
+  tlod_context* ctx = new_context(2, NULL, NULL);
+  CHECK(ctx);
+  shape shapes[4] = {shape_icosphere(1), shape_torus(12, 8), shape_cube_soft(), shape_quad_sphere(2)};
+  const double R[4] = {1.0, 1.4, 0.87, 1.0};
+  const int cameras = 200;
+  for (int si = 0; si < 4; ++si) {
+    crack_stats st = {0};
+    for (int ti = 0; ti < 2; ++ti) {
+      tlod_surface_type type = ti ? TLOD_SURFACE_PN : TLOD_SURFACE_PHONG;
+      if (shapes[si].corners == 4 && type == TLOD_SURFACE_PN) continue;
+      CALL(crack_suite(ctx, &shapes[si], R[si], type, cameras, 1000 + 17 * (uint64_t)si + (uint64_t)ti, &st));
+    }
+    printf("  %-11s %u closed frames (%u with fractional blends, %u strips), no_stitch open in %u of %u, %u culled "
+           "frames open only at culled neighbours (%u open edges), %.1f s\n",
+           shapes[si].name, st.frames, st.fractional_frames, st.strips, st.nostitch_open, st.nostitch_runs,
+           st.culled_frames, st.open_edges, st.seconds);
+    CHECK_MSG(st.nostitch_open > 0, "%s: no_stitch never opened the mesh: the checker would miss cracks",
+              shapes[si].name);
+    CHECK_MSG(st.fractional_frames > 0, "%s: no frame had a fractional blend", shapes[si].name);
+    CHECK_MSG(st.culled_frames > 0 && st.open_edges > 0, "%s: culling never opened the mesh", shapes[si].name);
+  }
+  for (int k = 0; k < 4; ++k)
+    shape_free(&shapes[k]);
+  tlod_context_destroy(ctx);
+}
+
+int main(void) {
+  RUN(test_pure_helpers);
+  RUN(test_level_choice);
+  RUN(test_policy_rules);
+  RUN(test_crack_free);
+  TEST_END();
+}
