@@ -238,7 +238,8 @@ static uint64_t frame_triangles(const tlod_scheduler* s, const _tlod_view_state*
       tlod_edge_link link = s->mesh->links[f][e];
       if (link.face == UINT32_MAX || link.face < f || !vs->visible[link.face]) continue;
       uint32_t lg = drawn_level(level[link.face]);
-      if (!link.smooth || lf != lg) tris += s->patterns->connect_count[lf][lg];
+      if (!link.smooth || lf != lg || morph_of(level[f], lf) != morph_of(level[link.face], lg))
+        tris += s->patterns->connect_count[lf][lg];
     }
   }
   return tris;
@@ -283,15 +284,12 @@ static void fit_budget(tlod_scheduler* s, stage_job* j) {
 
 /* ---- draw list ------------------------------------------------------------- */
 
-static float edge_morph(const _tlod_view_state* vs, uint32_t f, tlod_edge_link link, uint32_t level) {
-  float c = vs->cont[f];
-  /* Neighbours at one level share the edge's blend, so their polylines
-   * match and need no strip. */
-  if (link.face != UINT32_MAX && vs->visible[link.face] && drawn_level(vs->cont[link.face]) == level &&
-      vs->cont[link.face] < c)
-    c = vs->cont[link.face];
-  return morph_of(c, level);
-}
+/* An edge's new vertices blend with their patch: a blend shared with an
+ * equal-level neighbour (the smaller of the two) cannot stay continuous, as
+ * the shared value jumps whenever either side changes level (its coarser
+ * edge vertices then become exact). Equal-level neighbours whose blends
+ * differ get a strip instead (Schwarz et al. 2006, sec. 5). */
+static float edge_morph(const _tlod_view_state* vs, uint32_t f, uint32_t level) { return morph_of(vs->cont[f], level); }
 
 static void fill_instances(tlod_scheduler* s, _tlod_view_state* vs) {
   uint32_t lmax = s->desc.max_level, counts[2 * (TLOD_MAX_LEVEL + 1)] = {0};
@@ -314,9 +312,9 @@ static void fill_instances(tlod_scheduler* s, _tlod_view_state* vs) {
     uint32_t l = (uint32_t)vs->levels[f], b = (uint32_t)shape_of(s->mesh, f) * (lmax + 1) + l;
     tlod_draw_instance* in = &vs->instances[start[b]++];
     *in = (tlod_draw_instance){.patch = f, .level = l, .morph = morph_of(vs->cont[f], l)};
-    uint32_t corners[4], n = tlod_mesh_face_corners(s->mesh, f, corners);
+    uint32_t n = s->mesh->face_corners[f];
     for (uint32_t e = 0; e < 4; e++)
-      in->edge_morph[e] = e < n ? edge_morph(vs, f, tlod_mesh_edge_link(s->mesh, f, e), l) : 1.0f;
+      in->edge_morph[e] = e < n ? edge_morph(vs, f, l) : 1.0f;
   }
   dl->instances = vs->instances;
   dl->instance_count = first;
@@ -348,7 +346,7 @@ static tlod_result fill_strips(tlod_scheduler* s, _tlod_view_state* vs) {
       tlod_edge_link link = s->mesh->links[f][e];
       if (link.face == UINT32_MAX || link.face < f || !vs->visible[link.face]) continue;
       uint8_t la = (uint8_t)vs->levels[f], lb = (uint8_t)vs->levels[link.face];
-      if (link.smooth && la == lb) continue;
+      if (link.smooth && la == lb && edge_morph(vs, f, la) == edge_morph(vs, link.face, lb)) continue;
       tlod_draw_strip st = {f, link.face, (uint8_t)e, link.edge, la, lb, !link.smooth};
       if (push_strip(s, vs, &st) != TLOD_SUCCESS) return TLOD_ERROR_OUT_OF_MEMORY;
       dl->strip_triangles += s->patterns->connect_count[la][lb];

@@ -408,33 +408,45 @@ static inline int shape__cmp_u64(const void* a, const void* b) {
   return x < y ? -1 : x > y;
 }
 
-typedef struct shape__posrec {
-  uint32_t bits[3];
-  uint32_t vertex;
-} shape__posrec;
-
-static inline int shape__cmp_posrec(const void* a, const void* b) {
-  const shape__posrec *x = a, *y = b;
-  for (int c = 0; c < 3; ++c)
-    if (x->bits[c] != y->bits[c]) return x->bits[c] < y->bits[c] ? -1 : 1;
-  return x->vertex < y->vertex ? -1 : x->vertex > y->vertex;
+static inline uint64_t shape__mix64(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
 }
 
-/* Weld id per vertex (ids dense from 0), by bitwise equal position; returns the count. */
+/* Smallest power of two >= 2 n + 2 (open-addressing table size). */
+static inline size_t shape__table_size(size_t n) {
+  size_t cap = 16;
+  while (cap < 2 * n + 2)
+    cap *= 2;
+  return cap;
+}
+
+/* Weld id per vertex (ids dense from 0, in order of first occurrence), by
+ * bitwise equal position; returns the count. */
 static inline uint32_t shape_weld_ids(const float* positions, uint32_t vertex_count, uint32_t* weld) {
-  shape__posrec* r = malloc(sizeof *r * (vertex_count + 1));
-  for (uint32_t v = 0; v < vertex_count; ++v) {
-    memcpy(r[v].bits, positions + 3 * (size_t)v, sizeof r[v].bits);
-    r[v].vertex = v;
-  }
-  qsort(r, vertex_count, sizeof *r, shape__cmp_posrec);
+  size_t cap = shape__table_size(vertex_count), mask = cap - 1;
+  uint32_t* slot = malloc(sizeof *slot * cap);
+  memset(slot, 0xFF, sizeof *slot * cap);
   uint32_t count = 0;
-  for (uint32_t k = 0; k < vertex_count; ++k) {
-    if (k > 0 && memcmp(r[k].bits, r[k - 1].bits, sizeof r[k].bits) != 0) count++;
-    weld[r[k].vertex] = count;
+  for (uint32_t v = 0; v < vertex_count; ++v) {
+    uint32_t bits[3];
+    memcpy(bits, positions + 3 * (size_t)v, sizeof bits);
+    size_t h = (size_t)shape__mix64(((uint64_t)bits[0] << 32 | bits[1]) ^ shape__mix64(bits[2])) & mask;
+    for (;; h = (h + 1) & mask) {
+      if (slot[h] == UINT32_MAX) {
+        slot[h] = v;
+        weld[v] = count++;
+        break;
+      }
+      if (memcmp(positions + 3 * (size_t)slot[h], bits, sizeof bits) == 0) {
+        weld[v] = weld[slot[h]];
+        break;
+      }
+    }
   }
-  free(r);
-  return vertex_count ? count + 1 : 0;
+  free(slot);
+  return count;
 }
 
 /* Counts of welded vertices used by faces and distinct welded edges. */
@@ -480,17 +492,6 @@ typedef struct shape_census {
   uint64_t first_duplicated, first_open; /* welded ids, from << 32 | to */
 } shape_census;
 
-typedef struct shape__half_edge {
-  uint64_t key; /* welded from << 32 | to */
-  uint32_t id;  /* 3 t + c */
-} shape__half_edge;
-
-static inline int shape__cmp_half_edge(const void* a, const void* b) {
-  const shape__half_edge *x = a, *y = b;
-  if (x->key != y->key) return x->key < y->key ? -1 : 1;
-  return x->id < y->id ? -1 : x->id > y->id;
-}
-
 /* open_list (may be NULL) receives the ids of up to open_capacity open half-edges. */
 static inline shape_census shape_half_edge_census(const float* positions, uint32_t vertex_count,
                                                   const uint32_t* indices, uint32_t triangle_count, uint32_t* open_list,
@@ -499,44 +500,47 @@ static inline shape_census shape_half_edge_census(const float* positions, uint32
   memset(&c, 0, sizeof c);
   uint32_t* weld = malloc(sizeof *weld * ((size_t)vertex_count + 1));
   shape_weld_ids(positions, vertex_count, weld);
-  shape__half_edge* h = malloc(sizeof *h * (3 * (size_t)triangle_count + 1));
-  size_t n = 0;
+  /* table of directed welded edges (key 0 is free: from != to) with counts */
+  size_t cap = shape__table_size(3 * (size_t)triangle_count), mask = cap - 1;
+  uint64_t* key = calloc(cap, sizeof *key);
+  uint32_t* count = calloc(cap, sizeof *count);
+  uint64_t* he = malloc(sizeof *he * (3 * (size_t)triangle_count + 1)); /* per half-edge: key, or 0 */
   for (uint32_t t = 0; t < triangle_count; ++t) {
     uint32_t w[3];
     for (int k = 0; k < 3; ++k)
       w[k] = weld[indices[3 * (size_t)t + k]];
-    if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) {
-      if (c.degenerate++ == 0) c.first_degenerate = t;
-      continue;
-    }
+    bool degenerate = w[0] == w[1] || w[1] == w[2] || w[2] == w[0];
+    if (degenerate && c.degenerate++ == 0) c.first_degenerate = t;
     for (int k = 0; k < 3; ++k) {
-      h[n].key = (uint64_t)w[k] << 32 | w[(k + 1) % 3];
-      h[n].id = 3 * t + (uint32_t)k;
-      n++;
+      uint64_t kk = degenerate ? 0 : (uint64_t)w[k] << 32 | w[(k + 1) % 3];
+      he[3 * (size_t)t + k] = kk;
+      if (!kk) continue;
+      size_t h = (size_t)shape__mix64(kk) & mask;
+      while (key[h] && key[h] != kk)
+        h = (h + 1) & mask;
+      key[h] = kk;
+      if (count[h]++ == 1) {
+        if (c.duplicated == 0) c.first_duplicated = kk;
+        c.duplicated++;
+      }
     }
   }
-  qsort(h, n, sizeof *h, shape__cmp_half_edge);
-  for (size_t k = 0; k < n; ++k) {
-    if (k > 0 && h[k].key == h[k - 1].key) {
-      if (c.duplicated++ == 0) c.first_duplicated = h[k].key;
-      continue;
-    }
-    uint64_t rev = h[k].key << 32 | h[k].key >> 32;
-    size_t lo = 0, hi = n; /* first record with key >= rev */
-    while (lo < hi) {
-      size_t mid = lo + (hi - lo) / 2;
-      if (h[mid].key < rev)
-        lo = mid + 1;
-      else
-        hi = mid;
-    }
-    if (lo == n || h[lo].key != rev) {
-      if (c.open == 0) c.first_open = h[k].key;
-      if (open_list && c.open < open_capacity) open_list[c.open] = h[k].id;
+  for (size_t i = 0; i < 3 * (size_t)triangle_count; ++i) {
+    uint64_t kk = he[i];
+    if (!kk) continue;
+    uint64_t rev = kk << 32 | kk >> 32;
+    size_t h = (size_t)shape__mix64(rev) & mask;
+    while (key[h] && key[h] != rev)
+      h = (h + 1) & mask;
+    if (!key[h]) {
+      if (c.open == 0) c.first_open = kk;
+      if (open_list && c.open < open_capacity) open_list[c.open] = (uint32_t)i;
       c.open++;
     }
   }
-  free(h);
+  free(he);
+  free(count);
+  free(key);
   free(weld);
   return c;
 }
