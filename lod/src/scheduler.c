@@ -410,8 +410,13 @@ static tlod_result ensure_views(tlod_scheduler* s, uint32_t count) {
   _tlod_free(s->ctx, s->views);
   s->views = grown;
   for (uint32_t v = s->view_count; v < count; v++) {
+    /* A view counts only once all its arrays exist: a later update must
+     * not take a half-allocated view for a ready one. */
+    if (alloc_view(s, &s->views[v]) != TLOD_SUCCESS) {
+      free_view(s->ctx, &s->views[v]);
+      return TLOD_ERROR_OUT_OF_MEMORY;
+    }
     s->view_count = v + 1;
-    if (alloc_view(s, &s->views[v]) != TLOD_SUCCESS) return TLOD_ERROR_OUT_OF_MEMORY;
   }
   return TLOD_SUCCESS;
 }

@@ -33,8 +33,7 @@
 #include "tesslod/lod.h"
 #include "test.h"
 
-#pragma GCC diagnostic ignored "-Wunused-function" /* TEMP */
-#define PAT_MAX 5                                  /* patterns built to this level */
+#define PAT_MAX 5 /* patterns built to this level */
 #define DEG (SHAPES_PI / 180.0)
 
 /* Stops the calling test as soon as a helper's check failed. */
@@ -227,9 +226,7 @@ static const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tl
 /* Realises a draw list with no_weld (every patch its own pattern vertices,
  * as a GPU draws them) into fx->out, and fx->base[p] = the first output
  * vertex of patch p's block. */
-static double t_real2 = 0;
 static bool realise(fixture* fx, const tlod_draw_list* dl, bool no_stitch) {
-  double t0 = now_seconds();
   tlod_cpu_tessellate_desc d = {.draw_list = dl, .no_weld = true, .no_stitch = no_stitch, .no_normals = true};
   tlod_result r = fx->out ? tlod_cpu_tessellate_into(fx->ctx, fx->surf, fx->pat, &d, fx->out)
                           : tlod_cpu_tessellate(fx->ctx, fx->surf, fx->pat, &d, &fx->out);
@@ -244,7 +241,6 @@ static bool realise(fixture* fx, const tlod_draw_list* dl, bool no_stitch) {
     if (dl->levels[p] >= 0) b += tlod_pattern_vertex_count(shape_of(fx, p), (uint32_t)dl->levels[p]);
   }
   fx->base[fx->patches] = b;
-  t_real2 += now_seconds() - t0;
   if (fx->out->vertex_count != b) {
     fprintf(stderr, "no_weld output has %u vertices, the draw list's patterns %u\n", fx->out->vertex_count, b);
     return false;
@@ -705,14 +701,9 @@ static bool open_only_at_culled(const fixture* fx, const tlod_draw_list* dl, uin
   return ok;
 }
 
-static double t_census = 0; /* TEMP */
 static bool realised_closed(const fixture* fx, char* why, size_t n) {
   const tlod_cpu_mesh* m = fx->out;
-  double t0 = now_seconds();
-  bool r =
-      shape_closed_manifold(m->positions, m->vertex_count, m->indices, m->triangle_count, m->triangle_patch, why, n);
-  t_census += now_seconds() - t0;
-  return r;
+  return shape_closed_manifold(m->positions, m->vertex_count, m->indices, m->triangle_count, m->triangle_patch, why, n);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -1061,7 +1052,6 @@ TEST(test_crack_free) {
       if (shapes[si].corners == 4 && type == TLOD_SURFACE_PN) continue;
       CALL(crack_suite(ctx, &shapes[si], R[si], lmax[si], type, cameras, 1000 + 17 * (uint64_t)si + (uint64_t)ti, &st));
     }
-    printf("census %.1f real %.1f\n", t_census, t_real2);
     printf("  %-11s %u closed frames (%u with fractional blends, %u strips), no_stitch open in %u of %u, %u culled "
            "frames open only at culled neighbours (%u open edges), %.1f s\n",
            shapes[si].name, st.frames, st.fractional_frames, st.strips, st.nostitch_open, st.nostitch_runs,
@@ -1349,7 +1339,8 @@ static void geomorph_path(const shape* s, tlod_surface_type type, tlod_morph_mod
     char why[256];
     CHECK_MSG(check_draw_list(&fx, dl, 4, why, sizeof why), "frame %d: %s", f, why);
     CHECK(realise(&fx, dl, false));
-    CHECK_MSG(realised_closed(&fx, why, sizeof why), "%s %s frame %d: %s", s->name, type_name(type), f, why);
+    if (mode == TLOD_MORPH_TIME) /* mid-transition frames are closed too */
+      CHECK_MSG(realised_closed(&fx, why, sizeof why), "%s %s frame %d: %s", s->name, type_name(type), f, why);
     const float* cur = fx.out->positions;
     if (prev) {
       bool switched = false;
@@ -2010,11 +2001,337 @@ TEST(test_determinism) {
   shape_free(&sph);
 }
 
+/* ------------------------------------------------------------------------ */
+/* 10. Dynamic meshes                                                       */
+/* ------------------------------------------------------------------------ */
+
+/* An icosphere whose faces own their corners (positions and normals
+ * duplicated bitwise, so every edge is still smooth). */
+static shape soup_icosphere(uint32_t subdivisions) {
+  shape ico = shape_icosphere(subdivisions), out;
+  uint32_t faces = shape_face_count(&ico);
+  shape_alloc(&out, "ico_soup", 3 * faces, 3 * faces, 3, true);
+  for (uint32_t k = 0; k < 3 * faces; ++k) {
+    memcpy(out.positions + 3 * k, ico.positions + 3 * ico.indices[k], 3 * sizeof(float));
+    memcpy(out.normals + 3 * k, ico.normals + 3 * ico.indices[k], 3 * sizeof(float));
+    out.indices[k] = k;
+  }
+  out.closed = true;
+  shape_free(&ico);
+  return out;
+}
+
+/* e_max of every visible patch against the reference from the patch data
+ * the surface holds now; returns the count that match. */
+static uint32_t emax_matches(const fixture* fx, const tlod_draw_list* dl, const view_ref* r,
+                             const tlod_patch_info* info) {
+  uint32_t ok = 0;
+  for (uint32_t p = 0; p < fx->patches; ++p) {
+    if (dl->levels[p] < 0) continue;
+    double e = ref_emax(r, &info[p]);
+    ok += fabs(dl->e_max[p] - e) <= 1e-5 * e + 1e-9;
+  }
+  return ok;
+}
+
+TEST(test_dynamic_mesh) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  CHECK(ctx);
+  shape soup = soup_icosphere(1);
+  fixture fx;
+  CHECK(fixture_make(&fx, ctx, &soup, TLOD_SURFACE_PHONG));
+  tlod_scheduler* s = new_scheduler(
+      &fx, (tlod_scheduler_desc){
+               .epsilon_px = 0.5f, .policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE, .no_frustum_cull = true});
+  CHECK(s);
+  camera c = look_from(0.4, 0.7, 3.0, 0, 0, 0);
+  tlod_view_desc v = make_view(&c);
+  view_ref r = make_ref(&v, &c);
+  char why[256];
+  const tlod_draw_list* dl = plan(&fx, s, &v, 1, 16, 0);
+  CHECK(dl);
+  CHECK(emax_matches(&fx, dl, &r, fx.info) == fx.patches);
+  uint64_t tris_smooth = dl->pattern_triangles;
+  CHECK(tris_smooth > fx.patches);
+  tlod_patch_info* before = malloc(sizeof *before * fx.patches);
+  memcpy(before, fx.info, sizeof *before * fx.patches);
+  /* (a) flatten: every corner takes its face normal -> flat Phong patches */
+  float* flat = malloc(sizeof(float) * 3 * soup.vertex_count);
+  for (uint32_t f = 0; f < fx.patches; ++f) {
+    const float* p = soup.positions + 9 * f;
+    double e1[3] = {p[3] - p[0], p[4] - p[1], p[5] - p[2]}, e2[3] = {p[6] - p[0], p[7] - p[1], p[8] - p[2]}, n[3];
+    cross3(e1, e2, n);
+    shape_normalize3(n);
+    for (int k = 0; k < 3; ++k)
+      for (int q = 0; q < 3; ++q)
+        flat[9 * f + 3 * k + q] = (float)n[q];
+  }
+  CHECK(tlod_mesh_update(fx.mesh, NULL, 0, flat, 0) == TLOD_SUCCESS);
+  uint32_t updated = 0;
+  CHECK(tlod_surface_refresh(fx.surf, &updated) == TLOD_SUCCESS);
+  CHECK_MSG(updated == fx.patches, "refresh recomputed %u of %u patches", updated, fx.patches);
+  fixture_read(&fx);
+  dl = plan(&fx, s, &v, 1, 16, 0);
+  CHECK(dl);
+  CHECK_MSG(check_draw_list(&fx, dl, PAT_MAX, why, sizeof why), "flattened: %s", why);
+  uint32_t fresh = emax_matches(&fx, dl, &r, fx.info), stale = emax_matches(&fx, dl, &r, before);
+  CHECK_MSG(fresh == fx.patches, "flattened: %u of %u e_max match the refreshed bounds (%u the old ones)", fresh,
+            fx.patches, stale);
+  CHECK(stale == 0);
+  uint32_t creases = 0;
+  for (uint32_t p = 0; p < fx.patches; ++p)
+    for (int e = 0; e < 3; ++e)
+      creases += !fx.link[p][e].smooth;
+  printf("  flattened normals: error bounds %.3g -> %.3g, %llu -> %llu pattern triangles, %u crease edge sides\n",
+         before[0].error_bound, fx.info[0].error_bound, (unsigned long long)tris_smooth,
+         (unsigned long long)dl->pattern_triangles, creases);
+  CHECK(dl->pattern_triangles < tris_smooth);
+  CHECK(realise(&fx, dl, false));
+  CHECK_MSG(realised_closed(&fx, why, sizeof why), "flattened: %s", why);
+  /* (b) restore the normals and move the vertices: twice the size */
+  float* big = malloc(sizeof(float) * 3 * soup.vertex_count);
+  for (uint32_t k = 0; k < 3 * soup.vertex_count; ++k)
+    big[k] = 2.0f * soup.positions[k];
+  memcpy(before, fx.info, sizeof *before * fx.patches);
+  CHECK(tlod_mesh_update(fx.mesh, big, 0, soup.normals, 0) == TLOD_SUCCESS);
+  CHECK(tlod_surface_refresh(fx.surf, &updated) == TLOD_SUCCESS);
+  fixture_read(&fx);
+  dl = plan(&fx, s, &v, 1, 16, 0);
+  CHECK(dl);
+  fresh = emax_matches(&fx, dl, &r, fx.info);
+  CHECK_MSG(fresh == fx.patches, "moved: %u of %u e_max match the refreshed bounds", fresh, fx.patches);
+  CHECK(fabs(fx.info[0].radius - 2 * before[0].radius) > 0.1 * before[0].radius);
+  printf("  moved (x2): error bound %.4g, e_max range %.3g..%.3g, %llu pattern triangles (smooth at x1: %llu)\n",
+         fx.info[0].error_bound, dl->e_max_min, dl->e_max_max, (unsigned long long)dl->pattern_triangles,
+         (unsigned long long)tris_smooth);
+  CHECK(dl->pattern_triangles > tris_smooth);
+  free(big);
+  free(flat);
+  free(before);
+  tlod_scheduler_destroy(s);
+  fixture_free(&fx);
+  shape_free(&soup);
+  /* (c) cost of tlod_mesh_update + tlod_surface_refresh, 100k vertices */
+  shape tor = shape_torus(316, 316);
+  tlod_mesh* mesh = NULL;
+  tlod_surface* surf = NULL;
+  tlod_mesh_desc md = shape_mesh_desc(&tor);
+  CHECK(tlod_mesh_create(ctx, &md, &mesh) == TLOD_SUCCESS);
+  CHECK(tlod_surface_create(ctx, mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &surf) == TLOD_SUCCESS);
+  float* moved = malloc(sizeof(float) * 3 * tor.vertex_count);
+  double best_all = 1e30, best_some = 1e30;
+  uint32_t some = 0;
+  for (int rep = 0; rep < 3; ++rep) {
+    for (uint32_t k = 0; k < 3 * tor.vertex_count; ++k)
+      moved[k] = tor.positions[k] * (1.0f + 0.001f * (float)(rep + 1) * (float)((k * 7919u) % 13u) / 13.0f);
+    double t0 = now_seconds();
+    CHECK(tlod_mesh_update(mesh, moved, 0, NULL, 0) == TLOD_SUCCESS);
+    CHECK(tlod_surface_refresh(surf, &updated) == TLOD_SUCCESS);
+    best_all = fmin(best_all, now_seconds() - t0);
+    /* 1% of the vertices move */
+    some = 0;
+    for (uint32_t vtx = 0; vtx < tor.vertex_count; vtx += 100, ++some)
+      moved[3 * vtx] += 0.001f;
+    t0 = now_seconds();
+    CHECK(tlod_mesh_update(mesh, moved, 0, NULL, 0) == TLOD_SUCCESS);
+    CHECK(tlod_surface_refresh(surf, &updated) == TLOD_SUCCESS);
+    best_some = fmin(best_some, now_seconds() - t0);
+  }
+  printf("  %u vertices, %u patches: update + refresh of every vertex %.1f ms (%.0f ns per vertex); of %u vertices "
+         "(%u patches refreshed) %.2f ms (%.0f ns per updated vertex) [this build]\n",
+         tor.vertex_count, tlod_surface_patch_count(surf), 1e3 * best_all, 1e9 * best_all / tor.vertex_count, some,
+         updated, 1e3 * best_some, 1e9 * best_some / some);
+  free(moved);
+  tlod_surface_destroy(surf);
+  tlod_mesh_destroy(mesh);
+  shape_free(&tor);
+  tlod_context_destroy(ctx);
+}
+
+/* ------------------------------------------------------------------------ */
+/* 11. Bad input, allocation                                                */
+/* ------------------------------------------------------------------------ */
+
+/* Sets a recognisable last error, then expects `expr` to fail with
+ * TLOD_ERROR_INVALID_ARGUMENT and a new, non-empty message. */
+#define EXPECT_INVALID(ctx, pat, expr, what)                                                                           \
+  do {                                                                                                                 \
+    tlod_patterns* _p = NULL;                                                                                          \
+    tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = 99}, &_p);                                            \
+    char _before[512];                                                                                                 \
+    snprintf(_before, sizeof _before, "%s", tlod_context_last_error(ctx));                                             \
+    tlod_result _r = (expr);                                                                                           \
+    const char* _msg = tlod_context_last_error(ctx);                                                                   \
+    printf("    %-34s %s \"%s\"\n", what, tlod_result_string(_r), _msg);                                               \
+    CHECK_MSG(_r == TLOD_ERROR_INVALID_ARGUMENT, "%s: %s", what, tlod_result_string(_r));                              \
+    CHECK_MSG(strlen(_msg) > 0 && strcmp(_msg, _before) != 0, "%s: no message of its own", what);                      \
+    (void)(pat);                                                                                                       \
+  } while (0)
+
+TEST(test_bad_input) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  CHECK(ctx);
+  shape sph = shape_icosphere(1);
+  fixture fx;
+  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PHONG));
+  tlod_scheduler* s = NULL;
+  tlod_scheduler* bogus = (tlod_scheduler*)&fx;
+  struct {
+    const char* what;
+    tlod_scheduler_desc d;
+  } bad[] = {
+      {"epsilon -1", {.epsilon_px = -1}},
+      {"epsilon NaN", {.epsilon_px = NAN}},
+      {"epsilon inf", {.epsilon_px = INFINITY}},
+      {"max_level above the patterns", {.max_level = PAT_MAX + 1}},
+      {"unknown policy", {.policy = (tlod_lod_policy)17}},
+      {"unknown morph mode", {.morph = (tlod_morph_mode)9}},
+      {"morph_ms -5", {.morph_ms = -5}},
+      {"silhouette_depth -1", {.silhouette_depth = -1}},
+      {"hybrid_relax 0.5", {.hybrid_relax = 0.5f}},
+      {"frame_time_target_ms NaN", {.frame_time_target_ms = NAN}},
+  };
+  printf("  scheduler_create:\n");
+  for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
+    bogus = (tlod_scheduler*)&fx;
+    EXPECT_INVALID(ctx, 0, tlod_scheduler_create(ctx, fx.surf, fx.pat, &bad[k].d, &bogus), bad[k].what);
+    CHECK_MSG(bogus == NULL, "%s: *out not cleared", bad[k].what);
+  }
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_create(ctx, NULL, fx.pat, NULL, &s), "NULL surface");
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_create(ctx, fx.surf, NULL, NULL, &s), "NULL patterns");
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_create(ctx, fx.surf, fx.pat, NULL, NULL), "NULL out");
+  CHECK(tlod_scheduler_create(NULL, fx.surf, fx.pat, NULL, &s) == TLOD_ERROR_INVALID_ARGUMENT && s == NULL);
+  CHECK(tlod_scheduler_create(ctx, fx.surf, fx.pat, NULL, &s) == TLOD_SUCCESS && s); /* NULL desc: defaults */
+  camera c = look_from(0, 0, 3, 0, 0, 0);
+  tlod_view_desc good = make_view(&c), views[2];
+  printf("  scheduler_update:\n");
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, NULL), "NULL frame");
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, &(tlod_frame_desc){.views = &good, .view_count = 0}), "zero views");
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, &(tlod_frame_desc){.views = NULL, .view_count = 1}), "NULL views");
+  views[0] = good, views[0].view[13] = NAN;
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, &(tlod_frame_desc){.views = views, .view_count = 1}), "NaN view");
+  views[0] = good, views[0].proj[0] = INFINITY;
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, &(tlod_frame_desc){.views = views, .view_count = 1}), "inf proj");
+  views[0] = good, views[1] = good, views[1].proj[14] = -NAN;
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, &(tlod_frame_desc){.views = views, .view_count = 2}),
+                 "NaN in the second view");
+  views[0] = good, views[0].viewport_width = 0;
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, &(tlod_frame_desc){.views = views, .view_count = 1}),
+                 "zero viewport width");
+  views[0] = good, views[0].viewport_height = 0;
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, &(tlod_frame_desc){.views = views, .view_count = 1}),
+                 "zero viewport height");
+  EXPECT_INVALID(ctx, 0, tlod_scheduler_update(s, &(tlod_frame_desc){.views = &good, .view_count = 1, .dt_ms = NAN}),
+                 "dt NaN");
+  CHECK(tlod_scheduler_update(NULL, &(tlod_frame_desc){.views = &good, .view_count = 1}) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_scheduler_draw_list(s, 0) == NULL || tlod_scheduler_draw_list(s, 0)->patch_count == 0 ||
+        tlod_scheduler_draw_list(s, 0)->patch_count == fx.patches);
+  /* a bad measurement is ignored, not fatal; then a good frame works */
+  CHECK(tlod_scheduler_update(s, &(tlod_frame_desc){.views = &good, .view_count = 1, .measured_frame_ms = NAN}) ==
+        TLOD_SUCCESS);
+  const tlod_draw_list* dl = tlod_scheduler_draw_list(s, 0);
+  char why[256];
+  CHECK(dl && tlod_scheduler_draw_list(s, 1) == NULL && tlod_scheduler_draw_list(NULL, 0) == NULL);
+  CHECK_MSG(check_draw_list(&fx, dl, PAT_MAX, why, sizeof why), "%s", why);
+  CHECK(isfinite(dl->effective_epsilon) && dl->effective_epsilon == 0.5f);
+  tlod_scheduler_destroy(s);
+  tlod_scheduler_destroy(NULL);
+  fixture_free(&fx);
+  shape_free(&sph);
+  tlod_context_destroy(ctx);
+}
+
+/* Scheduler create + frames of 1, 3 and 2 views under a counting allocator. */
+static tlod_result scheduler_session(fixture* fx, tlod_scheduler** out, const tlod_view_desc* views) {
+  tlod_result r = tlod_scheduler_create(fx->ctx, fx->surf, fx->pat,
+                                        &(tlod_scheduler_desc){.epsilon_px = 0.3f, .triangle_budget = 20000}, out);
+  if (r != TLOD_SUCCESS) return r;
+  static const uint32_t counts[3] = {1, 3, 2};
+  for (int f = 0; f < 3 && r == TLOD_SUCCESS; ++f)
+    r = tlod_scheduler_update(*out, &(tlod_frame_desc){.views = views, .view_count = counts[f], .dt_ms = 16});
+  return r;
+}
+
+TEST(test_allocation) {
+  counting_allocator counter = {.fail_at = -1};
+  tlod_context* ctx = new_context(1, &counter, NULL);
+  CHECK(ctx);
+  shape sph = shape_icosphere(2);
+  fixture fx;
+  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PN));
+  camera cams[3] = {look_from(0, 0, 2.2, 0, 0, 0), look_from(3, 1, 0, 0, 0, 0), look_from(0, -4, 1, 0, 0, 0)};
+  tlod_view_desc views[3] = {make_view(&cams[0]), make_view(&cams[1]), make_view(&cams[2])};
+  views[2].lock_to_main = true;
+  long live = counter.allocs - counter.frees;
+  tlod_scheduler* s = NULL;
+  CHECK(scheduler_session(&fx, &s, views) == TLOD_SUCCESS);
+  tlod_scheduler_destroy(s);
+  CHECK_MSG(counter.allocs - counter.frees == live, "scheduler leaked %ld allocations",
+            counter.allocs - counter.frees - live);
+  /* fail the k-th allocation (and, in a second sweep, every one after it) */
+  uint32_t points[2] = {0, 0}, recovered = 0;
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    bool done = false;
+    for (uint32_t k = 0; k < 2000 && !done; ++k) {
+      counter.fail_at = counter.calls + k;
+      counter.fail_all = sweep == 1;
+      counter.failed = 0;
+      s = NULL;
+      tlod_result r = scheduler_session(&fx, &s, views);
+      long failed = counter.failed;
+      counter.fail_at = -1;
+      if (r == TLOD_SUCCESS) {
+        CHECK_MSG(failed == 0, "k = %u: success although %ld allocations failed", k, failed);
+        done = true;
+      } else {
+        CHECK_MSG(r == TLOD_ERROR_OUT_OF_MEMORY, "k = %u: %s", k, tlod_result_string(r));
+        if (s) { /* the scheduler survived: with memory back, a frame must work */
+          tlod_result again =
+              tlod_scheduler_update(s, &(tlod_frame_desc){.views = views, .view_count = 3, .dt_ms = 16});
+          CHECK_MSG(again == TLOD_SUCCESS, "k = %u: after a failed update, the next one gives %s: %s", k,
+                    tlod_result_string(again), tlod_context_last_error(ctx));
+          char why[256];
+          for (uint32_t vw = 0; vw < 3; ++vw)
+            CHECK_MSG(check_draw_list(&fx, tlod_scheduler_draw_list(s, vw), PAT_MAX, why, sizeof why),
+                      "k = %u view %u after recovery: %s", k, vw, why);
+          recovered++;
+        }
+      }
+      tlod_scheduler_destroy(s);
+      CHECK_MSG(counter.allocs - counter.frees == live, "k = %u: %ld allocations leaked", k,
+                counter.allocs - counter.frees - live);
+      points[sweep] = k;
+    }
+    CHECK(done);
+  }
+  printf("  balanced; failing allocator: %u and %u allocation points swept, %u failed sessions recovered\n", points[0],
+         points[1], recovered);
+  CHECK(points[0] > 3);
+  fixture_free(&fx);
+  shape_free(&sph);
+  tlod_context_destroy(ctx);
+  CHECK_MSG(counter.allocs == counter.frees, "%ld allocations, %ld frees", counter.allocs, counter.frees);
+}
+
 int main(void) {
+  double t0 = now_seconds();
+  RUN(test_pure_helpers);
+  RUN(test_level_choice);
+  RUN(test_policy_rules);
+  RUN(test_crack_free);
+  RUN(test_creases);
+  RUN(test_geomorph_starts_at_coarse_level);
+  RUN(test_geomorph_continuity);
+  RUN(test_geomorph_continuous);
   RUN(test_screen_error);
   RUN(test_monotone_and_budget);
   RUN(test_frame_time_target);
   RUN(test_multi_view);
   RUN(test_determinism);
+  RUN(test_dynamic_mesh);
+  RUN(test_bad_input);
+  RUN(test_allocation);
+  printf("%.1f s\n", now_seconds() - t0);
   TEST_END();
 }

@@ -19,7 +19,7 @@
 #include "surface_eval.h"
 #include "tesslod/cpu.h"
 
-enum { KIND_EDGE = 4, KIND_INTERIOR = 8 };
+enum { KIND_EDGE = TLOD_PATTERN_KIND_EDGE, KIND_INTERIOR = TLOD_PATTERN_KIND_INTERIOR };
 
 /* Per pattern vertex: what it is on the patch (corner c, edge e, interior)
  * and its parameter (edge: numerator of t_end over N; interior: ordinal). */
@@ -70,38 +70,6 @@ static int level_of(const tess* t, uint32_t f) { return t->level[f]; }
 
 static const level_table* table_of(const tess* t, uint32_t f) { return &t->tables[shape_of(t, f)][level_of(t, f)]; }
 
-static void classify(uint32_t nn, tlod_pattern_shape shape, uint32_t i, uint32_t j, uint8_t* kind, uint32_t* param) {
-  if (shape == TLOD_PATTERN_TRIANGLE) {
-    uint32_t w = nn - i - j;
-    if (i == nn || j == nn || w == nn) {
-      *kind = i == nn ? 0 : (j == nn ? 1 : 2);
-    } else if (w == 0) {
-      *kind = KIND_EDGE + 0, *param = j;
-    } else if (i == 0) {
-      *kind = KIND_EDGE + 1, *param = w;
-    } else if (j == 0) {
-      *kind = KIND_EDGE + 2, *param = i;
-    } else {
-      *kind = KIND_INTERIOR;
-    }
-    return;
-  }
-  bool ei = i == 0 || i == nn, ej = j == 0 || j == nn;
-  if (ei && ej) {
-    *kind = i == 0 ? (j == 0 ? 0 : 3) : (j == 0 ? 1 : 2);
-  } else if (j == 0) {
-    *kind = KIND_EDGE + 0, *param = i;
-  } else if (i == nn) {
-    *kind = KIND_EDGE + 1, *param = j;
-  } else if (j == nn) {
-    *kind = KIND_EDGE + 2, *param = nn - i;
-  } else if (i == 0) {
-    *kind = KIND_EDGE + 3, *param = nn - j;
-  } else {
-    *kind = KIND_INTERIOR;
-  }
-}
-
 static tlod_result build_table(tess* t, tlod_pattern_shape shape, uint32_t level) {
   level_table* lt = &t->tables[shape][level];
   if (lt->kind) return TLOD_SUCCESS;
@@ -113,7 +81,7 @@ static tlod_result build_table(tess* t, tlod_pattern_shape shape, uint32_t level
   if (!lt->kind || !lt->param) return TLOD_ERROR_OUT_OF_MEMORY;
   lt->interior = 0;
   for (uint32_t x = 0; x < lt->nv; x++) {
-    classify(t->n_grid, shape, pv[x].i, pv[x].j, &lt->kind[x], &lt->param[x]);
+    lt->kind[x] = (uint8_t)tlod_pattern_vertex_kind(shape, t->lmax, pv[x].i, pv[x].j, &lt->param[x]);
     if (lt->kind[x] == KIND_INTERIOR) lt->param[x] = lt->interior++;
   }
   return TLOD_SUCCESS;

@@ -73,6 +73,14 @@ TLOD_API const uint32_t* tlod_patterns_indices(const tlod_patterns* patterns, tl
  * written to out. Returns the count. */
 TLOD_API uint32_t tlod_patterns_edge(const tlod_patterns* patterns, tlod_pattern_shape shape, uint32_t level,
                                      uint32_t edge, uint32_t* out);
+/* Where pattern vertex (i, j) (grid coordinates over 2^max_level) lies on its
+ * patch: 0..3 a corner (triangle i, j, k; quad 0..3), 4 + e on edge e (from
+ * corner e to corner (e + 1) % n; *param = the end corner's weight times
+ * 2^max_level), 8 inside (*param untouched). Pure. */
+#define TLOD_PATTERN_KIND_EDGE 4u
+#define TLOD_PATTERN_KIND_INTERIOR 8u
+TLOD_API uint32_t tlod_pattern_vertex_kind(tlod_pattern_shape shape, uint32_t max_level, uint32_t i, uint32_t j,
+                                           uint32_t* param);
 /* Bytes held by the nested set, and (out) the bytes separate per-level
  * vertex + index arrays would take for the same levels. */
 TLOD_API size_t tlod_patterns_memory(const tlod_patterns* patterns, size_t* separate_bytes);

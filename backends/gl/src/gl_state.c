@@ -1,0 +1,55 @@
+/* tesslod::gl -- saving and restoring the engine's GL state around a draw
+ * (the documented list in tesslod/backend.h). */
+#include "gl_internal.h"
+
+void _tlod_gl_save_state(gl_saved_state* s) {
+  glGetIntegerv(GL_CURRENT_PROGRAM, &s->program);
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s->vao);
+  glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &s->array_buffer);
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s->ssbo);
+  glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s->ubo);
+  glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &s->indirect);
+  for (GLuint i = 0; i < 4; i++)
+    glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &s->ssbo_binding[i]);
+  glGetIntegerv(GL_POLYGON_MODE, s->polygon_mode);
+  glGetIntegerv(GL_CULL_FACE_MODE, &s->cull_mode);
+  glGetIntegerv(GL_DEPTH_FUNC, &s->depth_func);
+  glGetIntegerv(GL_VIEWPORT, s->viewport);
+  s->cull = glIsEnabled(GL_CULL_FACE);
+  s->depth_test = glIsEnabled(GL_DEPTH_TEST);
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &s->depth_mask);
+  s->blend = glIsEnabled(GL_BLEND);
+  s->offset_fill = glIsEnabled(GL_POLYGON_OFFSET_FILL);
+  glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &s->offset_factor);
+  glGetFloatv(GL_POLYGON_OFFSET_UNITS, &s->offset_units);
+}
+
+static void set_enabled(GLenum cap, GLboolean on) {
+  if (on) {
+    glEnable(cap);
+  } else {
+    glDisable(cap);
+  }
+}
+
+void _tlod_gl_restore_state(const gl_saved_state* s) {
+  glUseProgram((GLuint)s->program);
+  /* The element buffer belongs to the VAO: binding the VAO restores it. */
+  glBindVertexArray((GLuint)s->vao);
+  glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
+  for (GLuint i = 0; i < 4; i++)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, (GLuint)s->ssbo_binding[i]);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, (GLuint)s->ssbo);
+  glBindBuffer(GL_UNIFORM_BUFFER, (GLuint)s->ubo);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, (GLuint)s->indirect);
+  glPolygonMode(GL_FRONT_AND_BACK, (GLenum)s->polygon_mode[0]);
+  glCullFace((GLenum)s->cull_mode);
+  glDepthFunc((GLenum)s->depth_func);
+  glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+  set_enabled(GL_CULL_FACE, s->cull);
+  set_enabled(GL_DEPTH_TEST, s->depth_test);
+  glDepthMask(s->depth_mask);
+  set_enabled(GL_BLEND, s->blend);
+  set_enabled(GL_POLYGON_OFFSET_FILL, s->offset_fill);
+  glPolygonOffset(s->offset_factor, s->offset_units);
+}

@@ -1,0 +1,32 @@
+// Refinement patterns drawn instanced: one instance per patch, the pattern
+// vertex from gl_VertexID (the element buffer holds pattern indices).
+uniform uint u_first_instance;
+uniform uint u_shape_base;  // offset of this shape's vertices in Pattern
+
+out vec3 v_normal;
+out vec3 v_world;
+flat out uint v_level;
+flat out uint v_strip;
+
+void main() {
+  Instance ins = instances[u_first_instance + uint(gl_InstanceID)];
+  Patch P = patches[ins.patch_id];
+  PatternVertex v = pattern[u_shape_base + uint(gl_VertexID)];
+  vec3 pos, nrm;
+  pattern_point(P, v, pos, nrm);
+  uint kind = v.code & 255u, level = v.code >> 8;
+  if (level == ins.level && level > 0u) {
+    float a = kind == 8u ? ins.morph.x : (kind == 4u ? ins.morph.y : kind == 5u ? ins.morph.z : kind == 6u ? ins.morph.w : ins.morph_e3.x);
+    if (a < 1.0) {
+      vec3 p0, n0, p1, n1;
+      pattern_point(P, pattern[u_shape_base + v.parent0], p0, n0);
+      pattern_point(P, pattern[u_shape_base + v.parent1], p1, n1);
+      morph_point(a, p0, n0, p1, n1, pos, nrm);
+    }
+  }
+  v_normal = nrm;
+  v_world = pos;
+  v_level = ins.level;
+  v_strip = 0u;
+  gl_Position = u_view_proj * vec4(pos, 1.0);
+}

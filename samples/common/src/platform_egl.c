@@ -1,0 +1,479 @@
+/*
+ * platform_egl.c -- headless OpenGL 4.5 core contexts through EGL, the
+ * platform's framebuffer and read-back, and the public entry points that do
+ * not depend on the mode (owned by samples/common).
+ *
+ * Based on the measured recipe of /work/shared/PLATFORM.md section 1:
+ * eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) (plain
+ * eglGetDisplay fails without DISPLAY), EGL_KHR_no_config_context +
+ * EGL_KHR_surfaceless_context, and a user FBO (RGBA8 + DEPTH24_STENCIL8).
+ * The EGL device platform (EGL_EXT_platform_device) is the fallback.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "platform_internal.h"
+
+/* ------------------------------------------------------------------------ */
+/* Errors                                                                   */
+/* ------------------------------------------------------------------------ */
+
+void _tlod_platform_error(char* error, size_t error_size, const char* fmt, ...) {
+  if (!error || error_size == 0) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(error, error_size, fmt, ap);
+  va_end(ap);
+}
+
+static const char* egl_error_name(EGLint e) {
+  switch (e) {
+  case EGL_SUCCESS: return "EGL_SUCCESS";
+  case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+  case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+  case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+  case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+  case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+  case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+  case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
+  case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+  case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+  case EGL_BAD_NATIVE_PIXMAP: return "EGL_BAD_NATIVE_PIXMAP";
+  case EGL_BAD_NATIVE_WINDOW: return "EGL_BAD_NATIVE_WINDOW";
+  case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+  case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
+  case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
+  default: return "unknown EGL error";
+  }
+}
+
+static const char* gl_error_name(GLenum e) {
+  switch (e) {
+  case GL_NO_ERROR: return "GL_NO_ERROR";
+  case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+  case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+  case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+  case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+  case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+  case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+  case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+  case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
+  case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+  case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+  case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
+  case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+  default: return "unknown GL enum";
+  }
+}
+
+/* Message of the failed EGL call `what`, with eglGetError(). */
+static void egl_fail(char* error, size_t error_size, const char* what) {
+  EGLint e = eglGetError();
+  _tlod_platform_error(error, error_size, "%s failed: %s (0x%04X)", what, egl_error_name(e), (unsigned)e);
+}
+
+static bool has_extension(const char* list, const char* name) {
+  if (!list) return false;
+  size_t n = strlen(name);
+  for (const char* s = list; (s = strstr(s, name)) != NULL; s += n)
+    if ((s == list || s[-1] == ' ') && (s[n] == ' ' || s[n] == '\0')) return true;
+  return false;
+}
+
+/* ------------------------------------------------------------------------ */
+/* EGL displays: process-wide, so reference counted here                   */
+/* ------------------------------------------------------------------------ */
+
+/* eglTerminate is not reference counted (without EGL_KHR_display_reference):
+ * terminating a display one platform used would destroy the contexts of
+ * every other platform on it. */
+#define MAX_DISPLAYS 8
+static struct {
+  EGLDisplay display;
+  int refs;
+} s_displays[MAX_DISPLAYS];
+
+static bool display_acquire(EGLDisplay dpy, char* error, size_t error_size, const char* what) {
+  for (int i = 0; i < MAX_DISPLAYS; ++i)
+    if (s_displays[i].display == dpy && s_displays[i].refs > 0) {
+      s_displays[i].refs++;
+      return true;
+    }
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(dpy, &major, &minor)) {
+    char call[96];
+    snprintf(call, sizeof call, "eglInitialize (%s)", what);
+    egl_fail(error, error_size, call);
+    return false;
+  }
+  for (int i = 0; i < MAX_DISPLAYS; ++i)
+    if (s_displays[i].refs == 0) {
+      s_displays[i].display = dpy;
+      s_displays[i].refs = 1;
+      return true;
+    }
+  eglTerminate(dpy);
+  _tlod_platform_error(error, error_size, "too many EGL displays in use (%d)", MAX_DISPLAYS);
+  return false;
+}
+
+static void display_release(EGLDisplay dpy) {
+  for (int i = 0; i < MAX_DISPLAYS; ++i)
+    if (s_displays[i].display == dpy && s_displays[i].refs > 0) {
+      if (--s_displays[i].refs == 0) {
+        eglTerminate(dpy);
+        s_displays[i].display = EGL_NO_DISPLAY;
+      }
+      return;
+    }
+}
+
+/* ------------------------------------------------------------------------ */
+/* Headless context                                                         */
+/* ------------------------------------------------------------------------ */
+
+/* Context on an initialised display, made current with no surface. */
+static bool egl_context(tlod_platform* p, EGLDisplay dpy, char* error, size_t error_size) {
+  const char* ext = eglQueryString(dpy, EGL_EXTENSIONS);
+  if (!has_extension(ext, "EGL_KHR_surfaceless_context")) {
+    _tlod_platform_error(error, error_size, "EGL display (%s) lacks EGL_KHR_surfaceless_context", p->kind);
+    return false;
+  }
+  EGLConfig config = EGL_NO_CONFIG_KHR;
+  if (!has_extension(ext, "EGL_KHR_no_config_context") && !has_extension(ext, "EGL_MESA_configless_context")) {
+    const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLint n = 0;
+    if (!eglChooseConfig(dpy, want, &config, 1, &n) || n < 1) {
+      if (n < 1 && eglGetError() == EGL_SUCCESS)
+        _tlod_platform_error(error, error_size, "eglChooseConfig (EGL_OPENGL_BIT) found no config");
+      else
+        egl_fail(error, error_size, "eglChooseConfig (EGL_OPENGL_BIT)");
+      return false;
+    }
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    egl_fail(error, error_size, "eglBindAPI(EGL_OPENGL_API)");
+    return false;
+  }
+  const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                            4,
+                            EGL_CONTEXT_MINOR_VERSION,
+                            5,
+                            EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                            EGL_NONE};
+  EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attribs);
+  if (ctx == EGL_NO_CONTEXT) {
+    egl_fail(error, error_size, "eglCreateContext (GL 4.5 core)");
+    return false;
+  }
+  if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
+    egl_fail(error, error_size, "eglMakeCurrent (no surface)");
+    eglDestroyContext(dpy, ctx);
+    return false;
+  }
+  p->egl_display = dpy;
+  p->egl_context = ctx;
+  return true;
+}
+
+/* Surfaceless platform, then every EGL device. */
+static bool egl_create(tlod_platform* p, char* error, size_t error_size) {
+  const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display =
+      (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+  if (!client || !has_extension(client, "EGL_EXT_platform_base") || !get_platform_display) {
+    _tlod_platform_error(error, error_size,
+                         "EGL has no eglGetPlatformDisplayEXT (client extensions: %s): no headless display",
+                         client ? client : "none");
+    return false;
+  }
+  char first[192] = "";
+  if (has_extension(client, "EGL_MESA_platform_surfaceless")) {
+    p->kind = "EGL surfaceless";
+    EGLDisplay dpy = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    if (dpy == EGL_NO_DISPLAY) {
+      egl_fail(first, sizeof first, "eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
+    } else if (display_acquire(dpy, first, sizeof first, "surfaceless")) {
+      if (egl_context(p, dpy, first, sizeof first)) return true;
+      display_release(dpy);
+    }
+  } else {
+    snprintf(first, sizeof first, "no EGL_MESA_platform_surfaceless");
+  }
+
+  /* Fallback: the EGL device platform. */
+  PFNEGLQUERYDEVICESEXTPROC query_devices = (PFNEGLQUERYDEVICESEXTPROC)eglGetProcAddress("eglQueryDevicesEXT");
+  if (!has_extension(client, "EGL_EXT_platform_device") || !query_devices) {
+    _tlod_platform_error(error, error_size, "%s; no EGL_EXT_platform_device fallback", first);
+    return false;
+  }
+  EGLDeviceEXT devices[8];
+  EGLint count = 0;
+  if (!query_devices(8, devices, &count)) {
+    char second[160];
+    egl_fail(second, sizeof second, "eglQueryDevicesEXT");
+    _tlod_platform_error(error, error_size, "%s; %s", first, second);
+    return false;
+  }
+  char second[192] = "eglQueryDevicesEXT found no device";
+  p->kind = "EGL device";
+  for (EGLint d = 0; d < count; ++d) {
+    EGLDisplay dpy = get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[d], NULL);
+    if (dpy == EGL_NO_DISPLAY) {
+      egl_fail(second, sizeof second, "eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT)");
+      continue;
+    }
+    if (!display_acquire(dpy, second, sizeof second, "device")) continue;
+    if (egl_context(p, dpy, second, sizeof second)) return true;
+    display_release(dpy);
+  }
+  _tlod_platform_error(error, error_size, "%s; fallback: %s", first, second);
+  return false;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Framebuffer                                                              */
+/* ------------------------------------------------------------------------ */
+
+static bool make_fbo(GLuint* fbo, GLuint* color, GLuint* depth, uint32_t w, uint32_t h, GLsizei samples, char* error,
+                     size_t error_size) {
+  glGenFramebuffers(1, fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+  glGenRenderbuffers(1, color);
+  glBindRenderbuffer(GL_RENDERBUFFER, *color);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, (GLsizei)w, (GLsizei)h);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, *color);
+  if (depth) {
+    glGenRenderbuffers(1, depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, *depth);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, (GLsizei)w, (GLsizei)h);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, *depth);
+  }
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  GLenum err = glGetError();
+  if (err != GL_NO_ERROR) {
+    _tlod_platform_error(error, error_size, "glRenderbufferStorageMultisample (%ux%u, %d samples) failed: %s (0x%04X)",
+                         w, h, (int)samples, gl_error_name(err), (unsigned)err);
+    return false;
+  }
+  GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    _tlod_platform_error(error, error_size, "glCheckFramebufferStatus (RGBA8 + DEPTH24_STENCIL8, %ux%u): %s (0x%04X)",
+                         w, h, gl_error_name(status), (unsigned)status);
+    return false;
+  }
+  return true;
+}
+
+static bool headless_framebuffer(tlod_platform* p, uint32_t requested_samples, char* error, size_t error_size) {
+  GLint max_size = 0, max_samples = 0;
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  if (p->width > (uint32_t)max_size || p->height > (uint32_t)max_size) {
+    _tlod_platform_error(error, error_size, "framebuffer %ux%u exceeds GL_MAX_RENDERBUFFER_SIZE %d", p->width,
+                         p->height, max_size);
+    return false;
+  }
+  if (requested_samples > (uint32_t)max_samples) {
+    _tlod_platform_error(error, error_size, "%u samples requested, GL_MAX_SAMPLES is %d", requested_samples,
+                         max_samples);
+    return false;
+  }
+  p->samples = requested_samples > 1 ? requested_samples : 0;
+  if (!make_fbo(&p->fbo, &p->color_rb, &p->depth_rb, p->width, p->height, (GLsizei)p->samples, error, error_size))
+    return false;
+  if (p->samples &&
+      !make_fbo(&p->resolve_fbo, &p->resolve_rb, NULL, p->width, p->height, 0, error, error_size))
+    return false;
+  return true;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Public entry points                                                      */
+/* ------------------------------------------------------------------------ */
+
+static void make_current(tlod_platform* p) {
+  if (p->window) {
+    _tlod_platform_glfw_make_current(p);
+  } else if (eglGetCurrentContext() != (EGLContext)p->egl_context) {
+    eglMakeCurrent((EGLDisplay)p->egl_display, EGL_NO_SURFACE, EGL_NO_SURFACE, (EGLContext)p->egl_context);
+  }
+}
+
+bool tlod_platform_create(const tlod_platform_desc* desc, tlod_platform** out, char* error, size_t error_size) {
+  if (error && error_size) error[0] = '\0';
+  if (!out) {
+    _tlod_platform_error(error, error_size, "tlod_platform_create: out is NULL");
+    return false;
+  }
+  *out = NULL;
+  tlod_platform_desc d = desc ? *desc : (tlod_platform_desc){0};
+  if (d.width == 0) d.width = 640;
+  if (d.height == 0) d.height = 480;
+  if (d.width > 16384 || d.height > 16384) {
+    _tlod_platform_error(error, error_size, "tlod_platform_create: %ux%u is larger than 16384", d.width, d.height);
+    return false;
+  }
+  tlod_platform* p = calloc(1, sizeof *p);
+  if (!p) {
+    _tlod_platform_error(error, error_size, "tlod_platform_create: out of memory");
+    return false;
+  }
+  p->width = d.width;
+  p->height = d.height;
+  p->window = d.window;
+  bool ok;
+  if (d.window) {
+    ok = _tlod_platform_glfw_create(p, &d, error, error_size);
+  } else {
+    ok = egl_create(p, error, error_size);
+    if (ok) {
+      GLint major = 0, minor = 0;
+      glGetIntegerv(GL_MAJOR_VERSION, &major);
+      glGetIntegerv(GL_MINOR_VERSION, &minor);
+      if (major * 10 + minor < 45) {
+        _tlod_platform_error(error, error_size, "%s context is GL %d.%d, 4.5 is needed", p->kind, major, minor);
+        ok = false;
+      }
+    }
+    if (ok) ok = headless_framebuffer(p, d.samples, error, error_size);
+  }
+  if (!ok) {
+    tlod_platform_destroy(p);
+    return false;
+  }
+  const char* renderer = (const char*)glGetString(GL_RENDERER);
+  const char* version = (const char*)glGetString(GL_VERSION);
+  snprintf(p->renderer, sizeof p->renderer, "%s", renderer ? renderer : "?");
+  snprintf(p->version, sizeof p->version, "%s", version ? version : "?");
+  tlod_platform_bind(p);
+  *out = p;
+  return true;
+}
+
+void tlod_platform_destroy(tlod_platform* p) {
+  if (!p) return;
+  if (p->window) {
+    _tlod_platform_glfw_destroy(p);
+  } else if (p->egl_context) {
+    EGLDisplay dpy = (EGLDisplay)p->egl_display;
+    make_current(p);
+    GLuint fbos[2] = {p->fbo, p->resolve_fbo}, rbs[3] = {p->color_rb, p->depth_rb, p->resolve_rb};
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(2, fbos);
+    glDeleteRenderbuffers(3, rbs);
+    eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(dpy, (EGLContext)p->egl_context);
+    display_release(dpy);
+    eglReleaseThread();
+  }
+  free(p);
+}
+
+const char* tlod_platform_describe(const tlod_platform* p, char* buf, size_t size) {
+  if (!buf || size == 0) return buf;
+  if (!p) {
+    snprintf(buf, size, "no platform");
+    return buf;
+  }
+  snprintf(buf, size, "%s, GL_RENDERER %s, GL_VERSION %s, %ux%u, samples %u", p->kind, p->renderer, p->version,
+           p->width, p->height, p->samples);
+  return buf;
+}
+
+void tlod_platform_bind(tlod_platform* p) {
+  if (!p) return;
+  make_current(p);
+  glBindFramebuffer(GL_FRAMEBUFFER, p->window ? 0 : p->fbo);
+  glViewport(0, 0, (GLsizei)p->width, (GLsizei)p->height);
+}
+
+uint32_t tlod_platform_framebuffer(const tlod_platform* p) { return p && !p->window ? p->fbo : 0; }
+
+void tlod_platform_size(const tlod_platform* p, uint32_t* width, uint32_t* height) {
+  if (width) *width = p ? p->width : 0;
+  if (height) *height = p ? p->height : 0;
+}
+
+bool tlod_platform_read_rgba(tlod_platform* p, uint8_t* rgba) {
+  if (!p || !rgba) return false;
+  GLint read_fbo = 0, draw_fbo = 0, pack_buffer = 0, alignment = 4, row_length = 0, skip_rows = 0, skip_pixels = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo);
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+  glGetIntegerv(GL_PACK_ALIGNMENT, &alignment);
+  glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
+  glGetIntegerv(GL_PACK_SKIP_ROWS, &skip_rows);
+  glGetIntegerv(GL_PACK_SKIP_PIXELS, &skip_pixels);
+  GLsizei w = (GLsizei)p->width, h = (GLsizei)p->height;
+  GLint read_buffer = GL_BACK;
+  bool ok = true;
+  if (p->window) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glGetIntegerv(GL_READ_BUFFER, &read_buffer);
+    glReadBuffer(GL_BACK);
+  } else if (p->samples) {
+    /* Resolve; the blit honours the scissor test, so switch it off. */
+    GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, p->fbo);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, p->resolve_fbo);
+    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)draw_fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, p->resolve_fbo);
+    if (scissor) glEnable(GL_SCISSOR_TEST);
+  } else {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, p->fbo);
+  }
+  if (glCheckFramebufferStatus(GL_READ_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) ok = false;
+  if (ok) {
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+    glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    /* GL rows are bottom first. */
+    size_t stride = (size_t)w * 4;
+    uint8_t tmp[4096];
+    for (GLsizei y = 0; y < h / 2; ++y) {
+      uint8_t *a = rgba + (size_t)y * stride, *b = rgba + (size_t)(h - 1 - y) * stride;
+      for (size_t off = 0; off < stride; off += sizeof tmp) {
+        size_t n = stride - off < sizeof tmp ? stride - off : sizeof tmp;
+        memcpy(tmp, a + off, n);
+        memcpy(a + off, b + off, n);
+        memcpy(b + off, tmp, n);
+      }
+    }
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, alignment);
+    glPixelStorei(GL_PACK_ROW_LENGTH, row_length);
+    glPixelStorei(GL_PACK_SKIP_ROWS, skip_rows);
+    glPixelStorei(GL_PACK_SKIP_PIXELS, skip_pixels);
+  }
+  if (p->window) glReadBuffer((GLenum)read_buffer);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)read_fbo);
+  return ok;
+}
+
+bool tlod_platform_should_close(tlod_platform* p) { return p && p->window && _tlod_platform_glfw_should_close(p); }
+
+void tlod_platform_swap(tlod_platform* p) {
+  if (p && p->window) _tlod_platform_glfw_swap(p);
+}
+
+double tlod_platform_time_ms(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
