@@ -22,7 +22,9 @@ struct PatternVertex {
 };
 
 struct Instance {
-  uint patch_id, level, pad0, pad1;
+  uint patch_id, level;
+  uint edge_levels;  // hardware path: outer level exponent per edge, 8 bits each
+  uint pad1;
   vec4 morph;      // x: interior blend; y, z, w: edges 0-2
   vec4 morph_e3;   // x: edge 3
 };

@@ -2314,24 +2314,30 @@ TEST(test_allocation) {
   CHECK_MSG(counter.allocs == counter.frees, "%ld allocations, %ld frees", counter.allocs, counter.frees);
 }
 
-int main(void) {
+/* With an argument, only the tests whose name contains it run. */
+#define RUN_SELECTED(name)                                                                                             \
+  do {                                                                                                                 \
+    if (argc < 2 || strstr(#name, argv[1])) RUN(name);                                                                 \
+  } while (0)
+
+int main(int argc, char** argv) {
   double t0 = now_seconds();
-  RUN(test_pure_helpers);
-  RUN(test_level_choice);
-  RUN(test_policy_rules);
-  RUN(test_crack_free);
-  RUN(test_creases);
-  RUN(test_geomorph_starts_at_coarse_level);
-  RUN(test_geomorph_continuity);
-  RUN(test_geomorph_continuous);
-  RUN(test_screen_error);
-  RUN(test_monotone_and_budget);
-  RUN(test_frame_time_target);
-  RUN(test_multi_view);
-  RUN(test_determinism);
-  RUN(test_dynamic_mesh);
-  RUN(test_bad_input);
-  RUN(test_allocation);
+  RUN_SELECTED(test_pure_helpers);
+  RUN_SELECTED(test_level_choice);
+  RUN_SELECTED(test_policy_rules);
+  RUN_SELECTED(test_crack_free);
+  RUN_SELECTED(test_creases);
+  RUN_SELECTED(test_geomorph_starts_at_coarse_level);
+  RUN_SELECTED(test_geomorph_continuity);
+  RUN_SELECTED(test_geomorph_continuous);
+  RUN_SELECTED(test_screen_error);
+  RUN_SELECTED(test_monotone_and_budget);
+  RUN_SELECTED(test_frame_time_target);
+  RUN_SELECTED(test_multi_view);
+  RUN_SELECTED(test_determinism);
+  RUN_SELECTED(test_dynamic_mesh);
+  RUN_SELECTED(test_bad_input);
+  RUN_SELECTED(test_allocation);
   printf("%.1f s\n", now_seconds() - t0);
   TEST_END();
 }

@@ -25,6 +25,8 @@ typedef struct gl_backend {
   const tlod_patterns* patterns;
   uint32_t lmax;
   GLuint prog_pattern, prog_strip;
+  bool hardware;
+  GLuint prog_tess[2]; /* hardware path: triangles, quads */
   GLuint vao_pattern, vao_strip;
   GLuint buf_patches, buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs;
   uint32_t index_first[2][TLOD_MAX_LEVEL + 1], index_count[2][TLOD_MAX_LEVEL + 1], shape_base[2];
@@ -67,6 +69,7 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_backend_desc* desc, v
   gl_backend* b = _tlod_calloc(ctx, 1, sizeof(*b));
   if (!b) return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl backend: out of memory");
   b->ctx = ctx;
+  b->hardware = desc && desc->hardware_tessellation;
   snprintf(b->label, sizeof(b->label), "%s", desc && desc->label ? desc->label : "gl");
   /* Named objects only (DSA): creating them binds nothing of the engine's. */
   GLuint bufs[6];
@@ -94,6 +97,8 @@ static void gl_destroy(void* state) {
   glDeleteQueries(QUERY_RING, b->queries);
   glDeleteProgram(b->prog_pattern);
   glDeleteProgram(b->prog_strip);
+  glDeleteProgram(b->prog_tess[0]);
+  glDeleteProgram(b->prog_tess[1]);
   _tlod_free(b->ctx, b->instances);
   _tlod_free(b->ctx, b->strips);
   _tlod_free(b->ctx, b->refs);
@@ -190,6 +195,17 @@ static tlod_result build_programs(gl_backend* b, tlod_surface_type type) {
   b->prog_strip = 0;
   b->prog_pattern = _tlod_gl_program(pattern, 4, frag, 2, error, sizeof(error));
   if (b->prog_pattern) b->prog_strip = _tlod_gl_program(strip, 4, frag, 2, error, sizeof(error));
+  for (int sh = 0; sh < 2 && b->hardware && b->prog_strip; sh++) {
+    const char* corners = sh ? "#define TLOD_CORNERS 4\n" : "#define TLOD_CORNERS 3\n";
+    const char* vs[] = {version, corners, _tlod_shader_common, surface, _tlod_shader_tess_vert};
+    const char* tcs[] = {version, corners, _tlod_shader_common, surface, _tlod_shader_tess_tesc};
+    const char* tes[] = {version, corners, _tlod_shader_common, surface, _tlod_shader_tess_tese};
+    const char* const* stages[4] = {vs, tcs, tes, frag};
+    const int counts[4] = {5, 5, 5, 2};
+    glDeleteProgram(b->prog_tess[sh]);
+    b->prog_tess[sh] = _tlod_gl_program_tess(stages, counts, error, sizeof(error));
+    if (!b->prog_tess[sh]) b->prog_strip = 0;
+  }
   if (!b->prog_pattern || !b->prog_strip)
     return _tlod_fail(b->ctx, TLOD_ERROR_BACKEND, "gl backend: shader build failed: %s", error);
   return TLOD_SUCCESS;
@@ -221,6 +237,19 @@ static bool grow(gl_backend* b, void** buf, uint32_t* cap, uint32_t need, size_t
   return true;
 }
 
+/* Hardware path: an edge is tessellated at the finer of its two sides'
+ * levels, so both sides generate the same points. */
+static uint32_t edge_levels(const tlod_surface* s, const tlod_draw_list* dl, const tlod_draw_instance* in) {
+  const tlod_mesh* m = s->mesh;
+  uint32_t packed = 0;
+  for (uint32_t e = 0; e < m->face_corners[in->patch]; e++) {
+    uint32_t l = in->level, g = m->links[in->patch][e].face;
+    if (g != UINT32_MAX && dl->levels[g] > (int8_t)l) l = (uint32_t)dl->levels[g];
+    packed |= l << (8 * e);
+  }
+  return packed;
+}
+
 static tlod_result stage_frame(gl_backend* b, const tlod_draw_list* dl, uint32_t* ref_count) {
   uint32_t refs = 0;
   for (uint32_t k = 0; k < dl->strip_count; k++) {
@@ -237,6 +266,7 @@ static tlod_result stage_frame(gl_backend* b, const tlod_draw_list* dl, uint32_t
     const tlod_draw_instance* in = &dl->instances[k];
     b->instances[k] = (gl_instance){.patch = in->patch,
                                     .level = in->level,
+                                    .edge_levels = edge_levels(b->surface, dl, in),
                                     .morph = {in->morph, in->edge_morph[0], in->edge_morph[1], in->edge_morph[2]},
                                     .morph_e3 = {in->edge_morph[3], 0, 0, 0}};
     if (in->patch < dl->patch_count) b->instance_of[in->patch] = k;
@@ -328,6 +358,53 @@ static uint32_t issue_draws(gl_backend* b, const tlod_draw_list* dl, uint32_t re
   return calls;
 }
 
+/* Tessellated vertices of a patch whose largest level is l (PLATFORM.md). */
+static uint32_t tess_vertices(uint32_t corners, uint32_t l) {
+  uint32_t n = 1u << l;
+  if (corners == 4) return (n + 1) * (n + 1);
+  return n == 1 ? 3u : 3u * n * n / 4u + 3u * n / 2u + 1u;
+}
+
+/* Hardware path: per bucket, draws of whole patches kept under 65,536
+ * tessellated vertices each (Mesa drops what lies past that, silently). */
+static uint32_t issue_tess_draws(gl_backend* b, const tlod_draw_list* dl, uint64_t* vertices) {
+  uint32_t calls = 0;
+  for (uint32_t k = 0; k < dl->bucket_count; k++) {
+    const tlod_draw_bucket* bk = &dl->buckets[k];
+    uint32_t sh = (uint32_t)bk->shape, corners = sh ? 4u : 3u;
+    GLuint prog = b->prog_tess[sh];
+    glUseProgram(prog);
+    glBindVertexArray(b->vao_pattern);
+    glPatchParameteri(GL_PATCH_VERTICES, (GLint)corners);
+    glProgramUniform1ui(prog, glGetUniformLocation(prog, "u_corners"), corners);
+    GLint first = glGetUniformLocation(prog, "u_first_instance");
+    uint32_t start = bk->first, end = bk->first + bk->count, batch_vertices = 0;
+    for (uint32_t i = start; i <= end; i++) {
+      uint32_t v = 0;
+      if (i < end) {
+        uint32_t l = b->instances[i].level;
+        for (uint32_t e = 0; e < corners; e++) {
+          uint32_t le = (b->instances[i].edge_levels >> (8 * e)) & 255u;
+          l = le > l ? le : l;
+        }
+        v = tess_vertices(corners, l);
+      }
+      if (i == end || batch_vertices + v > 65535u) {
+        if (i > start) {
+          glProgramUniform1ui(prog, first, start);
+          glDrawArrays(GL_PATCHES, 0, (GLsizei)((i - start) * corners));
+          calls++;
+        }
+        start = i;
+        batch_vertices = 0;
+      }
+      batch_vertices += v;
+      *vertices += v;
+    }
+  }
+  return calls;
+}
+
 static void read_query(gl_backend* b) {
   /* The query of QUERY_RING - 1 frames ago: reading it never stalls. */
   if (b->frame < QUERY_RING) return;
@@ -372,19 +449,23 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
   uint32_t debug = (uint32_t)fr->debug;
   set_uniforms(b->prog_pattern, fr, b->lmax, debug);
   set_uniforms(b->prog_strip, fr, b->lmax, debug);
+  for (int sh = 0; sh < 2 && b->hardware; sh++)
+    set_uniforms(b->prog_tess[sh], fr, b->lmax, debug);
   uint64_t vertices = 0;
   if (fr->wireframe) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
   }
-  uint32_t calls = issue_draws(b, dl, refs, &vertices);
+  uint32_t calls = b->hardware ? issue_tess_draws(b, dl, &vertices) : issue_draws(b, dl, refs, &vertices);
   if (fr->wireframe) {
     glDisable(GL_POLYGON_OFFSET_FILL);
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     set_uniforms(b->prog_pattern, fr, b->lmax, 4u);
     set_uniforms(b->prog_strip, fr, b->lmax, 4u);
+    for (int sh = 0; sh < 2 && b->hardware; sh++)
+      set_uniforms(b->prog_tess[sh], fr, b->lmax, 4u);
     uint64_t unused = 0;
-    calls += issue_draws(b, dl, refs, &unused);
+    calls += b->hardware ? issue_tess_draws(b, dl, &unused) : issue_draws(b, dl, refs, &unused);
   }
   glEndQuery(GL_TIME_ELAPSED);
   read_query(b);
@@ -395,7 +476,7 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
     glFinish();
     b->timings.wall_ms = now_ms() - t0;
   }
-  b->timings.triangles = dl->pattern_triangles + refs / 3;
+  b->timings.triangles = b->hardware ? dl->pattern_triangles : dl->pattern_triangles + refs / 3;
   b->timings.vertices = vertices;
   b->timings.draw_calls = calls;
   return TLOD_SUCCESS;

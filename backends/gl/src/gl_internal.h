@@ -27,7 +27,9 @@ typedef struct gl_pattern_vertex {
 } gl_pattern_vertex;
 
 typedef struct gl_instance {
-  uint32_t patch, level, pad[2];
+  uint32_t patch, level;
+  uint32_t edge_levels; /* hardware path: outer level exponent per edge, 8 bits each */
+  uint32_t pad;
   float morph[4];
   float morph_e3[4];
 } gl_instance;
@@ -49,6 +51,7 @@ typedef struct gl_saved_state {
   GLint polygon_mode[2], cull_mode, depth_func, viewport[4];
   GLboolean cull, depth_test, depth_mask, blend, offset_fill;
   GLfloat offset_factor, offset_units;
+  GLint patch_vertices;
 } gl_saved_state;
 
 void _tlod_gl_save_state(gl_saved_state* s);
@@ -58,6 +61,8 @@ void _tlod_gl_restore_state(const gl_saved_state* s);
  * the driver's log to error and returns 0. */
 GLuint _tlod_gl_program(const char* const* vert, int vert_count, const char* const* frag, int frag_count, char* error,
                         size_t error_size);
+/* The same with tessellation control and evaluation stages. */
+GLuint _tlod_gl_program_tess(const char* const* stages[4], const int counts[4], char* error, size_t error_size);
 
 /* Embedded shader sources (generated from backends/shaders at configure time). */
 extern const char* const _tlod_shader_common;
@@ -67,6 +72,9 @@ extern const char* const _tlod_shader_flat;
 extern const char* const _tlod_shader_pattern_vert;
 extern const char* const _tlod_shader_strip_vert;
 extern const char* const _tlod_shader_shade_frag;
+extern const char* const _tlod_shader_tess_vert;
+extern const char* const _tlod_shader_tess_tesc;
+extern const char* const _tlod_shader_tess_tese;
 
 extern const tlod_backend_vtbl _tlod_gl_vtbl;
 

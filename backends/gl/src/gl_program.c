@@ -1,7 +1,21 @@
 /* tesslod::gl -- shader compilation with the driver's log on failure. */
+#include <stdbool.h>
 #include <stdio.h>
 
 #include "gl_internal.h"
+
+static const char* stage_name(GLenum stage) {
+  switch (stage) {
+  case GL_VERTEX_SHADER:
+    return "vertex";
+  case GL_TESS_CONTROL_SHADER:
+    return "tessellation control";
+  case GL_TESS_EVALUATION_SHADER:
+    return "tessellation evaluation";
+  default:
+    return "fragment";
+  }
+}
 
 static GLuint compile(GLenum stage, const char* const* src, int count, char* error, size_t error_size) {
   GLuint sh = glCreateShader(stage);
@@ -12,30 +26,35 @@ static GLuint compile(GLenum stage, const char* const* src, int count, char* err
   if (!ok) {
     char log[1024] = "";
     glGetShaderInfoLog(sh, sizeof(log), NULL, log);
-    snprintf(error, error_size, "%s shader: %s", stage == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+    snprintf(error, error_size, "%s shader: %s", stage_name(stage), log);
     glDeleteShader(sh);
     return 0;
   }
   return sh;
 }
 
-GLuint _tlod_gl_program(const char* const* vert, int vert_count, const char* const* frag, int frag_count, char* error,
-                        size_t error_size) {
-  GLuint vs = compile(GL_VERTEX_SHADER, vert, vert_count, error, error_size);
-  GLuint fs = vs ? compile(GL_FRAGMENT_SHADER, frag, frag_count, error, error_size) : 0;
-  if (!vs || !fs) {
-    if (vs) glDeleteShader(vs);
-    return 0;
+GLuint _tlod_gl_program_tess(const char* const* stages[4], const int counts[4], char* error, size_t error_size) {
+  static const GLenum kinds[4] = {GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER,
+                                  GL_FRAGMENT_SHADER};
+  GLuint sh[4] = {0};
+  bool ok = true;
+  for (int i = 0; i < 4 && ok; i++) {
+    if (!stages[i]) continue;
+    sh[i] = compile(kinds[i], stages[i], counts[i], error, error_size);
+    ok = sh[i] != 0;
   }
-  GLuint prog = glCreateProgram();
-  glAttachShader(prog, vs);
-  glAttachShader(prog, fs);
-  glLinkProgram(prog);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-  if (!ok) {
+  GLuint prog = ok ? glCreateProgram() : 0;
+  for (int i = 0; i < 4; i++) {
+    if (sh[i] && prog) glAttachShader(prog, sh[i]);
+  }
+  if (prog) glLinkProgram(prog);
+  for (int i = 0; i < 4; i++) {
+    if (sh[i]) glDeleteShader(sh[i]);
+  }
+  if (!prog) return 0;
+  GLint linked = 0;
+  glGetProgramiv(prog, GL_LINK_STATUS, &linked);
+  if (!linked) {
     char log[1024] = "";
     glGetProgramInfoLog(prog, sizeof(log), NULL, log);
     snprintf(error, error_size, "link: %s", log);
@@ -43,4 +62,11 @@ GLuint _tlod_gl_program(const char* const* vert, int vert_count, const char* con
     return 0;
   }
   return prog;
+}
+
+GLuint _tlod_gl_program(const char* const* vert, int vert_count, const char* const* frag, int frag_count, char* error,
+                        size_t error_size) {
+  const char* const* stages[4] = {vert, NULL, NULL, frag};
+  const int counts[4] = {vert_count, 0, 0, frag_count};
+  return _tlod_gl_program_tess(stages, counts, error, error_size);
 }

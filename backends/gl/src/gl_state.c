@@ -22,6 +22,7 @@ void _tlod_gl_save_state(gl_saved_state* s) {
   s->offset_fill = glIsEnabled(GL_POLYGON_OFFSET_FILL);
   glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &s->offset_factor);
   glGetFloatv(GL_POLYGON_OFFSET_UNITS, &s->offset_units);
+  glGetIntegerv(GL_PATCH_VERTICES, &s->patch_vertices);
 }
 
 static void set_enabled(GLenum cap, GLboolean on) {
@@ -52,4 +53,5 @@ void _tlod_gl_restore_state(const gl_saved_state* s) {
   set_enabled(GL_BLEND, s->blend);
   set_enabled(GL_POLYGON_OFFSET_FILL, s->offset_fill);
   glPolygonOffset(s->offset_factor, s->offset_units);
+  glPatchParameteri(GL_PATCH_VERTICES, s->patch_vertices);
 }

@@ -37,41 +37,71 @@ void _tlod_platform_error(char* error, size_t error_size, const char* fmt, ...) 
 
 static const char* egl_error_name(EGLint e) {
   switch (e) {
-  case EGL_SUCCESS: return "EGL_SUCCESS";
-  case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-  case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-  case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-  case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-  case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-  case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-  case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
-  case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-  case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-  case EGL_BAD_NATIVE_PIXMAP: return "EGL_BAD_NATIVE_PIXMAP";
-  case EGL_BAD_NATIVE_WINDOW: return "EGL_BAD_NATIVE_WINDOW";
-  case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-  case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-  case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
-  default: return "unknown EGL error";
+  case EGL_SUCCESS:
+    return "EGL_SUCCESS";
+  case EGL_NOT_INITIALIZED:
+    return "EGL_NOT_INITIALIZED";
+  case EGL_BAD_ACCESS:
+    return "EGL_BAD_ACCESS";
+  case EGL_BAD_ALLOC:
+    return "EGL_BAD_ALLOC";
+  case EGL_BAD_ATTRIBUTE:
+    return "EGL_BAD_ATTRIBUTE";
+  case EGL_BAD_CONFIG:
+    return "EGL_BAD_CONFIG";
+  case EGL_BAD_CONTEXT:
+    return "EGL_BAD_CONTEXT";
+  case EGL_BAD_CURRENT_SURFACE:
+    return "EGL_BAD_CURRENT_SURFACE";
+  case EGL_BAD_DISPLAY:
+    return "EGL_BAD_DISPLAY";
+  case EGL_BAD_MATCH:
+    return "EGL_BAD_MATCH";
+  case EGL_BAD_NATIVE_PIXMAP:
+    return "EGL_BAD_NATIVE_PIXMAP";
+  case EGL_BAD_NATIVE_WINDOW:
+    return "EGL_BAD_NATIVE_WINDOW";
+  case EGL_BAD_PARAMETER:
+    return "EGL_BAD_PARAMETER";
+  case EGL_BAD_SURFACE:
+    return "EGL_BAD_SURFACE";
+  case EGL_CONTEXT_LOST:
+    return "EGL_CONTEXT_LOST";
+  default:
+    return "unknown EGL error";
   }
 }
 
 static const char* gl_error_name(GLenum e) {
   switch (e) {
-  case GL_NO_ERROR: return "GL_NO_ERROR";
-  case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-  case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-  case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-  case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-  case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-  case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-  case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-  case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
-  case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
-  case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
-  case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
-  case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
-  default: return "unknown GL enum";
+  case GL_NO_ERROR:
+    return "GL_NO_ERROR";
+  case GL_INVALID_ENUM:
+    return "GL_INVALID_ENUM";
+  case GL_INVALID_VALUE:
+    return "GL_INVALID_VALUE";
+  case GL_INVALID_OPERATION:
+    return "GL_INVALID_OPERATION";
+  case GL_INVALID_FRAMEBUFFER_OPERATION:
+    return "GL_INVALID_FRAMEBUFFER_OPERATION";
+  case GL_OUT_OF_MEMORY:
+    return "GL_OUT_OF_MEMORY";
+  case GL_STACK_UNDERFLOW:
+    return "GL_STACK_UNDERFLOW";
+  case GL_STACK_OVERFLOW:
+    return "GL_STACK_OVERFLOW";
+  case GL_FRAMEBUFFER_UNDEFINED:
+    return "GL_FRAMEBUFFER_UNDEFINED";
+  case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT:
+    return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+  case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
+    return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+  case GL_FRAMEBUFFER_UNSUPPORTED:
+    return "GL_FRAMEBUFFER_UNSUPPORTED";
+  case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE:
+    return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+  default:
+    return "unknown GL enum";
   }
 }
 
@@ -164,13 +194,9 @@ static bool egl_context(tlod_platform* p, EGLDisplay dpy, char* error, size_t er
     egl_fail(error, error_size, "eglBindAPI(EGL_OPENGL_API)");
     return false;
   }
-  const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                            4,
-                            EGL_CONTEXT_MINOR_VERSION,
-                            5,
-                            EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                            EGL_NONE};
+  const EGLint attribs[] = {
+      EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
   EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attribs);
   if (ctx == EGL_NO_CONTEXT) {
     egl_fail(error, error_size, "eglCreateContext (GL 4.5 core)");
@@ -292,8 +318,7 @@ static bool headless_framebuffer(tlod_platform* p, uint32_t requested_samples, c
   p->samples = requested_samples > 1 ? requested_samples : 0;
   if (!make_fbo(&p->fbo, &p->color_rb, &p->depth_rb, p->width, p->height, (GLsizei)p->samples, error, error_size))
     return false;
-  if (p->samples &&
-      !make_fbo(&p->resolve_fbo, &p->resolve_rb, NULL, p->width, p->height, 0, error, error_size))
+  if (p->samples && !make_fbo(&p->resolve_fbo, &p->resolve_rb, NULL, p->width, p->height, 0, error, error_size))
     return false;
   return true;
 }

@@ -16,12 +16,13 @@ struct tlod_platform {
   bool window;
   const char* kind; /* "EGL surfaceless", "EGL device", "GLFW window" */
   /* headless */
-  void* egl_display; /* EGLDisplay */
-  void* egl_context; /* EGLContext */
-  uint32_t fbo, color_rb, depth_rb;  /* draw target (multisampled when samples > 1) */
-  uint32_t resolve_fbo, resolve_rb;  /* samples > 1: single-sampled copy for read-back */
+  void* egl_display;                /* EGLDisplay */
+  void* egl_context;                /* EGLContext */
+  uint32_t fbo, color_rb, depth_rb; /* draw target (multisampled when samples > 1) */
+  uint32_t resolve_fbo, resolve_rb; /* samples > 1: single-sampled copy for read-back */
   /* window */
   void* glfw_window; /* GLFWwindow */
+  bool glfw_ref;     /* holds one reference on glfwInit */
   char renderer[160], version[160];
 };
 

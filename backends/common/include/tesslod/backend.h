@@ -61,6 +61,11 @@ typedef enum tlod_debug_view {
 
 typedef struct tlod_backend_desc {
   const char* name; /* "cpu" or "gl"; NULL == "cpu" */
+  /* gl: draw with GL_PATCHES and tessellation shaders instead of refinement
+   * patterns, for comparison: outer levels per edge from both sides (no
+   * strips), no geomorphs, and split-normal edges crack. Draws are batched
+   * below 65,536 tessellated vertices (a Mesa limit, PLATFORM.md). */
+  bool hardware_tessellation;
   const char* label;
 } tlod_backend_desc;
 
