@@ -167,6 +167,7 @@ static void metric_task(void* data, uint32_t begin, uint32_t end, uint32_t worke
 static float target_level(const tlod_scheduler* s, float e_max, float contour, float eps, float cap) {
   const tlod_scheduler_desc* d = &s->desc;
   uint32_t lmax = d->max_level;
+  if (d->policy == TLOD_POLICY_UNIFORM) return (float)(lmax < cap ? lmax : (uint32_t)cap);
   if (d->policy == TLOD_POLICY_SILHOUETTE) {
     float segments = contour * d->silhouette_depth;
     float t = segments > 1.0f ? log2f(segments) : 0.0f;
@@ -251,7 +252,7 @@ static void fit_budget(tlod_scheduler* s, stage_job* j) {
   uint32_t budget = s->desc.triangle_budget;
   _tlod_parallel_for(s->ctx, target_task, j, s->patch_count);
   if (!budget || frame_triangles(s, j->vs, j->vs->target) <= budget) return;
-  if (s->desc.policy == TLOD_POLICY_SILHOUETTE) {
+  if (s->desc.policy == TLOD_POLICY_SILHOUETTE || s->desc.policy == TLOD_POLICY_UNIFORM) {
     for (float cap = (float)s->desc.max_level - 1.0f; cap >= 0.0f; cap -= 1.0f) {
       j->level_cap = cap;
       _tlod_parallel_for(s->ctx, target_task, j, s->patch_count);

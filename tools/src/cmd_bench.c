@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_gl.h"
 #include "bench_lod.h"
 #include "cli.h"
 #include "commands.h"
@@ -36,11 +37,13 @@ void bench_usage(FILE* f) {
              "  --repeat N         timed runs per case (default 3)\n"
              "  --warmup N         untimed runs first (default 1)\n"
              "  --csv FILE         also write one CSV row per case\n"
-             "  --suite S          eval (default) | scheduler | table1 | all\n"
+             "  --suite S          eval (default) | scheduler | table1 | gl | all\n"
              "                     scheduler: time per frame on 10k, 100k, 1M patches (torus), orbiting camera\n"
              "                     table1: Schwarz et al.'s Table 1 (PN, 1600x1144, 0.5 px): base, adaptive per\n"
              "                     policy, uniform at the worst patch's level, strip overhead\n"
-             "  --frames N         scheduler frames per case (default 20)\n"
+             "                     gl: frame times (llvmpipe, wall clock): flat, adaptive, uniform, hardware\n"
+             "                     tessellation per model; Phong against flat at equal triangles\n"
+             "  --frames N         scheduler / gl frames per case (default 20)\n"
              "  --model IN         a table1 model (repeatable; default demo:cow)\n");
 }
 
@@ -81,7 +84,7 @@ static int parse(int argc, char** argv, bench_options* o) {
     } else if (!strcmp(a, "--warmup")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 0, 1000, &o->warmup)) return CLI_USAGE;
     } else if (!strcmp(a, "--suite")) {
-      static const char* const suites[] = {"eval", "scheduler", "table1", "all", NULL};
+      static const char* const suites[] = {"eval", "scheduler", "table1", "gl", "all", NULL};
       if (!(v = cli_value(argc, argv, &i)) || cli_parse_enum(a, v, suites) < 0) return CLI_USAGE;
       o->suite = v;
     } else if (!strcmp(a, "--frames")) {
@@ -263,6 +266,7 @@ static int run_lod_suites(const bench_options* o, double bandwidth, FILE* csv) {
   int rc = CLI_OK;
   if (all || !strcmp(o->suite, "scheduler")) rc = bench_scheduler(&lo, bandwidth, csv);
   if (rc == CLI_OK && (all || !strcmp(o->suite, "table1"))) rc = bench_table1(&lo, csv);
+  if (rc == CLI_OK && (all || !strcmp(o->suite, "gl"))) rc = bench_gl(lo.inputs, lo.input_count, o->frames, csv);
   return rc;
 }
 

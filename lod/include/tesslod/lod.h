@@ -117,6 +117,8 @@ typedef enum tlod_lod_policy {
    * for ERROR; a patch facing the camera (s = 0) uses relax * eps, where
    * shading hides the flat geometry. */
   TLOD_POLICY_HYBRID,
+  /* Every visible patch at max_level: uniform tessellation, for comparisons. */
+  TLOD_POLICY_UNIFORM,
   TLOD_POLICY_NUM,
   _TLOD_POLICY_FORCE_U32 = 0x7FFFFFFF
 } tlod_lod_policy;

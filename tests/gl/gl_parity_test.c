@@ -1,0 +1,246 @@
+/*
+ * gl_parity_test.c -- the GL backend draws what the CPU reference
+ * tessellator computes, for the same scheduler draw list (owned by the GL
+ * tests). Public API only.
+ *
+ * For icosphere(2), torus(16, 10) and cube_soft (split normals), under
+ * Phong and PN surfaces, in two modes:
+ *   adaptive: tlod_scheduler with its defaults (HYBRID, TIME geomorphs),
+ *             a far frame then a nearer one 60 ms later, so the second
+ *             draw list carries fractional geomorph blends;
+ *   uniform:  policy ERROR, epsilon 1e-6 px, max level 3, no geomorphs:
+ *             every patch with any curvature at level 3;
+ * image A = tlod_backend_draw ("gl", debug NONE, default light and colour)
+ * into the headless FBO; image B = tlod_cpu_tessellate(draw_list) (welded,
+ * with normals) drawn by the independent mesh renderer of gl_test.h, which
+ * shades exactly as backend.h documents. Both 256 x 256, cleared to pure
+ * blue, depth test LESS, no culling.
+ *
+ * TOLERANCES (why): the backend evaluates the surface in GPU float with its
+ * own operation order, so vertices may differ from the CPU's in the last
+ * bits; that moves a silhouette edge by far less than a pixel, which can
+ * flip only pixels whose centres lie on the reference silhouette.
+ *   coverage: every pixel covered in one image and not the other must lie
+ *     on the reference's 1-pixel boundary band (it, or an 8-neighbour, has
+ *     the other coverage in B), and there may be at most 0.5% of the
+ *     pixels covered by either image;
+ *   colour: on pixels covered by both, the largest RGB channel difference
+ *     is <= 8/255 on >= 99% of them (normals evaluated on the GPU vs CPU,
+ *     and pixels where a front and a back face swap at a silhouette);
+ *   triangle count: exact. tlod_backend_query_timings().triangles ==
+ *     draw_list pattern_triangles + strip_triangles == the CPU mesh's
+ *     triangle_count + folds_skipped (the degenerate strip triangles the
+ *     CPU leaves out, which a GPU draws as zero-area).
+ */
+#include "gl_test.h"
+
+#define W 256
+#define H 256
+#define MAX_LEVEL 5
+
+typedef struct compare_result {
+  uint32_t covered_a, covered_b, covered_either, covered_both;
+  uint32_t coverage_diff; /* covered in exactly one image */
+  uint32_t off_band;      /* ... of which not on the reference's boundary band */
+  int off_band_x, off_band_y;
+  uint32_t colour_ok; /* both covered, max channel diff <= 8 */
+  uint32_t max_colour_diff;
+  double mean_colour_diff;
+} compare_result;
+
+/* a, b: RGBA, same layout (rows in any order, the same for both). */
+static compare_result compare_images(const uint8_t* a, const uint8_t* b, uint32_t w, uint32_t h) {
+  compare_result r;
+  memset(&r, 0, sizeof r);
+  r.off_band_x = r.off_band_y = -1;
+  double colour_sum = 0;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      size_t i = (size_t)y * w + x;
+      bool ca = !is_background(a + 4 * i), cb = !is_background(b + 4 * i);
+      r.covered_a += ca;
+      r.covered_b += cb;
+      r.covered_either += ca || cb;
+      if (ca && cb) {
+        r.covered_both++;
+        uint32_t d = 0;
+        for (int c = 0; c < 3; ++c) {
+          int dc = abs((int)a[4 * i + c] - (int)b[4 * i + c]);
+          if ((uint32_t)dc > d) d = (uint32_t)dc;
+        }
+        r.colour_ok += d <= 8;
+        if (d > r.max_colour_diff) r.max_colour_diff = d;
+        colour_sum += d;
+      }
+      if (ca == cb) continue;
+      r.coverage_diff++;
+      bool band = false;
+      for (int dy = -1; dy <= 1 && !band; ++dy)
+        for (int dx = -1; dx <= 1 && !band; ++dx) {
+          int nx = (int)x + dx, ny = (int)y + dy;
+          if (nx < 0 || ny < 0 || nx >= (int)w || ny >= (int)h) continue;
+          band = !is_background(b + 4 * ((size_t)ny * w + (size_t)nx)) != cb;
+        }
+      if (!band && r.off_band++ == 0) r.off_band_x = (int)x, r.off_band_y = (int)y;
+    }
+  r.mean_colour_diff = r.covered_both ? colour_sum / r.covered_both : 0;
+  return r;
+}
+
+/* Totals over the whole test, for the summary line. */
+static struct {
+  uint32_t comparisons;
+  uint64_t coverage_diff, off_band, covered;
+  uint32_t worst_colour;
+  double worst_colour_fraction; /* smallest fraction of both-covered pixels within 8/255 */
+  uint64_t triangles;
+} s_totals = {.worst_colour_fraction = 1.0};
+
+typedef struct gl_env {
+  tlod_platform* platform;
+  ref_renderer ref;
+  uint8_t *img_a, *img_b;
+} gl_env;
+
+/* Renders one draw list both ways and compares. */
+static void compare_one(gl_env* env, tlod_backend* backend, const fixture* fx, const tlod_draw_list* dl,
+                        const tlod_view_desc* v, const char* what) {
+  /* A: the GL backend */
+  tlod_platform_bind(env->platform);
+  clear_frame(W, H);
+  tlod_backend_frame frame = backend_frame(dl, v);
+  tlod_result r = tlod_backend_draw(backend, &frame);
+  CHECK_MSG(r == TLOD_SUCCESS, "%s: tlod_backend_draw: %s: %s", what, tlod_result_string(r),
+            tlod_context_last_error(fx->ctx));
+  GLenum err = glGetError();
+  CHECK_MSG(err == GL_NO_ERROR, "%s: GL error after tlod_backend_draw: %s (0x%04X)", what, gl_error_name(err), err);
+  gl_read_rgba(W, H, env->img_a);
+  tlod_backend_timings t = tlod_backend_query_timings(backend);
+
+  /* B: the CPU reference through the independent renderer */
+  tlod_cpu_mesh* m = realise(fx, dl);
+  CHECK_MSG(m, "%s: CPU realisation failed", what);
+  clear_frame(W, H);
+  ref_upload(&env->ref, m);
+  ref_draw(&env->ref, v);
+  gl_read_rgba(W, H, env->img_b);
+  uint64_t draw_list_triangles = dl->pattern_triangles + dl->strip_triangles;
+  uint64_t cpu_triangles = (uint64_t)m->triangle_count + m->folds_skipped;
+  uint32_t strips = m->strips;
+  tlod_cpu_mesh_destroy(fx->ctx, m);
+
+  compare_result c = compare_images(env->img_a, env->img_b, W, H);
+  double colour_fraction = c.covered_both ? (double)c.colour_ok / c.covered_both : 1.0;
+  printf("  %-34s tris %7llu (strips %4u) | covered %5u/%5u, differ %3u (%.3f%%), off band %u | colour "
+         "max %3u mean %.2f, %.2f%% <= 8\n",
+         what, (unsigned long long)draw_list_triangles, strips, c.covered_a, c.covered_b, c.coverage_diff,
+         c.covered_either ? 100.0 * c.coverage_diff / c.covered_either : 0.0, c.off_band, c.max_colour_diff,
+         c.mean_colour_diff, 100.0 * colour_fraction);
+  s_totals.comparisons++;
+  s_totals.coverage_diff += c.coverage_diff;
+  s_totals.off_band += c.off_band;
+  s_totals.covered += c.covered_either;
+  s_totals.triangles += draw_list_triangles;
+  if (c.max_colour_diff > s_totals.worst_colour) s_totals.worst_colour = c.max_colour_diff;
+  if (colour_fraction < s_totals.worst_colour_fraction) s_totals.worst_colour_fraction = colour_fraction;
+
+  CHECK_MSG(t.triangles == draw_list_triangles,
+            "%s: backend drew %llu triangles, the draw list has %llu (pattern %llu + strip %llu)", what,
+            (unsigned long long)t.triangles, (unsigned long long)draw_list_triangles,
+            (unsigned long long)dl->pattern_triangles, (unsigned long long)dl->strip_triangles);
+  CHECK_MSG(cpu_triangles == draw_list_triangles,
+            "%s: CPU mesh has %llu triangles + folds skipped, the draw list %llu", what,
+            (unsigned long long)cpu_triangles, (unsigned long long)draw_list_triangles);
+  CHECK_MSG(c.covered_b > 500, "%s: the reference covers only %u pixels (camera misses the object)", what,
+            c.covered_b);
+  CHECK_MSG(c.covered_a > 0, "%s: the GL backend drew nothing", what);
+  CHECK_MSG(c.off_band == 0, "%s: %u pixels differ in coverage off the silhouette band, first at (%d, %d) (row 0 = bottom)",
+            what, c.off_band, c.off_band_x, c.off_band_y);
+  CHECK_MSG(c.coverage_diff * 1000 <= 5 * c.covered_either, "%s: coverage differs on %u of %u pixels (> 0.5%%)", what,
+            c.coverage_diff, c.covered_either);
+  CHECK_MSG(colour_fraction >= 0.99, "%s: only %.2f%% of the %u commonly covered pixels within 8/255 (max diff %u)",
+            what, 100.0 * colour_fraction, c.covered_both, c.max_colour_diff);
+}
+
+TEST(test_parity) {
+  char err[512] = "";
+  gl_env env = {0};
+  env.platform = gl_test_platform(W, H, err, sizeof err);
+  CHECK_MSG(env.platform, "cannot create a GL context: %s", err);
+  env.img_a = malloc(4 * W * H);
+  env.img_b = malloc(4 * W * H);
+  CHECK(env.img_a && env.img_b);
+  CHECK_MSG(ref_init(&env.ref), "reference renderer failed");
+
+  tlod_context* ctx = NULL;
+  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  tlod_backend* backend = NULL;
+  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl", .label = "gl_parity"}, &backend);
+  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_create(\"gl\"): %s: %s (compiled in: %s)", tlod_result_string(r),
+            tlod_context_last_error(ctx), tlod_backend_names());
+  CHECK_MSG(strcmp(tlod_backend_name(backend), "gl") == 0, "backend name %s", tlod_backend_name(backend));
+
+  shape shapes[3] = {shape_icosphere(2), shape_torus(16, 10), shape_cube_soft()};
+  const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
+  for (int si = 0; si < 3; ++si)
+    for (int ti = 0; ti < 2; ++ti) {
+      fixture fx;
+      CHECK(fixture_make(&fx, ctx, &shapes[si], types[ti], MAX_LEVEL));
+      /* a new surface for the same backend: upload again */
+      r = tlod_backend_upload(backend, fx.surf, fx.pat);
+      CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_upload %s %s: %s: %s", shapes[si].name, type_name(types[ti]),
+                tlod_result_string(r), tlod_context_last_error(ctx));
+      for (int mode = 0; mode < 2; ++mode) {
+        tlod_scheduler_desc sd = {.max_level = MAX_LEVEL};
+        if (mode == 1) sd = (tlod_scheduler_desc){.policy = TLOD_POLICY_ERROR, .epsilon_px = 1e-6f, .max_level = 3,
+                                                  .morph = TLOD_MORPH_NONE};
+        tlod_scheduler* sch = new_scheduler(&fx, sd);
+        CHECK(sch);
+        /* two cameras: an oblique one, then a closer grazing one (the
+         * adaptive second frame morphs for 60 of 200 ms) */
+        camera cams[2] = {camera_look(2.6, -3.4, 1.9, 0, 0, 0, 45, W, H),
+                          camera_look(1.25, 1.9, 0.35, 0.15, 0.1, 0.05, 60, W, H)};
+        for (int ci = 0; ci < 2; ++ci) {
+          tlod_view_desc v = camera_view(&cams[ci]);
+          const tlod_draw_list* dl = plan(&fx, sch, &v, ci == 0 ? 0.0f : 60.0f);
+          CHECK(dl);
+          char what[96];
+          snprintf(what, sizeof what, "%s %s %s cam %d", shapes[si].name, type_name(types[ti]),
+                   mode ? "uniform" : "adaptive", ci);
+          if (mode == 1) {
+            uint32_t at_max = dl->level_histogram[3], visible = dl->instance_count;
+            CHECK_MSG(at_max * 10 >= visible * 9, "%s: uniform mode has only %u of %u patches at level 3", what,
+                      at_max, visible);
+          }
+          int failed_before = _test_checks_failed;
+          compare_one(&env, backend, &fx, dl, &v, what);
+          if (_test_checks_failed != failed_before) {
+            char buf[256];
+            camera_print(&cams[ci], buf, sizeof buf);
+            fprintf(stderr, "  camera: %s\n", buf);
+          }
+        }
+        tlod_scheduler_destroy(sch);
+      }
+      fixture_free(&fx);
+    }
+  printf("  %u comparisons, %llu triangles: coverage differs on %llu of %llu covered pixels (%.4f%%), %llu off the "
+         "band; worst colour diff %u/255, worst within-8 fraction %.3f%%\n",
+         s_totals.comparisons, (unsigned long long)s_totals.triangles, (unsigned long long)s_totals.coverage_diff,
+         (unsigned long long)s_totals.covered,
+         s_totals.covered ? 100.0 * (double)s_totals.coverage_diff / (double)s_totals.covered : 0.0,
+         (unsigned long long)s_totals.off_band, s_totals.worst_colour, 100.0 * s_totals.worst_colour_fraction);
+  for (int k = 0; k < 3; ++k)
+    shape_free(&shapes[k]);
+  tlod_backend_destroy(backend);
+  tlod_context_destroy(ctx);
+  ref_free(&env.ref);
+  free(env.img_a);
+  free(env.img_b);
+  tlod_platform_destroy(env.platform);
+}
+
+int main(void) {
+  RUN(test_parity);
+  TEST_END();
+}

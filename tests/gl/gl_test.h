@@ -1,0 +1,457 @@
+/*
+ * gl_test.h -- shared fixtures of the GL tests (tests/gl/*_test.c): a
+ * headless context from samples/common, cameras, tesslod fixtures, and a
+ * small independent GL mesh renderer for CPU-tessellated reference meshes.
+ * Owned by the GL tests; header-only (every function static).
+ *
+ * The reference renderer draws exactly the shading documented for the GL
+ * backend (tesslod/backend.h, tlod_backend_frame):
+ *   colour = base * (0.15 + 0.85 * max(dot(normalize(n), l), 0)),
+ *   l = normalize(0.3, 0.8, 0.5) by default, base = (0.8, 0.8, 0.8, 1),
+ *   world-space normals, no culling, no two-sided lighting.
+ */
+#ifndef TLOD_GL_TEST_H
+#define TLOD_GL_TEST_H
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/gl.h>
+#include <GL/glext.h>
+#include <dlfcn.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "shapes.h"
+#include "tesslod/backend.h"
+#include "tesslod/cpu.h"
+#include "tesslod/lod.h"
+#include "test.h"
+#include "tlod_platform.h"
+
+/* Stops the calling test as soon as a helper's check failed. */
+#define CALL(expr)                                                                                                     \
+  do {                                                                                                                 \
+    int _failed_before = _test_checks_failed;                                                                          \
+    expr;                                                                                                              \
+    if (_test_checks_failed != _failed_before) return;                                                                 \
+  } while (0)
+
+/* ------------------------------------------------------------------------ */
+/* Driver lifetime under LeakSanitizer                                      */
+/* ------------------------------------------------------------------------ */
+
+/* Mesa's swrast_dri.so keeps allocations in its globals and is dlclose()d
+ * by eglTerminate / at exit; LSan then reports them from an "<unknown
+ * module>" that no suppression file can name (measured: 2 x 56 bytes per
+ * process). Keeping the driver mapped (RTLD_NODELETE) keeps those blocks
+ * reachable, so LSan stays quiet about Mesa without hiding any of our
+ * leaks. Missing libraries are ignored. */
+__attribute__((constructor)) static void gl_test_keep_driver_loaded(void) {
+  static const char* const libs[] = {"libEGL_mesa.so.0", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so",
+                                     "/usr/lib/dri/swrast_dri.so"};
+  for (size_t i = 0; i < sizeof libs / sizeof libs[0]; ++i)
+    (void)dlopen(libs[i], RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
+}
+
+/* ------------------------------------------------------------------------ */
+/* Context                                                                  */
+/* ------------------------------------------------------------------------ */
+
+/* Headless platform of w x h, or NULL with the platform's reason printed:
+ * GL tests FAIL (never skip) when no context can be made. */
+static tlod_platform* gl_test_platform(uint32_t w, uint32_t h, char* error, size_t error_size) {
+  tlod_platform* p = NULL;
+  if (!tlod_platform_create(&(tlod_platform_desc){.width = w, .height = h}, &p, error, error_size)) {
+    fprintf(stderr, "no GL context: %s\n", error);
+    return NULL;
+  }
+  static bool described;
+  if (!described) {
+    char buf[320];
+    printf("  %s\n", tlod_platform_describe(p, buf, sizeof buf));
+    described = true;
+  }
+  return p;
+}
+
+static const char* gl_error_name(GLenum e) {
+  switch (e) {
+  case GL_NO_ERROR: return "GL_NO_ERROR";
+  case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+  case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+  case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+  case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+  case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+  default: return "other GL error";
+  }
+}
+
+/* An offscreen FBO of the test's own (RGBA8 + DEPTH24_STENCIL8). */
+typedef struct gl_target {
+  GLuint fbo, color, depth;
+  uint32_t w, h;
+} gl_target;
+
+static bool gl_target_make(gl_target* t, uint32_t w, uint32_t h) {
+  memset(t, 0, sizeof *t);
+  t->w = w, t->h = h;
+  glGenFramebuffers(1, &t->fbo);
+  glGenRenderbuffers(1, &t->color);
+  glGenRenderbuffers(1, &t->depth);
+  glBindRenderbuffer(GL_RENDERBUFFER, t->color);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, (GLsizei)w, (GLsizei)h);
+  glBindRenderbuffer(GL_RENDERBUFFER, t->depth);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, (GLsizei)w, (GLsizei)h);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, t->color);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, t->depth);
+  return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+}
+
+static void gl_target_free(gl_target* t) {
+  glDeleteFramebuffers(1, &t->fbo);
+  glDeleteRenderbuffers(1, &t->color);
+  glDeleteRenderbuffers(1, &t->depth);
+  memset(t, 0, sizeof *t);
+}
+
+/* Reads the bound read framebuffer, BOTTOM row first (GL order), RGBA8. */
+static void gl_read_rgba(uint32_t w, uint32_t h, uint8_t* rgba) {
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, (GLsizei)w, (GLsizei)h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+}
+
+static void gl_read_stencil(uint32_t w, uint32_t h, uint8_t* stencil) {
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, (GLsizei)w, (GLsizei)h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil);
+}
+
+/* Stencil records the facing of the visible fragment: 1 front, 2 back, 0
+ * nothing drawn. Stencil state is not in the backend's save list (it must
+ * leave it as the engine set it), so this works around tlod_backend_draw
+ * too. Needs the stencil cleared to 0 and the depth test on. */
+static void gl_stencil_facing_begin(void) {
+  glEnable(GL_STENCIL_TEST);
+  glStencilMask(0xFF);
+  glStencilFuncSeparate(GL_FRONT, GL_ALWAYS, 1, 0xFF);
+  glStencilFuncSeparate(GL_BACK, GL_ALWAYS, 2, 0xFF);
+  glStencilOpSeparate(GL_FRONT_AND_BACK, GL_KEEP, GL_KEEP, GL_REPLACE);
+}
+
+static void gl_stencil_facing_end(void) { glDisable(GL_STENCIL_TEST); }
+
+/* ------------------------------------------------------------------------ */
+/* Cameras (double precision, stored as float)                              */
+/* ------------------------------------------------------------------------ */
+
+typedef struct camera {
+  double eye[3], target[3], up[3];
+  double fovy; /* radians */
+  double znear, zfar;
+  uint32_t width, height;
+} camera;
+
+static void cam_cross(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double cam_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* Column-major GL look-at and perspective. */
+static tlod_view_desc camera_view(const camera* c) {
+  tlod_view_desc v;
+  memset(&v, 0, sizeof v);
+  double f[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]}, s[3], u[3];
+  shape_normalize3(f);
+  cam_cross(f, c->up, s);
+  shape_normalize3(s);
+  cam_cross(s, f, u);
+  double m[16] = {0};
+  for (int k = 0; k < 3; ++k) {
+    m[4 * k + 0] = s[k];
+    m[4 * k + 1] = u[k];
+    m[4 * k + 2] = -f[k];
+  }
+  m[12] = -cam_dot(s, c->eye);
+  m[13] = -cam_dot(u, c->eye);
+  m[14] = cam_dot(f, c->eye);
+  m[15] = 1;
+  double p[16] = {0};
+  double n = c->znear, fa = c->zfar, F = 1.0 / tan(c->fovy / 2), aspect = (double)c->width / c->height;
+  p[0] = F / aspect;
+  p[5] = F;
+  p[10] = (fa + n) / (n - fa);
+  p[11] = -1.0;
+  p[14] = 2.0 * fa * n / (n - fa);
+  for (int k = 0; k < 16; ++k)
+    v.view[k] = (float)m[k], v.proj[k] = (float)p[k];
+  v.viewport_width = c->width;
+  v.viewport_height = c->height;
+  return v;
+}
+
+/* Camera at eye looking at target; near / far hug a unit-radius-ish object
+ * (24-bit depth keeps plenty of precision). */
+static camera camera_look(double ex, double ey, double ez, double tx, double ty, double tz, double fovy_deg,
+                          uint32_t w, uint32_t h) {
+  camera c = {.eye = {ex, ey, ez}, .target = {tx, ty, tz}, .up = {0, 0, 1}, .fovy = fovy_deg * SHAPES_PI / 180.0};
+  double d[3] = {tx - ex, ty - ey, tz - ez};
+  double dist = sqrt(cam_dot(d, d));
+  shape_normalize3(d);
+  if (fabs(d[2]) > 0.95) c.up[0] = 0, c.up[1] = 1, c.up[2] = 0;
+  c.znear = dist > 3.0 ? dist - 2.5 : 0.05;
+  c.zfar = dist + 3.0;
+  c.width = w, c.height = h;
+  return c;
+}
+
+static void camera_print(const camera* c, char* buf, size_t size) {
+  snprintf(buf, size, "eye (%.4f, %.4f, %.4f) target (%.4f, %.4f, %.4f) up (%.0f, %.0f, %.0f) fovy %.1f deg", c->eye[0],
+           c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2], c->up[0], c->up[1], c->up[2],
+           c->fovy * 180.0 / SHAPES_PI);
+}
+
+/* ------------------------------------------------------------------------ */
+/* tesslod fixtures                                                         */
+/* ------------------------------------------------------------------------ */
+
+typedef struct fixture {
+  tlod_context* ctx;
+  tlod_mesh* mesh;
+  tlod_surface* surf;
+  tlod_patterns* pat;
+} fixture;
+
+static void fixture_free(fixture* fx) {
+  tlod_surface_destroy(fx->surf);
+  tlod_mesh_destroy(fx->mesh);
+  tlod_patterns_destroy(fx->pat);
+  fx->surf = NULL, fx->mesh = NULL, fx->pat = NULL;
+}
+
+static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type, uint32_t max_level) {
+  memset(fx, 0, sizeof *fx);
+  fx->ctx = ctx;
+  tlod_mesh_desc md = shape_mesh_desc(s);
+  tlod_result r = tlod_mesh_create(ctx, &md, &fx->mesh);
+  if (r == TLOD_SUCCESS) r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type}, &fx->surf);
+  if (r == TLOD_SUCCESS) r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = max_level}, &fx->pat);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "fixture %s: %s: %s\n", s->name, tlod_result_string(r), tlod_context_last_error(ctx));
+    fixture_free(fx);
+    return false;
+  }
+  return true;
+}
+
+static const char* type_name(tlod_surface_type t) {
+  return t == TLOD_SURFACE_FLAT ? "flat" : t == TLOD_SURFACE_PN ? "pn" : "phong";
+}
+
+static tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
+  tlod_scheduler* s = NULL;
+  tlod_result r = tlod_scheduler_create(fx->ctx, fx->surf, fx->pat, &d, &s);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "tlod_scheduler_create: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    return NULL;
+  }
+  return s;
+}
+
+/* One frame for one view; NULL on failure (reported). */
+static const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* v, float dt_ms) {
+  tlod_frame_desc f = {.views = v, .view_count = 1, .dt_ms = dt_ms};
+  tlod_result r = tlod_scheduler_update(s, &f);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "tlod_scheduler_update: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    return NULL;
+  }
+  return tlod_scheduler_draw_list(s, 0);
+}
+
+/* The CPU reference realisation of a draw list (welded, with normals). */
+static tlod_cpu_mesh* realise(const fixture* fx, const tlod_draw_list* dl) {
+  tlod_cpu_tessellate_desc d = {.draw_list = dl};
+  tlod_cpu_mesh* out = NULL;
+  tlod_result r = tlod_cpu_tessellate(fx->ctx, fx->surf, fx->pat, &d, &out);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "tlod_cpu_tessellate(draw_list): %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    return NULL;
+  }
+  return out;
+}
+
+static tlod_backend_frame backend_frame(const tlod_draw_list* dl, const tlod_view_desc* v) {
+  tlod_backend_frame f;
+  memset(&f, 0, sizeof f);
+  f.draw_list = dl;
+  memcpy(f.view, v->view, sizeof f.view);
+  memcpy(f.proj, v->proj, sizeof f.proj);
+  f.viewport[2] = v->viewport_width;
+  f.viewport[3] = v->viewport_height;
+  f.debug = TLOD_DEBUG_NONE;
+  return f;
+}
+
+/* ------------------------------------------------------------------------ */
+/* Reference mesh renderer (independent of the GL backend)                  */
+/* ------------------------------------------------------------------------ */
+
+typedef struct ref_renderer {
+  GLuint program, vao, vbo[2], ebo;
+  GLint u_view, u_proj, u_light, u_base;
+  GLsizei index_count;
+} ref_renderer;
+
+static const char* const ref_vs = "#version 450 core\n"
+                                  "layout(location = 0) in vec3 a_position;\n"
+                                  "layout(location = 1) in vec3 a_normal;\n"
+                                  "uniform mat4 u_view, u_proj;\n"
+                                  "out vec3 v_normal;\n"
+                                  "void main() {\n"
+                                  "  v_normal = a_normal;\n"
+                                  "  gl_Position = u_proj * (u_view * vec4(a_position, 1.0));\n"
+                                  "}\n";
+static const char* const ref_fs = "#version 450 core\n"
+                                  "in vec3 v_normal;\n"
+                                  "uniform vec3 u_light;\n"
+                                  "uniform vec4 u_base;\n"
+                                  "out vec4 o_color;\n"
+                                  "void main() {\n"
+                                  "  vec3 n = normalize(v_normal);\n"
+                                  "  o_color = vec4(u_base.rgb * (0.15 + 0.85 * max(dot(n, u_light), 0.0)), u_base.a);\n"
+                                  "}\n";
+
+static GLuint gl_compile(GLenum stage, const char* src) {
+  GLuint s = glCreateShader(stage);
+  glShaderSource(s, 1, &src, NULL);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[1024] = "";
+    glGetShaderInfoLog(s, sizeof log, NULL, log);
+    fprintf(stderr, "shader compile failed: %s\n", log);
+    glDeleteShader(s);
+    return 0;
+  }
+  return s;
+}
+
+static GLuint gl_program(const char* vs, const char* fs) {
+  GLuint v = gl_compile(GL_VERTEX_SHADER, vs), f = gl_compile(GL_FRAGMENT_SHADER, fs);
+  if (!v || !f) {
+    glDeleteShader(v);
+    glDeleteShader(f);
+    return 0;
+  }
+  GLuint p = glCreateProgram();
+  glAttachShader(p, v);
+  glAttachShader(p, f);
+  glLinkProgram(p);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[1024] = "";
+    glGetProgramInfoLog(p, sizeof log, NULL, log);
+    fprintf(stderr, "program link failed: %s\n", log);
+    glDeleteProgram(p);
+    return 0;
+  }
+  return p;
+}
+
+static bool ref_init(ref_renderer* r) {
+  memset(r, 0, sizeof *r);
+  r->program = gl_program(ref_vs, ref_fs);
+  if (!r->program) return false;
+  r->u_view = glGetUniformLocation(r->program, "u_view");
+  r->u_proj = glGetUniformLocation(r->program, "u_proj");
+  r->u_light = glGetUniformLocation(r->program, "u_light");
+  r->u_base = glGetUniformLocation(r->program, "u_base");
+  glGenVertexArrays(1, &r->vao);
+  glGenBuffers(2, r->vbo);
+  glGenBuffers(1, &r->ebo);
+  glBindVertexArray(r->vao);
+  for (GLuint a = 0; a < 2; ++a) {
+    glBindBuffer(GL_ARRAY_BUFFER, r->vbo[a]);
+    glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, 12, NULL);
+    glEnableVertexAttribArray(a);
+  }
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ebo);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  return glGetError() == GL_NO_ERROR;
+}
+
+static void ref_free(ref_renderer* r) {
+  glDeleteProgram(r->program);
+  glDeleteVertexArrays(1, &r->vao);
+  glDeleteBuffers(2, r->vbo);
+  glDeleteBuffers(1, &r->ebo);
+  memset(r, 0, sizeof *r);
+}
+
+static void ref_upload(ref_renderer* r, const tlod_cpu_mesh* m) {
+  glBindVertexArray(r->vao);
+  glBindBuffer(GL_ARRAY_BUFFER, r->vbo[0]);
+  glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)m->vertex_count * 12, m->positions, GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, r->vbo[1]);
+  glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)m->vertex_count * 12, m->normals, GL_STREAM_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)m->triangle_count * 12, m->indices, GL_STREAM_DRAW);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  r->index_count = (GLsizei)(3 * m->triangle_count);
+}
+
+/* Draws the uploaded mesh into the bound framebuffer with the backend's
+ * default light and colour. The caller sets viewport, depth and clears. */
+static void ref_draw(const ref_renderer* r, const tlod_view_desc* v) {
+  double l[3] = {0.3, 0.8, 0.5};
+  shape_normalize3(l);
+  glUseProgram(r->program);
+  glUniformMatrix4fv(r->u_view, 1, GL_FALSE, v->view);
+  glUniformMatrix4fv(r->u_proj, 1, GL_FALSE, v->proj);
+  glUniform3f(r->u_light, (float)l[0], (float)l[1], (float)l[2]);
+  glUniform4f(r->u_base, 0.8f, 0.8f, 0.8f, 1.0f);
+  glBindVertexArray(r->vao);
+  glDrawElements(GL_TRIANGLES, r->index_count, GL_UNSIGNED_INT, NULL);
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+/* ------------------------------------------------------------------------ */
+/* Images                                                                   */
+/* ------------------------------------------------------------------------ */
+
+/* The clear colour of the GL tests: pure blue. Shaded pixels are grey
+ * (r == g == b), so coverage is exact: not-background == covered. */
+#define BG_R 0
+#define BG_G 0
+#define BG_B 255
+
+static void clear_frame(uint32_t w, uint32_t h) {
+  glViewport(0, 0, (GLsizei)w, (GLsizei)h);
+  glDisable(GL_SCISSOR_TEST);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilMask(0xFF);
+  glClearColor(BG_R / 255.0f, BG_G / 255.0f, BG_B / 255.0f, 1.0f);
+  glClearDepth(1.0);
+  glClearStencil(0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+}
+
+static bool is_background(const uint8_t* px) { return px[0] == BG_R && px[1] == BG_G && px[2] == BG_B; }
+
+#endif
