@@ -81,3 +81,12 @@ vec3 safe_normalize(vec3 v, vec3 fallback) {
   float l = length(v);
   return l > 0.0 ? v / l : fallback;
 }
+
+// Corner weights at (u, v): barycentric (u, v, 1 - u - v) or bilinear.
+void corner_weights(uint n, vec2 uv, out float w[4]) {
+  if (n == 3u) {
+    w[0] = uv.x; w[1] = uv.y; w[2] = 1.0 - uv.x - uv.y; w[3] = 0.0;
+  } else {
+    w[0] = (1.0 - uv.x) * (1.0 - uv.y); w[1] = uv.x * (1.0 - uv.y); w[2] = uv.x * uv.y; w[3] = (1.0 - uv.x) * uv.y;
+  }
+}

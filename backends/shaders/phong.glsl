@@ -14,11 +14,7 @@ void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, float t,
 void interior_point(Patch P, vec2 uv, out vec3 pos, out vec3 nrm) {
   float w[4];
   uint n = P.info.x;
-  if (n == 3u) {
-    w[0] = uv.x; w[1] = uv.y; w[2] = 1.0 - uv.x - uv.y; w[3] = 0.0;
-  } else {
-    w[0] = (1.0 - uv.x) * (1.0 - uv.y); w[1] = uv.x * (1.0 - uv.y); w[2] = uv.x * uv.y; w[3] = (1.0 - uv.x) * uv.y;
-  }
+  corner_weights(n, uv, w);
   vec3 q = vec3(0.0), nn = vec3(0.0);
   float alpha = 0.0;
   for (uint i = 0u; i < n; i++) { q += P.p[i].xyz * w[i]; alpha += P.p[i].w * w[i]; nn += P.n[i].xyz * w[i]; }

@@ -1,7 +1,9 @@
 /* tesslod::core -- context: allocator, logger, errors, parallel-for. */
+#define _POSIX_C_SOURCE 200809L /* clock_gettime, sysconf */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "internal.h"
@@ -141,4 +143,10 @@ void _tlod_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* data, ui
   } else {
     fn(data, 0, count, 0);
   }
+}
+
+double _tlod_now_ms(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }

@@ -35,6 +35,9 @@ void _tlod_free(const tlod_context* ctx, void* ptr);
 tlod_result _tlod_fail(tlod_context* ctx, tlod_result result, const char* fmt, ...) _TLOD_PRINTF(3, 4);
 void _tlod_log(const tlod_context* ctx, tlod_log_level level, const char* fmt, ...) _TLOD_PRINTF(3, 4);
 
+/* Monotonic wall clock, milliseconds (stage timings). */
+double _tlod_now_ms(void);
+
 /* Runs fn over [0, count) on the context's workers; returns when done. */
 void _tlod_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* data, uint32_t count);
 uint32_t _tlod_worker_count(const tlod_context* ctx);

@@ -1,4 +1,3 @@
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 /* tesslod::lod -- the per-frame scheduler: silhouette depth, projected
  * error, levels by policy under budgets, geomorph state, draw list.
  *
@@ -11,16 +10,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
 #include "patterns_internal.h"
 #include "scheduler_internal.h"
-
-static double now_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
 
 static tlod_scheduler_desc scheduler_desc_defaults(const tlod_scheduler_desc* in, const tlod_patterns* p) {
   tlod_scheduler_desc d = in ? *in : (tlod_scheduler_desc){0};
@@ -445,12 +437,12 @@ static tlod_result plan_view(tlod_scheduler* s, uint32_t v, const tlod_frame_des
                  INFINITY,
                  fr->dt_ms / s->desc.morph_ms,
                  locked ? &s->views[0] : NULL};
-  double t0 = now_ms();
+  double t0 = _tlod_now_ms();
   _tlod_camera_from_view(vd->view, vd->proj, &vs->cam);
   _tlod_parallel_for(s->ctx, silhouette_task, &j, s->vertex_count);
-  double t1 = now_ms();
+  double t1 = _tlod_now_ms();
   _tlod_parallel_for(s->ctx, metric_task, &j, s->patch_count);
-  double t2 = now_ms();
+  double t2 = _tlod_now_ms();
   if (locked) {
     memcpy(vs->target, j.main->target, sizeof(float) * s->patch_count);
     memcpy(vs->cont, j.main->cont, sizeof(float) * s->patch_count);
@@ -458,14 +450,14 @@ static tlod_result plan_view(tlod_scheduler* s, uint32_t v, const tlod_frame_des
   } else {
     fit_budget(s, &j);
   }
-  double t3 = now_ms();
+  double t3 = _tlod_now_ms();
   if (!locked) _tlod_parallel_for(s->ctx, morph_task, &j, s->patch_count);
   vs->has_history = true;
-  double t4 = now_ms();
+  double t4 = _tlod_now_ms();
   fill_instances(s, vs);
   tlod_result r = fill_strips(s, vs);
   fill_stats(s, vs, j.eps);
-  double t5 = now_ms();
+  double t5 = _tlod_now_ms();
   double* ms = vs->list.stage_ms;
   ms[TLOD_STAGE_SILHOUETTE] = t1 - t0, ms[TLOD_STAGE_METRIC] = t2 - t1, ms[TLOD_STAGE_LEVELS] = t3 - t2;
   ms[TLOD_STAGE_MORPH] = t4 - t3, ms[TLOD_STAGE_STRIPS] = t5 - t4;

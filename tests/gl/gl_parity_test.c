@@ -148,14 +148,13 @@ static void compare_one(gl_env* env, tlod_backend* backend, const fixture* fx, c
             "%s: backend drew %llu triangles, the draw list has %llu (pattern %llu + strip %llu)", what,
             (unsigned long long)t.triangles, (unsigned long long)draw_list_triangles,
             (unsigned long long)dl->pattern_triangles, (unsigned long long)dl->strip_triangles);
-  CHECK_MSG(cpu_triangles == draw_list_triangles,
-            "%s: CPU mesh has %llu triangles + folds skipped, the draw list %llu", what,
-            (unsigned long long)cpu_triangles, (unsigned long long)draw_list_triangles);
-  CHECK_MSG(c.covered_b > 500, "%s: the reference covers only %u pixels (camera misses the object)", what,
-            c.covered_b);
+  CHECK_MSG(cpu_triangles == draw_list_triangles, "%s: CPU mesh has %llu triangles + folds skipped, the draw list %llu",
+            what, (unsigned long long)cpu_triangles, (unsigned long long)draw_list_triangles);
+  CHECK_MSG(c.covered_b > 500, "%s: the reference covers only %u pixels (camera misses the object)", what, c.covered_b);
   CHECK_MSG(c.covered_a > 0, "%s: the GL backend drew nothing", what);
-  CHECK_MSG(c.off_band == 0, "%s: %u pixels differ in coverage off the silhouette band, first at (%d, %d) (row 0 = bottom)",
-            what, c.off_band, c.off_band_x, c.off_band_y);
+  CHECK_MSG(c.off_band == 0,
+            "%s: %u pixels differ in coverage off the silhouette band, first at (%d, %d) (row 0 = bottom)", what,
+            c.off_band, c.off_band_x, c.off_band_y);
   CHECK_MSG(c.coverage_diff * 1000 <= 5 * c.covered_either, "%s: coverage differs on %u of %u pixels (> 0.5%%)", what,
             c.coverage_diff, c.covered_either);
   CHECK_MSG(colour_fraction >= 0.99, "%s: only %.2f%% of the %u commonly covered pixels within 8/255 (max diff %u)",
@@ -192,8 +191,9 @@ TEST(test_parity) {
                 tlod_result_string(r), tlod_context_last_error(ctx));
       for (int mode = 0; mode < 2; ++mode) {
         tlod_scheduler_desc sd = {.max_level = MAX_LEVEL};
-        if (mode == 1) sd = (tlod_scheduler_desc){.policy = TLOD_POLICY_ERROR, .epsilon_px = 1e-6f, .max_level = 3,
-                                                  .morph = TLOD_MORPH_NONE};
+        if (mode == 1)
+          sd = (tlod_scheduler_desc){
+              .policy = TLOD_POLICY_ERROR, .epsilon_px = 1e-6f, .max_level = 3, .morph = TLOD_MORPH_NONE};
         tlod_scheduler* sch = new_scheduler(&fx, sd);
         CHECK(sch);
         /* two cameras: an oblique one, then a closer grazing one (the
@@ -209,8 +209,8 @@ TEST(test_parity) {
                    mode ? "uniform" : "adaptive", ci);
           if (mode == 1) {
             uint32_t at_max = dl->level_histogram[3], visible = dl->instance_count;
-            CHECK_MSG(at_max * 10 >= visible * 9, "%s: uniform mode has only %u of %u patches at level 3", what,
-                      at_max, visible);
+            CHECK_MSG(at_max * 10 >= visible * 9, "%s: uniform mode has only %u of %u patches at level 3", what, at_max,
+                      visible);
           }
           int failed_before = _test_checks_failed;
           compare_one(&env, backend, &fx, dl, &v, what);

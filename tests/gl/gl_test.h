@@ -1,5 +1,5 @@
 /*
- * gl_test.h -- shared fixtures of the GL tests (tests/gl/*_test.c): a
+ * gl_test.h -- shared fixtures of the GL tests (tests/gl/<name>_test.c): a
  * headless context from samples/common, cameras, tesslod fixtures, and a
  * small independent GL mesh renderer for CPU-tessellated reference meshes.
  * Owned by the GL tests; header-only (every function static).
@@ -60,7 +60,7 @@ __attribute__((constructor)) static void gl_test_keep_driver_loaded(void) {
 
 /* Headless platform of w x h, or NULL with the platform's reason printed:
  * GL tests FAIL (never skip) when no context can be made. */
-static tlod_platform* gl_test_platform(uint32_t w, uint32_t h, char* error, size_t error_size) {
+static inline tlod_platform* gl_test_platform(uint32_t w, uint32_t h, char* error, size_t error_size) {
   tlod_platform* p = NULL;
   if (!tlod_platform_create(&(tlod_platform_desc){.width = w, .height = h}, &p, error, error_size)) {
     fprintf(stderr, "no GL context: %s\n", error);
@@ -75,15 +75,22 @@ static tlod_platform* gl_test_platform(uint32_t w, uint32_t h, char* error, size
   return p;
 }
 
-static const char* gl_error_name(GLenum e) {
+static inline const char* gl_error_name(GLenum e) {
   switch (e) {
-  case GL_NO_ERROR: return "GL_NO_ERROR";
-  case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-  case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-  case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-  case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-  case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-  default: return "other GL error";
+  case GL_NO_ERROR:
+    return "GL_NO_ERROR";
+  case GL_INVALID_ENUM:
+    return "GL_INVALID_ENUM";
+  case GL_INVALID_VALUE:
+    return "GL_INVALID_VALUE";
+  case GL_INVALID_OPERATION:
+    return "GL_INVALID_OPERATION";
+  case GL_INVALID_FRAMEBUFFER_OPERATION:
+    return "GL_INVALID_FRAMEBUFFER_OPERATION";
+  case GL_OUT_OF_MEMORY:
+    return "GL_OUT_OF_MEMORY";
+  default:
+    return "other GL error";
   }
 }
 
@@ -93,7 +100,7 @@ typedef struct gl_target {
   uint32_t w, h;
 } gl_target;
 
-static bool gl_target_make(gl_target* t, uint32_t w, uint32_t h) {
+static inline bool gl_target_make(gl_target* t, uint32_t w, uint32_t h) {
   memset(t, 0, sizeof *t);
   t->w = w, t->h = h;
   glGenFramebuffers(1, &t->fbo);
@@ -110,7 +117,7 @@ static bool gl_target_make(gl_target* t, uint32_t w, uint32_t h) {
   return glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 
-static void gl_target_free(gl_target* t) {
+static inline void gl_target_free(gl_target* t) {
   glDeleteFramebuffers(1, &t->fbo);
   glDeleteRenderbuffers(1, &t->color);
   glDeleteRenderbuffers(1, &t->depth);
@@ -118,12 +125,12 @@ static void gl_target_free(gl_target* t) {
 }
 
 /* Reads the bound read framebuffer, BOTTOM row first (GL order), RGBA8. */
-static void gl_read_rgba(uint32_t w, uint32_t h, uint8_t* rgba) {
+static inline void gl_read_rgba(uint32_t w, uint32_t h, uint8_t* rgba) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, (GLsizei)w, (GLsizei)h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
 }
 
-static void gl_read_stencil(uint32_t w, uint32_t h, uint8_t* stencil) {
+static inline void gl_read_stencil(uint32_t w, uint32_t h, uint8_t* stencil) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, (GLsizei)w, (GLsizei)h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil);
 }
@@ -132,7 +139,7 @@ static void gl_read_stencil(uint32_t w, uint32_t h, uint8_t* stencil) {
  * nothing drawn. Stencil state is not in the backend's save list (it must
  * leave it as the engine set it), so this works around tlod_backend_draw
  * too. Needs the stencil cleared to 0 and the depth test on. */
-static void gl_stencil_facing_begin(void) {
+static inline void gl_stencil_facing_begin(void) {
   glEnable(GL_STENCIL_TEST);
   glStencilMask(0xFF);
   glStencilFuncSeparate(GL_FRONT, GL_ALWAYS, 1, 0xFF);
@@ -140,7 +147,7 @@ static void gl_stencil_facing_begin(void) {
   glStencilOpSeparate(GL_FRONT_AND_BACK, GL_KEEP, GL_KEEP, GL_REPLACE);
 }
 
-static void gl_stencil_facing_end(void) { glDisable(GL_STENCIL_TEST); }
+static inline void gl_stencil_facing_end(void) { glDisable(GL_STENCIL_TEST); }
 
 /* ------------------------------------------------------------------------ */
 /* Cameras (double precision, stored as float)                              */
@@ -153,16 +160,16 @@ typedef struct camera {
   uint32_t width, height;
 } camera;
 
-static void cam_cross(const double a[3], const double b[3], double out[3]) {
+static inline void cam_cross(const double a[3], const double b[3], double out[3]) {
   out[0] = a[1] * b[2] - a[2] * b[1];
   out[1] = a[2] * b[0] - a[0] * b[2];
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-static double cam_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static inline double cam_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* Column-major GL look-at and perspective. */
-static tlod_view_desc camera_view(const camera* c) {
+static inline tlod_view_desc camera_view(const camera* c) {
   tlod_view_desc v;
   memset(&v, 0, sizeof v);
   double f[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]}, s[3], u[3];
@@ -196,8 +203,8 @@ static tlod_view_desc camera_view(const camera* c) {
 
 /* Camera at eye looking at target; near / far hug a unit-radius-ish object
  * (24-bit depth keeps plenty of precision). */
-static camera camera_look(double ex, double ey, double ez, double tx, double ty, double tz, double fovy_deg,
-                          uint32_t w, uint32_t h) {
+static inline camera camera_look(double ex, double ey, double ez, double tx, double ty, double tz, double fovy_deg,
+                                 uint32_t w, uint32_t h) {
   camera c = {.eye = {ex, ey, ez}, .target = {tx, ty, tz}, .up = {0, 0, 1}, .fovy = fovy_deg * SHAPES_PI / 180.0};
   double d[3] = {tx - ex, ty - ey, tz - ez};
   double dist = sqrt(cam_dot(d, d));
@@ -209,7 +216,7 @@ static camera camera_look(double ex, double ey, double ez, double tx, double ty,
   return c;
 }
 
-static void camera_print(const camera* c, char* buf, size_t size) {
+static inline void camera_print(const camera* c, char* buf, size_t size) {
   snprintf(buf, size, "eye (%.4f, %.4f, %.4f) target (%.4f, %.4f, %.4f) up (%.0f, %.0f, %.0f) fovy %.1f deg", c->eye[0],
            c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2], c->up[0], c->up[1], c->up[2],
            c->fovy * 180.0 / SHAPES_PI);
@@ -226,14 +233,15 @@ typedef struct fixture {
   tlod_patterns* pat;
 } fixture;
 
-static void fixture_free(fixture* fx) {
+static inline void fixture_free(fixture* fx) {
   tlod_surface_destroy(fx->surf);
   tlod_mesh_destroy(fx->mesh);
   tlod_patterns_destroy(fx->pat);
   fx->surf = NULL, fx->mesh = NULL, fx->pat = NULL;
 }
 
-static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type, uint32_t max_level) {
+static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type,
+                                uint32_t max_level) {
   memset(fx, 0, sizeof *fx);
   fx->ctx = ctx;
   tlod_mesh_desc md = shape_mesh_desc(s);
@@ -248,11 +256,11 @@ static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_su
   return true;
 }
 
-static const char* type_name(tlod_surface_type t) {
+static inline const char* type_name(tlod_surface_type t) {
   return t == TLOD_SURFACE_FLAT ? "flat" : t == TLOD_SURFACE_PN ? "pn" : "phong";
 }
 
-static tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
+static inline tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
   tlod_scheduler* s = NULL;
   tlod_result r = tlod_scheduler_create(fx->ctx, fx->surf, fx->pat, &d, &s);
   if (r != TLOD_SUCCESS) {
@@ -263,7 +271,7 @@ static tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
 }
 
 /* One frame for one view; NULL on failure (reported). */
-static const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* v, float dt_ms) {
+static inline const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* v, float dt_ms) {
   tlod_frame_desc f = {.views = v, .view_count = 1, .dt_ms = dt_ms};
   tlod_result r = tlod_scheduler_update(s, &f);
   if (r != TLOD_SUCCESS) {
@@ -274,18 +282,19 @@ static const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tl
 }
 
 /* The CPU reference realisation of a draw list (welded, with normals). */
-static tlod_cpu_mesh* realise(const fixture* fx, const tlod_draw_list* dl) {
+static inline tlod_cpu_mesh* realise(const fixture* fx, const tlod_draw_list* dl) {
   tlod_cpu_tessellate_desc d = {.draw_list = dl};
   tlod_cpu_mesh* out = NULL;
   tlod_result r = tlod_cpu_tessellate(fx->ctx, fx->surf, fx->pat, &d, &out);
   if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "tlod_cpu_tessellate(draw_list): %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    fprintf(stderr, "tlod_cpu_tessellate(draw_list): %s: %s\n", tlod_result_string(r),
+            tlod_context_last_error(fx->ctx));
     return NULL;
   }
   return out;
 }
 
-static tlod_backend_frame backend_frame(const tlod_draw_list* dl, const tlod_view_desc* v) {
+static inline tlod_backend_frame backend_frame(const tlod_draw_list* dl, const tlod_view_desc* v) {
   tlod_backend_frame f;
   memset(&f, 0, sizeof f);
   f.draw_list = dl;
@@ -316,17 +325,18 @@ static const char* const ref_vs = "#version 450 core\n"
                                   "  v_normal = a_normal;\n"
                                   "  gl_Position = u_proj * (u_view * vec4(a_position, 1.0));\n"
                                   "}\n";
-static const char* const ref_fs = "#version 450 core\n"
-                                  "in vec3 v_normal;\n"
-                                  "uniform vec3 u_light;\n"
-                                  "uniform vec4 u_base;\n"
-                                  "out vec4 o_color;\n"
-                                  "void main() {\n"
-                                  "  vec3 n = normalize(v_normal);\n"
-                                  "  o_color = vec4(u_base.rgb * (0.15 + 0.85 * max(dot(n, u_light), 0.0)), u_base.a);\n"
-                                  "}\n";
+static const char* const ref_fs =
+    "#version 450 core\n"
+    "in vec3 v_normal;\n"
+    "uniform vec3 u_light;\n"
+    "uniform vec4 u_base;\n"
+    "out vec4 o_color;\n"
+    "void main() {\n"
+    "  vec3 n = normalize(v_normal);\n"
+    "  o_color = vec4(u_base.rgb * (0.15 + 0.85 * max(dot(n, u_light), 0.0)), u_base.a);\n"
+    "}\n";
 
-static GLuint gl_compile(GLenum stage, const char* src) {
+static inline GLuint gl_compile(GLenum stage, const char* src) {
   GLuint s = glCreateShader(stage);
   glShaderSource(s, 1, &src, NULL);
   glCompileShader(s);
@@ -342,7 +352,7 @@ static GLuint gl_compile(GLenum stage, const char* src) {
   return s;
 }
 
-static GLuint gl_program(const char* vs, const char* fs) {
+static inline GLuint gl_program(const char* vs, const char* fs) {
   GLuint v = gl_compile(GL_VERTEX_SHADER, vs), f = gl_compile(GL_FRAGMENT_SHADER, fs);
   if (!v || !f) {
     glDeleteShader(v);
@@ -367,7 +377,7 @@ static GLuint gl_program(const char* vs, const char* fs) {
   return p;
 }
 
-static bool ref_init(ref_renderer* r) {
+static inline bool ref_init(ref_renderer* r) {
   memset(r, 0, sizeof *r);
   r->program = gl_program(ref_vs, ref_fs);
   if (!r->program) return false;
@@ -390,7 +400,7 @@ static bool ref_init(ref_renderer* r) {
   return glGetError() == GL_NO_ERROR;
 }
 
-static void ref_free(ref_renderer* r) {
+static inline void ref_free(ref_renderer* r) {
   glDeleteProgram(r->program);
   glDeleteVertexArrays(1, &r->vao);
   glDeleteBuffers(2, r->vbo);
@@ -398,7 +408,7 @@ static void ref_free(ref_renderer* r) {
   memset(r, 0, sizeof *r);
 }
 
-static void ref_upload(ref_renderer* r, const tlod_cpu_mesh* m) {
+static inline void ref_upload(ref_renderer* r, const tlod_cpu_mesh* m) {
   glBindVertexArray(r->vao);
   glBindBuffer(GL_ARRAY_BUFFER, r->vbo[0]);
   glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)m->vertex_count * 12, m->positions, GL_STREAM_DRAW);
@@ -412,7 +422,7 @@ static void ref_upload(ref_renderer* r, const tlod_cpu_mesh* m) {
 
 /* Draws the uploaded mesh into the bound framebuffer with the backend's
  * default light and colour. The caller sets viewport, depth and clears. */
-static void ref_draw(const ref_renderer* r, const tlod_view_desc* v) {
+static inline void ref_draw(const ref_renderer* r, const tlod_view_desc* v) {
   double l[3] = {0.3, 0.8, 0.5};
   shape_normalize3(l);
   glUseProgram(r->program);
@@ -436,7 +446,7 @@ static void ref_draw(const ref_renderer* r, const tlod_view_desc* v) {
 #define BG_G 0
 #define BG_B 255
 
-static void clear_frame(uint32_t w, uint32_t h) {
+static inline void clear_frame(uint32_t w, uint32_t h) {
   glViewport(0, 0, (GLsizei)w, (GLsizei)h);
   glDisable(GL_SCISSOR_TEST);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -452,6 +462,6 @@ static void clear_frame(uint32_t w, uint32_t h) {
   glDisable(GL_BLEND);
 }
 
-static bool is_background(const uint8_t* px) { return px[0] == BG_R && px[1] == BG_G && px[2] == BG_B; }
+static inline bool is_background(const uint8_t* px) { return px[0] == BG_R && px[1] == BG_G && px[2] == BG_B; }
 
 #endif

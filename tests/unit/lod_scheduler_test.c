@@ -842,7 +842,7 @@ TEST(test_level_choice) {
       fixture_free(&fx);
     }
   printf("  %u frames, %u visible patches: worst e_max relative error %.2g; culling: %u must-cull and %u must-keep "
-         "patches confirmed, %u near a frustum edge (either); %u policy levels checked (%u within 1e-5 of a "
+         "patches confirmed, %u near a frustum edge (either); %u error-policy levels checked (%u within 1e-5 of a "
          "threshold)\n",
          frames, st.patches, st.worst_rel, st.culled, st.kept, st.edge_zone, st.policy_checked, st.ambiguous);
   CHECK(st.culled > 100 && st.kept > 1000);

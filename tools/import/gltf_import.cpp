@@ -20,27 +20,14 @@
 #include <string>
 #include <vector>
 
+#include "import_error.hpp"
 #include "import_internal.h"
 
 namespace {
 
-// Internal error: thrown to the one catch in _tlod_import_gltf.
-struct ImportError {
-  tlod_result code;
-  std::string message;
-};
-
-std::string format(const char* fmt, ...) _TLOD_IMPORT_PRINTF(1, 2);
-std::string format(const char* fmt, ...) {
-  char buf[512];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(buf, sizeof buf, fmt, ap);
-  va_end(ap);
-  return buf;
-}
-
-[[noreturn]] void fail(tlod_result code, const std::string& message) { throw ImportError{code, message}; }
+using tlod_import_detail::fail;
+using tlod_import_detail::format;
+using tlod_import_detail::ImportError;
 
 // ---------------------------------------------------------------------------
 // Matrices: column-major 4x4 in double, like glTF's node.matrix.

@@ -24,26 +24,14 @@
 #include <string>
 #include <vector>
 
+#include "import_error.hpp"
 #include "import_internal.h"
 
 namespace {
 
-struct ImportError {
-  tlod_result code;
-  std::string message;
-};
-
-std::string format(const char* fmt, ...) _TLOD_IMPORT_PRINTF(1, 2);
-std::string format(const char* fmt, ...) {
-  char buf[512];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(buf, sizeof buf, fmt, ap);
-  va_end(ap);
-  return buf;
-}
-
-[[noreturn]] void fail(tlod_result code, const std::string& message) { throw ImportError{code, message}; }
+using tlod_import_detail::fail;
+using tlod_import_detail::format;
+using tlod_import_detail::ImportError;
 
 // tinyobjloader's num_face_vertices is an unsigned char.
 constexpr size_t kMaxCorners = 255;

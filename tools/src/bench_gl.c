@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "bench_gl.h"
+#include "bench_lod.h"
 #include "camera.h"
 
 #if TLOD_HAS_GL
@@ -16,53 +17,6 @@
 
 #include <GL/gl.h>
 
-typedef struct gl_scene {
-  tlod_context* ctx;
-  cli_mesh in;
-  tlod_mesh* mesh;
-  tlod_surface* surface;
-  tlod_patterns* patterns;
-} gl_scene;
-
-static void scene_free(gl_scene* s) {
-  tlod_patterns_destroy(s->patterns);
-  tlod_surface_destroy(s->surface);
-  tlod_mesh_destroy(s->mesh);
-  tlod_context_destroy(s->ctx);
-  cli_mesh_free(&s->in);
-}
-
-static int scene_load(const char* in, tlod_surface_type type, gl_scene* s) {
-  memset(s, 0, sizeof(*s));
-  if (tlod_context_create(&(tlod_context_desc){.label = "bench-gl"}, &s->ctx) != TLOD_SUCCESS)
-    return cli_error(CLI_FAILED, "cannot create a context");
-  int rc = cli_load(in, &s->in);
-  if (rc == CLI_OK && type == TLOD_SURFACE_PN) rc = cli_split_quads(&s->in);
-  if (rc == CLI_OK) rc = cli_create_mesh(s->ctx, &s->in, TLOD_NORMALS_KEEP, 0.0f, &s->mesh);
-  if (rc == CLI_OK &&
-      (tlod_surface_create(s->ctx, s->mesh, &(tlod_surface_desc){.type = type}, &s->surface) != TLOD_SUCCESS ||
-       tlod_patterns_create(s->ctx, &(tlod_patterns_desc){.max_level = 6}, &s->patterns) != TLOD_SUCCESS))
-    rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
-  if (rc != CLI_OK) scene_free(s);
-  return rc;
-}
-
-static void frame_camera(const tlod_mesh* mesh, float angle, uint32_t w, uint32_t h, tlod_view_desc* v) {
-  tlod_mesh_info info = tlod_mesh_query_info(mesh);
-  float c[3], r = 0.0f;
-  for (int i = 0; i < 3; i++) {
-    c[i] = 0.5f * (info.bbox_min[i] + info.bbox_max[i]);
-    r += 0.25f * (info.bbox_max[i] - info.bbox_min[i]) * (info.bbox_max[i] - info.bbox_min[i]);
-  }
-  r = sqrtf(r);
-  float d = r / tanf(22.5f * 3.14159265f / 180.0f);
-  float eye[3] = {c[0] + d * sinf(angle), c[1] + 0.3f * d, c[2] + d * cosf(angle)}, up[3] = {0, 1, 0}, n, f;
-  *v = (tlod_view_desc){.viewport_width = w, .viewport_height = h};
-  camera_look_at(eye, c, up, v->view);
-  camera_fit_planes(eye, info.bbox_min, info.bbox_max, &n, &f);
-  camera_perspective(45.0f, (float)w / (float)h, n, f, v->proj);
-}
-
 typedef struct gl_case {
   const char* label;
   tlod_scheduler_desc sched;
@@ -70,8 +24,8 @@ typedef struct gl_case {
 } gl_case;
 
 /* Mean and best frame time over the frames of an orbit; triangles drawn per frame. */
-static int run_case(gl_scene* s, const gl_case* c, uint32_t w, uint32_t h, uint32_t frames, double* best, double* mean,
-                    uint64_t* tris) {
+static int run_case(bench_scene* s, const gl_case* c, uint32_t w, uint32_t h, uint32_t frames, double* best,
+                    double* mean, uint64_t* tris) {
   tlod_scheduler* sch = NULL;
   tlod_backend* b = NULL;
   int rc = CLI_OK;
@@ -84,7 +38,7 @@ static int run_case(gl_scene* s, const gl_case* c, uint32_t w, uint32_t h, uint3
   *mean = 0.0;
   for (uint32_t k = 0; rc == CLI_OK && k < frames + 1; k++) {
     tlod_view_desc v;
-    frame_camera(s->mesh, 0.6f + 0.02f * (float)k, w, h, &v);
+    bench_orbit_view(s->mesh, 0.6f + 0.02f * (float)k, 1.0f, w, h, &v);
     tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &v, .view_count = 1, .dt_ms = 16.7f});
     tlod_backend_frame fr = {.draw_list = tlod_scheduler_draw_list(sch, 0), .viewport = {0, 0, w, h}, .finish = true};
     memcpy(fr.view, v.view, sizeof(fr.view));
@@ -111,11 +65,11 @@ static void report(FILE* csv, const char* scene, const char* what, double best, 
 }
 
 /* Uniform level of the worst visible patch under the error rule. */
-static uint32_t worst_level(gl_scene* s, uint32_t w, uint32_t h) {
+static uint32_t worst_level(bench_scene* s, uint32_t w, uint32_t h) {
   tlod_scheduler* sch = NULL;
   uint32_t worst = 0;
   tlod_view_desc v;
-  frame_camera(s->mesh, 0.6f, w, h, &v);
+  bench_orbit_view(s->mesh, 0.6f, 1.0f, w, h, &v);
   tlod_scheduler_desc d = {.policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE};
   if (tlod_scheduler_create(s->ctx, s->surface, s->patterns, &d, &sch) == TLOD_SUCCESS &&
       tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &v, .view_count = 1}) == TLOD_SUCCESS) {
@@ -128,8 +82,8 @@ static uint32_t worst_level(gl_scene* s, uint32_t w, uint32_t h) {
 }
 
 static int scene_cases(const char* in, uint32_t w, uint32_t h, uint32_t frames, FILE* csv) {
-  gl_scene s;
-  int rc = scene_load(in, TLOD_SURFACE_PN, &s);
+  bench_scene s;
+  int rc = bench_scene_load(in, 0, TLOD_SURFACE_PN, 6, &s);
   if (rc != CLI_OK) return rc;
   uint32_t worst = worst_level(&s, w, h);
   gl_case cases[] = {
@@ -150,7 +104,7 @@ static int scene_cases(const char* in, uint32_t w, uint32_t h, uint32_t frames, 
     if (rc == CLI_OK) report(csv, in, cases[k].label, best, mean, tris, ref);
   }
   printf("gl         %-28s (uniform level %u; x = frame time / flat's)\n", in, worst);
-  scene_free(&s);
+  bench_scene_free(&s);
   return rc;
 }
 
@@ -159,9 +113,9 @@ static int phong_vs_flat(const char* in, uint32_t w, uint32_t h, uint32_t frames
   int rc = CLI_OK;
   double flat_best = 0.0;
   for (int k = 0; k < 2 && rc == CLI_OK; k++) {
-    gl_scene s;
+    bench_scene s;
     tlod_surface_type type = k ? TLOD_SURFACE_PHONG : TLOD_SURFACE_FLAT;
-    if ((rc = scene_load(in, type, &s)) != CLI_OK) break;
+    if ((rc = bench_scene_load(in, 0, type, 6, &s)) != CLI_OK) break;
     gl_case c = {k ? "phong, uniform level 4" : "flat, uniform level 4",
                  {.policy = TLOD_POLICY_UNIFORM, .max_level = 4, .morph = TLOD_MORPH_NONE},
                  false};
@@ -170,7 +124,7 @@ static int phong_vs_flat(const char* in, uint32_t w, uint32_t h, uint32_t frames
     rc = run_case(&s, &c, w, h, frames, &best, &mean, &tris);
     if (k == 0) flat_best = best;
     if (rc == CLI_OK) report(csv, in, c.label, best, mean, tris, flat_best);
-    scene_free(&s);
+    bench_scene_free(&s);
   }
   return rc;
 }

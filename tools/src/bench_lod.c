@@ -9,15 +9,7 @@
 #include "bench_lod.h"
 #include "camera.h"
 
-typedef struct lod_setup {
-  tlod_context* ctx;
-  cli_mesh in;
-  tlod_mesh* mesh;
-  tlod_surface* surface;
-  tlod_patterns* patterns;
-} lod_setup;
-
-static void setup_free(lod_setup* s) {
+void bench_scene_free(bench_scene* s) {
   tlod_patterns_destroy(s->patterns);
   tlod_surface_destroy(s->surface);
   tlod_mesh_destroy(s->mesh);
@@ -25,7 +17,7 @@ static void setup_free(lod_setup* s) {
   cli_mesh_free(&s->in);
 }
 
-static int setup(const char* in, uint32_t threads, tlod_surface_type type, uint32_t max_level, lod_setup* s) {
+int bench_scene_load(const char* in, uint32_t threads, tlod_surface_type type, uint32_t max_level, bench_scene* s) {
   memset(s, 0, sizeof(*s));
   if (tlod_context_create(&(tlod_context_desc){.thread_count = threads, .label = "bench"}, &s->ctx) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "cannot create a context");
@@ -36,13 +28,12 @@ static int setup(const char* in, uint32_t threads, tlod_surface_type type, uint3
       (tlod_surface_create(s->ctx, s->mesh, &(tlod_surface_desc){.type = type}, &s->surface) != TLOD_SUCCESS ||
        tlod_patterns_create(s->ctx, &(tlod_patterns_desc){.max_level = max_level}, &s->patterns) != TLOD_SUCCESS))
     rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
-  if (rc != CLI_OK) setup_free(s);
+  if (rc != CLI_OK) bench_scene_free(s);
   return rc;
 }
 
-/* A camera on a circle round the mesh, framing it (angle in radians). */
-static void orbit_view(const tlod_mesh* mesh, float angle, float distance_scale, uint32_t w, uint32_t h,
-                       tlod_view_desc* v) {
+void bench_orbit_view(const tlod_mesh* mesh, float angle, float distance_scale, uint32_t w, uint32_t h,
+                      tlod_view_desc* v) {
   tlod_mesh_info info = tlod_mesh_query_info(mesh);
   float c[3], r = 0.0f;
   for (int i = 0; i < 3; i++) {
@@ -68,18 +59,18 @@ static double frame_bytes(uint32_t vertices, uint32_t patches) {
 }
 
 static int scheduler_case(const char* in, uint32_t threads, uint32_t frames, double bandwidth, FILE* csv) {
-  lod_setup s;
-  int rc = setup(in, threads, TLOD_SURFACE_PHONG, 6, &s);
+  bench_scene s;
+  int rc = bench_scene_load(in, threads, TLOD_SURFACE_PHONG, 6, &s);
   if (rc != CLI_OK) return rc;
   tlod_scheduler* sch = NULL;
   if (tlod_scheduler_create(s.ctx, s.surface, s.patterns, &(tlod_scheduler_desc){0}, &sch) != TLOD_SUCCESS) {
-    setup_free(&s);
+    bench_scene_free(&s);
     return cli_error(CLI_FAILED, "%s", tlod_context_last_error(s.ctx));
   }
   double best = INFINITY, sum = 0.0, worst = 0.0, stages[TLOD_STAGE_NUM] = {0};
   for (uint32_t k = 0; k < frames + 2; k++) {
     tlod_view_desc view;
-    orbit_view(s.mesh, 0.05f * (float)k, 1.2f, 1280, 720, &view);
+    bench_orbit_view(s.mesh, 0.05f * (float)k, 1.2f, 1280, 720, &view);
     double t0 = cli_now_ms();
     tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &view, .view_count = 1, .dt_ms = 16.7f});
     double dt = cli_now_ms() - t0;
@@ -102,7 +93,7 @@ static int scheduler_case(const char* in, uint32_t threads, uint32_t frames, dou
     fprintf(csv, "scheduler,%s,%u,%u,%.4f,%.4f,%.4f,%.6g,%.4f\n", in, threads, patches, best, sum / frames, worst, rate,
             bound_ms);
   tlod_scheduler_destroy(sch);
-  setup_free(&s);
+  bench_scene_free(&s);
   return CLI_OK;
 }
 
@@ -118,7 +109,7 @@ int bench_scheduler(const bench_lod_options* o, double bandwidth, FILE* csv) {
 static const char* const policy_names[] = {"-", "error", "silhouette", "hybrid"};
 
 /* Uniform tessellation at the finest level any visible patch needs. */
-static uint64_t uniform_triangles(const lod_setup* s, const tlod_draw_list* dl, uint32_t level) {
+static uint64_t uniform_triangles(const bench_scene* s, const tlod_draw_list* dl, uint32_t level) {
   uint64_t tris = 0;
   for (uint32_t f = 0; f < dl->patch_count; f++) {
     uint32_t corners[4];
@@ -147,15 +138,15 @@ static bool on_contour(const tlod_mesh* mesh, uint32_t f, const float view[16]) 
 }
 
 static int table1_case(const char* in, double distance, FILE* csv) {
-  lod_setup s;
-  int rc = setup(in, 0, TLOD_SURFACE_PN, 8, &s);
+  bench_scene s;
+  int rc = bench_scene_load(in, 0, TLOD_SURFACE_PN, 8, &s);
   if (rc != CLI_OK) return rc;
   tlod_view_desc view;
-  orbit_view(s.mesh, 0.6f, (float)distance, 1600, 1144, &view);
+  bench_orbit_view(s.mesh, 0.6f, (float)distance, 1600, 1144, &view);
   uint32_t worst = 0, patches = tlod_surface_patch_count(s.surface);
   int8_t* error_levels = calloc(patches + 1u, 1);
   if (!error_levels) {
-    setup_free(&s);
+    bench_scene_free(&s);
     return cli_error(CLI_FAILED, "out of memory");
   }
   for (int p = TLOD_POLICY_ERROR; p <= TLOD_POLICY_HYBRID && rc == CLI_OK; p++) {
@@ -198,7 +189,7 @@ static int table1_case(const char* in, double distance, FILE* csv) {
     tlod_scheduler_destroy(sch);
   }
   free(error_levels);
-  setup_free(&s);
+  bench_scene_free(&s);
   return rc;
 }
 

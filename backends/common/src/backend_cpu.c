@@ -1,7 +1,5 @@
 /* tesslod::backend -- the "cpu" backend: realises each draw list as a mesh
  * with the reference tessellator (what GPU backends are compared against). */
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
-#include <time.h>
 
 #include "backend_internal.h"
 #include "tesslod/cpu.h"
@@ -13,12 +11,6 @@ typedef struct cpu_backend {
   tlod_cpu_mesh* mesh;
   tlod_backend_timings timings;
 } cpu_backend;
-
-static double now_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
 
 static tlod_result cpu_create(tlod_context* ctx, const tlod_backend_desc* desc, void** state) {
   (void)desc;
@@ -46,12 +38,12 @@ static tlod_result cpu_upload(void* state, const tlod_surface* surface, const tl
 static tlod_result cpu_draw(void* state, const tlod_backend_frame* frame) {
   cpu_backend* b = state;
   if (!b->surface) return _tlod_fail(b->ctx, TLOD_ERROR_INVALID_ARGUMENT, "cpu backend: draw before upload");
-  double t0 = now_ms();
+  double t0 = _tlod_now_ms();
   tlod_cpu_tessellate_desc d = {.draw_list = frame->draw_list};
   tlod_result r = b->mesh ? tlod_cpu_tessellate_into(b->ctx, b->surface, b->patterns, &d, b->mesh)
                           : tlod_cpu_tessellate(b->ctx, b->surface, b->patterns, &d, &b->mesh);
   if (r != TLOD_SUCCESS) return r;
-  b->timings.cpu_ms = b->timings.wall_ms = now_ms() - t0;
+  b->timings.cpu_ms = b->timings.wall_ms = _tlod_now_ms() - t0;
   b->timings.triangles = b->mesh->triangle_count;
   b->timings.vertices = b->mesh->vertex_count;
   b->timings.draw_calls = 0;

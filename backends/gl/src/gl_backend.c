@@ -7,11 +7,9 @@
  *   Hardware 2005 (refinement patterns evaluated in the vertex shader);
  *   M. Schwarz, M. Staginski, M. Stamminger. GPU-based rendering of PN
  *   triangle meshes with adaptive tessellation. VMV 2006. */
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
 #include "gl_internal.h"
 #include "surface_eval.h"
@@ -42,12 +40,6 @@ typedef struct gl_backend {
   uint32_t* instance_of; /* patch -> instance, this frame */
   uint32_t instance_of_cap;
 } gl_backend;
-
-static double now_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
 
 static tlod_result check_context(tlod_context* ctx) {
   const char* version = (const char*)glGetString(GL_VERSION);
@@ -424,7 +416,7 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
   if (!dl || dl->patch_count != b->surface->patch_count)
     return _tlod_fail(b->ctx, TLOD_ERROR_INVALID_ARGUMENT,
                       "gl backend: the draw list does not match the uploaded surface");
-  double t0 = now_ms();
+  double t0 = _tlod_now_ms();
   uint32_t refs = 0;
   tlod_result r = stage_frame(b, dl, &refs);
   if (r != TLOD_SUCCESS) return r;
@@ -471,10 +463,10 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
   read_query(b);
   b->frame++;
   _tlod_gl_restore_state(&saved);
-  b->timings.cpu_ms = now_ms() - t0;
+  b->timings.cpu_ms = _tlod_now_ms() - t0;
   if (fr->finish) {
     glFinish();
-    b->timings.wall_ms = now_ms() - t0;
+    b->timings.wall_ms = _tlod_now_ms() - t0;
   }
   b->timings.triangles = b->hardware ? dl->pattern_triangles : dl->pattern_triangles + refs / 3;
   b->timings.vertices = vertices;

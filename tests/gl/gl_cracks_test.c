@@ -1,0 +1,333 @@
+/*
+ * gl_cracks_test.c -- the GL backend's images of closed meshes have no
+ * holes at mixed levels (owned by the GL tests). Public API only.
+ *
+ * For icosphere(2), torus(16, 10) and cube_soft (split normals: creases
+ * whose two sides' curves really differ), under Phong and PN, 50 random
+ * cameras each (near, far and grazing, fields of view 30-75 degrees), one
+ * scheduler per case with its defaults (adaptive levels, TIME geomorphs;
+ * frames 16 ms apart, so patches are caught mid-morph), rendered by
+ * tlod_backend_draw at 128 x 128 in front of pure blue.
+ *
+ * A HOLE is a pixel where the backend shows something a closed surface
+ * cannot show from outside:
+ *   (a) background not 4-connected to the image border (flood fill from
+ *       the border), or
+ *   (b) a back face: with no culling, a crack in a closed mesh shows the
+ *       inside of the far side rather than the background, so (a) alone
+ *       only sees cracks that line up with another crack behind them. The
+ *       stencil records the facing of the visible fragment (stencil state
+ *       is not in the backend's save list, so it is left as the test set
+ *       it). Outward-oriented shapes, counter-clockwise front faces.
+ * Candidates are confirmed against the CPU reference of the same draw list
+ * (watertight by the unit tests) drawn by gl_test.h's renderer with the same
+ * stencil: a candidate is a hole only when the reference shows a front face
+ * at the pixel and all 8 neighbours. That keeps legitimate enclosed
+ * background (the torus's hole) and z-fighting on contours (front and back
+ * faces meet there) out. The reference is only drawn when there are
+ * candidates.
+ *
+ * Negative control: cube_soft under PN at close cameras, drawn from a copy
+ * of the draw list with strip_count = 0 (the crease strips left out), must
+ * show holes for at least one camera, or the detector is blind.
+ */
+#include "gl_test.h"
+
+#define W 128
+#define H 128
+#define CAMERAS 50
+#define MAX_LEVEL 5
+
+typedef struct gl_env {
+  tlod_platform* platform;
+  ref_renderer ref;
+  uint8_t *rgba, *stencil, *ref_rgba, *ref_stencil, *reached;
+  uint32_t* queue;
+} gl_env;
+
+typedef struct hole_count {
+  uint32_t enclosed_candidates, back_candidates; /* (a), (b) before confirmation */
+  uint32_t enclosed, back;                       /* confirmed */
+  int x, y;                                      /* first confirmed hole (row 0 = bottom) */
+  bool reference_drawn;
+} hole_count;
+
+/* Background pixels 4-connected to the border: reached[i] = 1. */
+static void flood_background(gl_env* env) {
+  memset(env->reached, 0, W * H);
+  uint32_t head = 0, tail = 0;
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      if (x != 0 && y != 0 && x != W - 1 && y != H - 1) continue;
+      uint32_t i = y * W + x;
+      if (is_background(env->rgba + 4 * i) && !env->reached[i]) {
+        env->reached[i] = 1;
+        env->queue[tail++] = i;
+      }
+    }
+  while (head < tail) {
+    uint32_t i = env->queue[head++], x = i % W, y = i / W;
+    uint32_t next[4] = {x > 0 ? i - 1 : i, x + 1 < W ? i + 1 : i, y > 0 ? i - W : i, y + 1 < H ? i + W : i};
+    for (int k = 0; k < 4; ++k) {
+      uint32_t j = next[k];
+      if (!env->reached[j] && is_background(env->rgba + 4 * j)) {
+        env->reached[j] = 1;
+        env->queue[tail++] = j;
+      }
+    }
+  }
+}
+
+/* Reference shows a front face at (x, y) and its 8 neighbours. */
+static bool reference_solid(const gl_env* env, uint32_t x, uint32_t y) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      int nx = (int)x + dx, ny = (int)y + dy;
+      if (nx < 0 || ny < 0 || nx >= W || ny >= H) return false;
+      size_t j = (size_t)ny * W + (size_t)nx;
+      if (env->ref_stencil[j] != 1 || is_background(env->ref_rgba + 4 * j)) return false;
+    }
+  return true;
+}
+
+/* Draws dl with the backend (stencil records facing) and counts holes;
+ * reference_dl is the complete draw list for the reference. */
+static hole_count find_holes(gl_env* env, tlod_backend* backend, const fixture* fx, const tlod_draw_list* dl,
+                             const tlod_draw_list* reference_dl, const tlod_view_desc* v, bool* ok) {
+  hole_count hc;
+  memset(&hc, 0, sizeof hc);
+  hc.x = hc.y = -1;
+  *ok = false;
+  tlod_platform_bind(env->platform);
+  clear_frame(W, H);
+  gl_stencil_facing_begin();
+  tlod_backend_frame frame = backend_frame(dl, v);
+  tlod_result r = tlod_backend_draw(backend, &frame);
+  gl_stencil_facing_end();
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "tlod_backend_draw: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    return hc;
+  }
+  gl_read_rgba(W, H, env->rgba);
+  gl_read_stencil(W, H, env->stencil);
+  flood_background(env);
+  for (uint32_t i = 0; i < W * H; ++i) {
+    bool bg = is_background(env->rgba + 4 * i);
+    hc.enclosed_candidates += bg && !env->reached[i];
+    hc.back_candidates += !bg && env->stencil[i] == 2;
+  }
+  if (hc.enclosed_candidates + hc.back_candidates > 0) {
+    tlod_cpu_mesh* m = realise(fx, reference_dl);
+    if (!m) return hc;
+    clear_frame(W, H);
+    gl_stencil_facing_begin();
+    ref_upload(&env->ref, m);
+    ref_draw(&env->ref, v);
+    gl_stencil_facing_end();
+    tlod_cpu_mesh_destroy(fx->ctx, m);
+    gl_read_rgba(W, H, env->ref_rgba);
+    gl_read_stencil(W, H, env->ref_stencil);
+    hc.reference_drawn = true;
+    for (uint32_t y = 0; y < H; ++y)
+      for (uint32_t x = 0; x < W; ++x) {
+        uint32_t i = y * W + x;
+        bool bg = is_background(env->rgba + 4 * i);
+        bool enclosed = bg && !env->reached[i], back = !bg && env->stencil[i] == 2;
+        if (!(enclosed || back) || !reference_solid(env, x, y)) continue;
+        hc.enclosed += enclosed;
+        hc.back += back;
+        if (hc.x < 0) hc.x = (int)x, hc.y = (int)y;
+      }
+  }
+  *ok = true;
+  return hc;
+}
+
+/* A random camera: 40% near (1.3-2.2 x the bounding radius), 30% far
+ * (4-12), 30% grazing (near, aimed past the object so its silhouette
+ * crosses the image at a steep angle). Always outside the object. */
+static camera random_camera(shape_rng* rng) {
+  double dir[3], off[3];
+  shape_rng_direction(rng, dir);
+  shape_rng_direction(rng, off);
+  double u = shape_rng_unit(rng), dist, aim = 0.0;
+  if (u < 0.4) {
+    dist = shape_rng_range(rng, 1.9, 3.0);
+  } else if (u < 0.7) {
+    dist = shape_rng_range(rng, 4.0, 12.0);
+  } else {
+    dist = shape_rng_range(rng, 1.9, 2.6);
+    aim = shape_rng_range(rng, 0.6, 1.1);
+  }
+  double fov = shape_rng_range(rng, 30.0, 75.0);
+  return camera_look(dist * dir[0], dist * dir[1], dist * dir[2], aim * off[0], aim * off[1], aim * off[2], fov, W, H);
+}
+
+static bool env_init(gl_env* env, char* err, size_t err_size) {
+  memset(env, 0, sizeof *env);
+  env->platform = gl_test_platform(W, H, err, err_size);
+  if (!env->platform) return false;
+  env->rgba = malloc(4 * W * H);
+  env->ref_rgba = malloc(4 * W * H);
+  env->stencil = malloc(W * H);
+  env->ref_stencil = malloc(W * H);
+  env->reached = malloc(W * H);
+  env->queue = malloc(sizeof *env->queue * W * H);
+  if (!ref_init(&env->ref)) {
+    snprintf(err, err_size, "reference renderer failed");
+    return false;
+  }
+  return env->rgba && env->ref_rgba && env->stencil && env->ref_stencil && env->reached && env->queue;
+}
+
+static void env_free(gl_env* env) {
+  ref_free(&env->ref);
+  free(env->rgba);
+  free(env->ref_rgba);
+  free(env->stencil);
+  free(env->ref_stencil);
+  free(env->reached);
+  free(env->queue);
+  tlod_platform_destroy(env->platform);
+  memset(env, 0, sizeof *env);
+}
+
+static tlod_backend* make_backend(tlod_context* ctx) {
+  tlod_backend* b = NULL;
+  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl", .label = "gl_cracks"}, &b);
+  if (r != TLOD_SUCCESS)
+    fprintf(stderr, "tlod_backend_create(\"gl\"): %s: %s (compiled in: %s)\n", tlod_result_string(r),
+            tlod_context_last_error(ctx), tlod_backend_names());
+  return b;
+}
+
+TEST(test_no_holes) {
+  char err[512] = "";
+  gl_env env;
+  CHECK_MSG(env_init(&env, err, sizeof err), "cannot create a GL context: %s", err);
+  tlod_context* ctx = NULL;
+  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  tlod_backend* backend = make_backend(ctx);
+  CHECK(backend);
+  shape shapes[3] = {shape_icosphere(2), shape_torus(16, 10), shape_cube_soft()};
+  const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
+  uint32_t frames = 0, failures = 0, mixed = 0, references = 0;
+  uint64_t candidates = 0, strips = 0;
+  for (int si = 0; si < 3; ++si)
+    for (int ti = 0; ti < 2; ++ti) {
+      fixture fx;
+      CHECK(fixture_make(&fx, ctx, &shapes[si], types[ti], MAX_LEVEL));
+      CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+      tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
+      CHECK(sch);
+      shape_rng rng = {0x5EED0000u + 10u * (uint64_t)si + (uint64_t)ti};
+      uint32_t case_failures = 0;
+      for (int k = 0; k < CAMERAS; ++k) {
+        camera cam = random_camera(&rng);
+        tlod_view_desc v = camera_view(&cam);
+        const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
+        CHECK(dl);
+        uint32_t levels_used = 0;
+        for (int l = 0; l <= TLOD_MAX_LEVEL; ++l)
+          levels_used += dl->level_histogram[l] > 0;
+        mixed += levels_used > 1;
+        strips += dl->strip_count;
+        bool ok;
+        hole_count hc = find_holes(&env, backend, &fx, dl, dl, &v, &ok);
+        CHECK_MSG(ok, "%s %s camera %d: draw failed", shapes[si].name, type_name(types[ti]), k);
+        frames++;
+        candidates += hc.enclosed_candidates + hc.back_candidates;
+        references += hc.reference_drawn;
+        if (hc.enclosed + hc.back > 0) {
+          char buf[256];
+          camera_print(&cam, buf, sizeof buf);
+          fprintf(stderr,
+                  "%s %s camera %d: %u hole pixels (%u enclosed background, %u back faces), first at (%d, %d) "
+                  "(row 0 = bottom); %s; %u strips\n",
+                  shapes[si].name, type_name(types[ti]), k, hc.enclosed + hc.back, hc.enclosed, hc.back, hc.x, hc.y,
+                  buf, dl->strip_count);
+          case_failures++;
+        }
+      }
+      printf("  %-11s %-5s %d cameras: %u with holes\n", shapes[si].name, type_name(types[ti]), CAMERAS, case_failures);
+      failures += case_failures;
+      tlod_scheduler_destroy(sch);
+      fixture_free(&fx);
+    }
+  printf("  %u frames (%u with mixed levels, %llu strips drawn): %llu candidate pixels, reference drawn for %u "
+         "frames, %u frames with holes\n",
+         frames, mixed, (unsigned long long)strips, (unsigned long long)candidates, references, failures);
+  for (int k = 0; k < 3; ++k)
+    shape_free(&shapes[k]);
+  tlod_backend_destroy(backend);
+  tlod_context_destroy(ctx);
+  env_free(&env);
+  CHECK_MSG(mixed >= frames / 2, "only %u of %u frames had mixed levels: the test does not exercise strips", mixed,
+            frames);
+  CHECK_MSG(failures == 0, "%u frames with holes (see above)", failures);
+}
+
+/* The detector sees the cracks that strips close. */
+TEST(test_detector_sees_missing_strips) {
+  char err[512] = "";
+  gl_env env;
+  CHECK_MSG(env_init(&env, err, sizeof err), "cannot create a GL context: %s", err);
+  tlod_context* ctx = NULL;
+  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  tlod_backend* backend = make_backend(ctx);
+  CHECK(backend);
+  shape cube = shape_cube_soft();
+  fixture fx;
+  CHECK(fixture_make(&fx, ctx, &cube, TLOD_SURFACE_PN, MAX_LEVEL));
+  CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
+  CHECK(sch);
+  /* close cameras on the diagonals and faces */
+  const double eyes[8][3] = {{1.3, 1.1, 0.9},   {-1.2, 1.0, -1.1}, {1.6, 0.2, 0.3},   {0.4, -1.5, 0.8},
+                             {-1.0, -1.1, 1.2}, {0.2, 0.3, 1.7},   {1.1, -1.2, -1.0}, {-1.5, 0.6, 0.4}};
+  uint32_t frames_with_holes = 0, most = 0;
+  uint64_t total_enclosed = 0, total_back = 0, removed = 0;
+  for (int k = 0; k < 8; ++k) {
+    camera cam = camera_look(eyes[k][0], eyes[k][1], eyes[k][2], 0, 0, 0, 50, W, H);
+    tlod_view_desc v = camera_view(&cam);
+    const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
+    CHECK(dl);
+    /* the full list is hole-free ... */
+    bool ok;
+    hole_count full = find_holes(&env, backend, &fx, dl, dl, &v, &ok);
+    CHECK(ok);
+    CHECK_MSG(full.enclosed + full.back == 0, "camera %d: %u holes with strips", k, full.enclosed + full.back);
+    /* ... the copy without strips is not */
+    tlod_draw_list open = *dl;
+    open.strip_count = 0;
+    open.strip_triangles = 0;
+    removed += dl->strip_count;
+    hole_count hc = find_holes(&env, backend, &fx, &open, dl, &v, &ok);
+    CHECK(ok);
+    printf("  camera %d: %3u strips removed -> %4u hole pixels (%u enclosed background, %u back faces; "
+           "candidates %u + %u)\n",
+           k, dl->strip_count, hc.enclosed + hc.back, hc.enclosed, hc.back, hc.enclosed_candidates, hc.back_candidates);
+    frames_with_holes += hc.enclosed + hc.back > 0;
+    total_enclosed += hc.enclosed;
+    total_back += hc.back;
+    if (hc.enclosed + hc.back > most) most = hc.enclosed + hc.back;
+  }
+  printf("  negative control: %u of 8 cameras show holes (%llu enclosed-background + %llu back-face pixels, at most "
+         "%u in one frame) after removing %llu strips\n",
+         frames_with_holes, (unsigned long long)total_enclosed, (unsigned long long)total_back, most,
+         (unsigned long long)removed);
+  tlod_scheduler_destroy(sch);
+  fixture_free(&fx);
+  shape_free(&cube);
+  tlod_backend_destroy(backend);
+  tlod_context_destroy(ctx);
+  env_free(&env);
+  CHECK_MSG(removed > 0, "the draw lists had no strips to remove");
+  CHECK_MSG(frames_with_holes >= 1, "no holes found with the strips removed: the detector is blind");
+}
+
+int main(void) {
+  RUN(test_detector_sees_missing_strips);
+  RUN(test_no_holes);
+  TEST_END();
+}
