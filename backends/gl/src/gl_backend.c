@@ -29,6 +29,7 @@ typedef struct gl_backend {
   GLuint buf_patches, buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs;
   uint32_t index_first[2][TLOD_MAX_LEVEL + 1], index_count[2][TLOD_MAX_LEVEL + 1], shape_base[2];
   GLuint queries[QUERY_RING];
+  GLuint prim_queries[QUERY_RING];
   uint64_t frame;
   tlod_backend_timings timings;
   gl_instance* instances; /* staging, grown as needed */
@@ -75,6 +76,7 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_backend_desc* desc, v
   glVertexArrayAttribIFormat(b->vao_strip, 0, 2, GL_UNSIGNED_INT, 0);
   glVertexArrayAttribBinding(b->vao_strip, 0, 0);
   glCreateQueries(GL_TIME_ELAPSED, QUERY_RING, b->queries);
+  glCreateQueries(GL_PRIMITIVES_GENERATED, QUERY_RING, b->prim_queries);
   b->timings.gpu_ms = -1.0;
   *state = b;
   return TLOD_SUCCESS;
@@ -87,6 +89,7 @@ static void gl_destroy(void* state) {
   glDeleteVertexArrays(1, &b->vao_pattern);
   glDeleteVertexArrays(1, &b->vao_strip);
   glDeleteQueries(QUERY_RING, b->queries);
+  glDeleteQueries(QUERY_RING, b->prim_queries);
   glDeleteProgram(b->prog_pattern);
   glDeleteProgram(b->prog_strip);
   glDeleteProgram(b->prog_tess[0]);
@@ -404,9 +407,11 @@ static void read_query(gl_backend* b) {
   GLint ready = 0;
   glGetQueryObjectiv(q, GL_QUERY_RESULT_AVAILABLE, &ready);
   if (!ready) return;
-  GLuint64 ns = 0;
+  GLuint64 ns = 0, prims = 0;
   glGetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);
+  glGetQueryObjectui64v(b->prim_queries[(b->frame + 1) % QUERY_RING], GL_QUERY_RESULT, &prims);
   b->timings.gpu_ms = (double)ns * 1e-6;
+  b->timings.primitives_generated = prims;
 }
 
 static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
@@ -438,6 +443,7 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
   glDisable(GL_BLEND);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glBeginQuery(GL_TIME_ELAPSED, b->queries[b->frame % QUERY_RING]);
+  glBeginQuery(GL_PRIMITIVES_GENERATED, b->prim_queries[b->frame % QUERY_RING]);
   uint32_t debug = (uint32_t)fr->debug;
   set_uniforms(b->prog_pattern, fr, b->lmax, debug);
   set_uniforms(b->prog_strip, fr, b->lmax, debug);
@@ -459,6 +465,7 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
     uint64_t unused = 0;
     calls += b->hardware ? issue_tess_draws(b, dl, &unused) : issue_draws(b, dl, refs, &unused);
   }
+  glEndQuery(GL_PRIMITIVES_GENERATED);
   glEndQuery(GL_TIME_ELAPSED);
   read_query(b);
   b->frame++;

@@ -48,6 +48,7 @@ _Static_assert(sizeof(gl_strip) == 32, "gl_strip must match Strip");
 typedef struct gl_saved_state {
   GLint program, vao, array_buffer, element_buffer, ssbo, ubo, indirect;
   GLint ssbo_binding[4];
+  GLint64 ssbo_start[4], ssbo_size[4]; /* glBindBufferRange ranges; size 0 == whole buffer */
   GLint polygon_mode[2], cull_mode, depth_func, viewport[4];
   GLboolean cull, depth_test, depth_mask, blend, offset_fill;
   GLfloat offset_factor, offset_units;

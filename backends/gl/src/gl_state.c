@@ -9,8 +9,11 @@ void _tlod_gl_save_state(gl_saved_state* s) {
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s->ssbo);
   glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s->ubo);
   glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &s->indirect);
-  for (GLuint i = 0; i < 4; i++)
+  for (GLuint i = 0; i < 4; i++) {
     glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &s->ssbo_binding[i]);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &s->ssbo_start[i]);
+    glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, i, &s->ssbo_size[i]);
+  }
   glGetIntegerv(GL_POLYGON_MODE, s->polygon_mode);
   glGetIntegerv(GL_CULL_FACE_MODE, &s->cull_mode);
   glGetIntegerv(GL_DEPTH_FUNC, &s->depth_func);
@@ -38,8 +41,15 @@ void _tlod_gl_restore_state(const gl_saved_state* s) {
   /* The element buffer belongs to the VAO: binding the VAO restores it. */
   glBindVertexArray((GLuint)s->vao);
   glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
-  for (GLuint i = 0; i < 4; i++)
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, (GLuint)s->ssbo_binding[i]);
+  /* An engine may have bound a range (glBindBufferRange): BindBufferBase
+   * would widen it to the whole buffer. */
+  for (GLuint i = 0; i < 4; i++) {
+    if (s->ssbo_binding[i] && s->ssbo_size[i] > 0)
+      glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, (GLuint)s->ssbo_binding[i], (GLintptr)s->ssbo_start[i],
+                        (GLsizeiptr)s->ssbo_size[i]);
+    else
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, (GLuint)s->ssbo_binding[i]);
+  }
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, (GLuint)s->ssbo);
   glBindBuffer(GL_UNIFORM_BUFFER, (GLuint)s->ubo);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, (GLuint)s->indirect);

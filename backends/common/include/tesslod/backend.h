@@ -87,6 +87,9 @@ typedef struct tlod_backend_timings {
   uint64_t triangles; /* drawn by the last draw (from the draw list) */
   uint64_t vertices;  /* shaded by the last draw (pattern and strip vertices) */
   uint32_t draw_calls;
+  /* GL_PRIMITIVES_GENERATED of the frame gpu_ms belongs to (read late, like
+   * it); 0 when none is ready. */
+  uint64_t primitives_generated;
 } tlod_backend_timings;
 
 /* Names compiled into this build, comma separated ("cpu,gl"). */
