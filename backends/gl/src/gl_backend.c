@@ -442,8 +442,16 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  glBeginQuery(GL_TIME_ELAPSED, b->queries[b->frame % QUERY_RING]);
-  glBeginQuery(GL_PRIMITIVES_GENERATED, b->prim_queries[b->frame % QUERY_RING]);
+  /* An engine may be timing the frame around us: one query per target can
+   * be active, so ours stay out of its way then. */
+  GLint busy_time = 0, busy_prims = 0;
+  glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &busy_time);
+  glGetQueryiv(GL_PRIMITIVES_GENERATED, GL_CURRENT_QUERY, &busy_prims);
+  bool timed = !busy_time && !busy_prims;
+  if (timed) {
+    glBeginQuery(GL_TIME_ELAPSED, b->queries[b->frame % QUERY_RING]);
+    glBeginQuery(GL_PRIMITIVES_GENERATED, b->prim_queries[b->frame % QUERY_RING]);
+  }
   uint32_t debug = (uint32_t)fr->debug;
   set_uniforms(b->prog_pattern, fr, b->lmax, debug);
   set_uniforms(b->prog_strip, fr, b->lmax, debug);
@@ -465,10 +473,12 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
     uint64_t unused = 0;
     calls += b->hardware ? issue_tess_draws(b, dl, &unused) : issue_draws(b, dl, refs, &unused);
   }
-  glEndQuery(GL_PRIMITIVES_GENERATED);
-  glEndQuery(GL_TIME_ELAPSED);
-  read_query(b);
-  b->frame++;
+  if (timed) {
+    glEndQuery(GL_PRIMITIVES_GENERATED);
+    glEndQuery(GL_TIME_ELAPSED);
+    read_query(b);
+    b->frame++;
+  }
   _tlod_gl_restore_state(&saved);
   b->timings.cpu_ms = _tlod_now_ms() - t0;
   if (fr->finish) {

@@ -32,6 +32,8 @@
  *   face enable and mode, depth test enable and function, depth mask, blend
  *   enable, polygon offset fill enable and values, viewport. Everything else
  *   is left as the engine set it (the framebuffer it draws into included).
+ *   While the engine has a GL_TIME_ELAPSED or GL_PRIMITIVES_GENERATED query
+ *   active, the backend issues none of its own (gpu_ms then stays as it was).
  *
  * PORTABILITY
  *   The pattern path needs only instancing and storage buffers (no
