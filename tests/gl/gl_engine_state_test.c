@@ -20,6 +20,8 @@
  *     taken from a separate render into the platform's FBO, changed);
  *   - the triangle's pixels are untouched wherever tesslod did not draw
  *     (outside its coverage grown by one pixel).
+ * And, separately, that a draw inside the engine's own GL_TIME_ELAPSED and
+ * GL_PRIMITIVES_GENERATED queries raises no GL error and leaves them active.
  */
 #include "gl_test.h"
 
@@ -358,7 +360,87 @@ TEST(test_engine_state) {
   tlod_platform_destroy(platform);
 }
 
+/* An engine that times its passes has its own GL_TIME_ELAPSED (and
+ * GL_PRIMITIVES_GENERATED) query active around the middleware's draw
+ * (STYLE.md: per-pass timestamps). GL allows one active query per target:
+ * tlod_backend_draw must not begin another on the same target (that is
+ * GL_INVALID_OPERATION), and the engine's queries must still end and
+ * report. */
+TEST(test_engine_queries_active) {
+  char err[512] = "";
+  tlod_platform* platform = gl_test_platform(W, H, err, sizeof err);
+  CHECK_MSG(platform, "cannot create a GL context: %s", err);
+  tlod_context* ctx = NULL;
+  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  shape sph = shape_icosphere(2);
+  fixture fx;
+  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PHONG, 5));
+  tlod_backend* backend = NULL;
+  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl", .label = "engine_queries"}, &backend);
+  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_create(\"gl\"): %s: %s", tlod_result_string(r),
+            tlod_context_last_error(ctx));
+  CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
+  CHECK(sch);
+  camera cam = camera_look(0.9, -3.2, 0.6, 0, 0, 0, 50, W, H);
+  tlod_view_desc v = camera_view(&cam);
+  const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
+  CHECK(dl);
+  tlod_backend_frame frame = backend_frame(dl, &v);
+  tlod_platform_bind(platform);
+  clear_frame(W, H);
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  GLuint q[2];
+  glGenQueries(2, q);
+  int errors = 0;
+  GLenum first_error = GL_NO_ERROR;
+  for (int f = 0; f < 6; ++f) { /* the backend reads its queries a few frames late */
+    glBeginQuery(GL_TIME_ELAPSED, q[0]);
+    glBeginQuery(GL_PRIMITIVES_GENERATED, q[1]);
+    r = tlod_backend_draw(backend, &frame);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR && errors++ == 0) first_error = e;
+    GLint active_time = 0, active_prims = 0;
+    glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &active_time);
+    glGetQueryiv(GL_PRIMITIVES_GENERATED, GL_CURRENT_QUERY, &active_prims);
+    glEndQuery(GL_PRIMITIVES_GENERATED);
+    glEndQuery(GL_TIME_ELAPSED);
+    e = glGetError();
+    if (e != GL_NO_ERROR && errors++ == 0) first_error = e;
+    if (r != TLOD_SUCCESS || active_time != (GLint)q[0] || active_prims != (GLint)q[1]) {
+      fprintf(stderr,
+              "  frame %d: draw %s, engine queries active after the draw: time %d (want %u), primitives %d "
+              "(want %u)\n",
+              f, tlod_result_string(r), active_time, q[0], active_prims, q[1]);
+      errors++;
+    }
+  }
+  GLuint64 ns = 0, prims = 0;
+  glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &ns);
+  glGetQueryObjectui64v(q[1], GL_QUERY_RESULT, &prims);
+  printf("  6 frames inside the engine's queries: %d GL errors / lost queries (first %s); engine saw %.3f ms, %llu "
+         "primitives (draw list %llu triangles)\n",
+         errors, gl_error_name(first_error), (double)ns * 1e-6, (unsigned long long)prims,
+         (unsigned long long)(dl->pattern_triangles + dl->strip_triangles));
+  glDeleteQueries(2, q);
+  uint64_t pattern_triangles = dl->pattern_triangles; /* dl dies with the scheduler */
+  tlod_scheduler_destroy(sch);
+  tlod_backend_destroy(backend);
+  fixture_free(&fx);
+  shape_free(&sph);
+  tlod_context_destroy(ctx);
+  tlod_platform_destroy(platform);
+  CHECK_MSG(errors == 0,
+            "tlod_backend_draw inside an engine's GL_TIME_ELAPSED / GL_PRIMITIVES_GENERATED queries: %d "
+            "errors, first %s (0x%04X)",
+            errors, gl_error_name(first_error), first_error);
+  CHECK_MSG(prims >= pattern_triangles, "the engine's GL_PRIMITIVES_GENERATED saw %llu primitives",
+            (unsigned long long)prims);
+}
+
 int main(void) {
   RUN(test_engine_state);
-  TEST_END();
+  RUN(test_engine_queries_active);
+  GL_TEST_END();
 }

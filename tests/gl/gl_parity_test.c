@@ -94,6 +94,7 @@ static struct {
   uint32_t worst_colour;
   double worst_colour_fraction; /* smallest fraction of both-covered pixels within 8/255 */
   uint64_t triangles;
+  uint32_t morphing; /* instances with a geomorph blend < 1 */
 } s_totals = {.worst_colour_fraction = 1.0};
 
 typedef struct gl_env {
@@ -126,14 +127,19 @@ static void compare_one(gl_env* env, tlod_backend* backend, const fixture* fx, c
   gl_read_rgba(W, H, env->img_b);
   uint64_t draw_list_triangles = dl->pattern_triangles + dl->strip_triangles;
   uint64_t cpu_triangles = (uint64_t)m->triangle_count + m->folds_skipped;
-  uint32_t strips = m->strips;
+  uint32_t strips = m->strips, morphing = 0;
+  for (uint32_t k = 0; k < dl->instance_count; ++k) {
+    const tlod_draw_instance* in = &dl->instances[k];
+    morphing += in->morph < 1.0f || in->edge_morph[0] < 1.0f || in->edge_morph[1] < 1.0f || in->edge_morph[2] < 1.0f ||
+                in->edge_morph[3] < 1.0f;
+  }
   tlod_cpu_mesh_destroy(fx->ctx, m);
 
   compare_result c = compare_images(env->img_a, env->img_b, W, H);
   double colour_fraction = c.covered_both ? (double)c.colour_ok / c.covered_both : 1.0;
-  printf("  %-34s tris %7llu (strips %4u) | covered %5u/%5u, differ %3u (%.3f%%), off band %u | colour "
+  printf("  %-30s tris %6llu strips %3u morphing %3u | covered %5u/%5u, differ %3u (%.3f%%), off band %u | colour "
          "max %3u mean %.2f, %.2f%% <= 8\n",
-         what, (unsigned long long)draw_list_triangles, strips, c.covered_a, c.covered_b, c.coverage_diff,
+         what, (unsigned long long)draw_list_triangles, strips, morphing, c.covered_a, c.covered_b, c.coverage_diff,
          c.covered_either ? 100.0 * c.coverage_diff / c.covered_either : 0.0, c.off_band, c.max_colour_diff,
          c.mean_colour_diff, 100.0 * colour_fraction);
   s_totals.comparisons++;
@@ -141,6 +147,7 @@ static void compare_one(gl_env* env, tlod_backend* backend, const fixture* fx, c
   s_totals.off_band += c.off_band;
   s_totals.covered += c.covered_either;
   s_totals.triangles += draw_list_triangles;
+  s_totals.morphing += morphing;
   if (c.max_colour_diff > s_totals.worst_colour) s_totals.worst_colour = c.max_colour_diff;
   if (colour_fraction < s_totals.worst_colour_fraction) s_totals.worst_colour_fraction = colour_fraction;
 
@@ -224,10 +231,12 @@ TEST(test_parity) {
       }
       fixture_free(&fx);
     }
-  printf("  %u comparisons, %llu triangles: coverage differs on %llu of %llu covered pixels (%.4f%%), %llu off the "
+  CHECK_MSG(s_totals.morphing > 0, "no draw list had a geomorph blend < 1: morph parity not exercised");
+  printf("  %u comparisons, %llu triangles, %u morphing instances: coverage differs on %llu of %llu covered pixels "
+         "(%.4f%%), %llu off the "
          "band; worst colour diff %u/255, worst within-8 fraction %.3f%%\n",
-         s_totals.comparisons, (unsigned long long)s_totals.triangles, (unsigned long long)s_totals.coverage_diff,
-         (unsigned long long)s_totals.covered,
+         s_totals.comparisons, (unsigned long long)s_totals.triangles, s_totals.morphing,
+         (unsigned long long)s_totals.coverage_diff, (unsigned long long)s_totals.covered,
          s_totals.covered ? 100.0 * (double)s_totals.coverage_diff / (double)s_totals.covered : 0.0,
          (unsigned long long)s_totals.off_band, s_totals.worst_colour, 100.0 * s_totals.worst_colour_fraction);
   for (int k = 0; k < 3; ++k)
@@ -242,5 +251,5 @@ TEST(test_parity) {
 
 int main(void) {
   RUN(test_parity);
-  TEST_END();
+  GL_TEST_END();
 }

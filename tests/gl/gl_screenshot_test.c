@@ -239,5 +239,5 @@ TEST(test_platform_errors) {
 int main(void) {
   RUN(test_platform_errors);
   RUN(test_screenshot);
-  TEST_END();
+  GL_TEST_END();
 }

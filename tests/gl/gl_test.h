@@ -37,6 +37,20 @@
     if (_test_checks_failed != _failed_before) return;                                                                 \
   } while (0)
 
+/* Like TEST_END, but a failed run exits with _Exit: the early returns of a
+ * failed check leave objects behind, and LeakSanitizer's report of them
+ * would only bury the message that matters. */
+#define GL_TEST_END()                                                                                                  \
+  do {                                                                                                                 \
+    if (_test_failed) {                                                                                                \
+      printf("%d passed, %d failed\n", _test_passed, _test_failed);                                                    \
+      fflush(stdout);                                                                                                  \
+      fflush(stderr);                                                                                                  \
+      _Exit(1);                                                                                                        \
+    }                                                                                                                  \
+    TEST_END();                                                                                                        \
+  } while (0)
+
 /* ------------------------------------------------------------------------ */
 /* Driver lifetime under LeakSanitizer                                      */
 /* ------------------------------------------------------------------------ */
@@ -133,6 +147,12 @@ static inline void gl_read_rgba(uint32_t w, uint32_t h, uint8_t* rgba) {
 static inline void gl_read_stencil(uint32_t w, uint32_t h, uint8_t* stencil) {
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, (GLsizei)w, (GLsizei)h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil);
+}
+
+/* Window depth of the bound read framebuffer, bottom row first. */
+static inline void gl_read_depth(uint32_t w, uint32_t h, float* depth) {
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, (GLsizei)w, (GLsizei)h, GL_DEPTH_COMPONENT, GL_FLOAT, depth);
 }
 
 /* Stencil records the facing of the visible fragment: 1 front, 2 back, 0

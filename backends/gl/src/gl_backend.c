@@ -493,11 +493,19 @@ static tlod_result gl_draw(void* state, const tlod_backend_frame* fr) {
 
 static tlod_result gl_read_image(void* state, uint32_t width, uint32_t height, uint8_t* rgba) {
   (void)state;
-  GLint align = 4;
+  /* Into client memory whatever the engine's pack state: a bound pixel pack
+   * buffer or a row length would redirect or reshape the read. */
+  GLint align = 4, row_length = 0, pack_buffer = 0;
   glGetIntegerv(GL_PACK_ALIGNMENT, &align);
+  glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
   glReadPixels(0, 0, (GLsizei)width, (GLsizei)height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
   glPixelStorei(GL_PACK_ALIGNMENT, align);
+  glPixelStorei(GL_PACK_ROW_LENGTH, row_length);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
   return TLOD_SUCCESS;
 }
 

@@ -218,9 +218,11 @@ static bool egl_create(tlod_platform* p, char* error, size_t error_size) {
   PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display =
       (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
   if (!client || !has_extension(client, "EGL_EXT_platform_base") || !get_platform_display) {
+    EGLint e = eglGetError();
     _tlod_platform_error(error, error_size,
-                         "EGL has no eglGetPlatformDisplayEXT (client extensions: %s): no headless display",
-                         client ? client : "none");
+                         "no headless EGL display: eglGetPlatformDisplayEXT unavailable (client extensions: \"%s\"; "
+                         "eglGetError %s (0x%04X); is an EGL driver such as libegl-mesa0 installed?)",
+                         client ? client : "", egl_error_name(e), (unsigned)e);
     return false;
   }
   char first[192] = "";
