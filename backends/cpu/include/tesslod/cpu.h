@@ -34,9 +34,9 @@ typedef struct tlod_cpu_tessellate_desc {
   /* optional: a scheduler's draw list (tesslod/lod.h) realised exactly: its
    * levels, geomorph blends and strips; level and levels are then ignored. */
   const tlod_draw_list* draw_list;
-  bool no_weld;         /* see OUTPUT VERTICES */
-  bool no_stitch;       /* leave out connection strips (shows the cracks) */
-  bool no_normals;      /* skip the normal evaluation */
+  bool no_weld;    /* see OUTPUT VERTICES */
+  bool no_stitch;  /* leave out connection strips (shows the cracks) */
+  bool no_normals; /* skip the normal evaluation */
 } tlod_cpu_tessellate_desc;
 
 typedef struct tlod_cpu_mesh {
