@@ -4,9 +4,11 @@
 
 #include <stdio.h>
 
+int cmd_play(int argc, char** argv);
 int cmd_tessellate(int argc, char** argv);
 int cmd_info(int argc, char** argv);
 int cmd_bench(int argc, char** argv);
+void play_usage(FILE* f);
 void tessellate_usage(FILE* f);
 void info_usage(FILE* f);
 void bench_usage(FILE* f);

@@ -1,4 +1,4 @@
-/* tlod -- the tesslod command: tessellate, info, bench. */
+/* tlod -- the tesslod command: play, tessellate, info, bench. */
 #include <stdio.h>
 #include <string.h>
 
@@ -14,6 +14,7 @@ typedef struct command {
 } command;
 
 static const command commands[] = {
+    {"play", cmd_play, play_usage, "play a scene along a camera path and record per-frame timings"},
     {"tessellate", cmd_tessellate, tessellate_usage, "tessellate a mesh on the CPU and write it out"},
     {"info", cmd_info, info_usage, "print mesh statistics and validation findings"},
     {"bench", cmd_bench, bench_usage, "measure preprocessing and CPU evaluation rates"},

@@ -1,0 +1,529 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `tlod play` (docs/play.md): trace schema, CSV, Chrome
+trace, consistency with a direct `tlod tessellate` run of frame 0's camera,
+repeatability, screenshots, --compare, path files, bad input, SIGINT, and the
+no-argument default run.
+Usage: play_test.py TLOD DATA_DIR WORK_DIR"""
+import glob, json, os, shutil, signal, struct, subprocess, sys, time, zlib
+
+TLOD, DATA, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
+shutil.rmtree(WORK, ignore_errors=True)
+os.makedirs(WORK)
+passed = failed = 0
+SIZE = (640, 360)  # small: keeps the gl runs and the PNG decoding quick
+SIZE_ARG = "%dx%d" % SIZE
+
+
+def run(*args, cwd=None, timeout=300, env=None):
+    p = subprocess.run([TLOD, *args], capture_output=True, text=True, timeout=timeout, cwd=cwd,
+                       env=dict(os.environ, **env) if env else None)
+    return p.returncode, p.stdout, p.stderr
+
+
+def check(name, cond, detail=""):
+    global passed, failed
+    if cond:
+        passed += 1
+        print("ok   " + name)
+    else:
+        failed += 1
+        print("FAIL " + name + (": " + str(detail)[:2000] if detail else ""))
+    return cond
+
+
+def one_error_line(err):
+    lines = [l for l in err.splitlines() if l.strip()]
+    return len(lines) == 1 and lines[0].startswith("tlod: error: ")
+
+
+def load_json(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        return e
+
+
+# ---- the documented schema (docs/play.md) -----------------------------------
+
+NUM, INT, STR, BOOL = "number", "int", "string", "bool"
+STAGES = ["silhouette", "metric", "levels", "morph", "strips"]
+LEVELS = 11  # TLOD_MAX_LEVEL + 1
+
+
+def vec(n):
+    return ("vec", n)
+
+
+def obj(fields):
+    return ("obj", fields)
+
+
+OBJECT_INFO = obj({"name": STR, "source": STR, "vertices": INT, "faces": INT, "patches": INT, "color": vec(4)})
+STAGE_MS = obj({s: NUM for s in STAGES})
+COUNTS = {"backend_cpu_ms": NUM, "backend_gpu_ms": NUM, "backend_wall_ms": NUM, "patches": INT, "visible": INT,
+          "culled": INT, "strips": INT, "pattern_triangles": INT, "strip_triangles": INT, "triangles": INT,
+          "drawn_triangles": INT, "draw_calls": INT, "effective_epsilon": NUM, "level_histogram": ("ints", LEVELS)}
+FRAME_OBJECT = obj(dict({"name": STR, "scheduler_ms": NUM, "stage_ms": STAGE_MS}, **COUNTS))
+FRAME = obj(dict({"frame": INT, "time_s": NUM, "eye": vec(3), "target": vec(3), "up": vec(3), "fovy": NUM,
+                  "near": NUM, "far": NUM, "frame_ms": NUM, "scheduler_ms": NUM, "stage_ms": STAGE_MS,
+                  "screenshot_ms": NUM, "screenshot": STR, "objects": ("list", FRAME_OBJECT)}, **COUNTS))
+TRACE = obj({"schema": STR, "tool": STR, "scene": STR, "mode": STR, "backend": STR, "renderer": STR, "surface": STR,
+             "policy": STR, "epsilon_px": NUM, "max_level": INT, "path": STR, "path_duration_s": NUM, "loop": BOOL,
+             "fps": NUM, "dt_ms": NUM, "width": INT, "height": INT, "screenshot_every": INT,
+             "frames_requested": INT, "frames_completed": INT, "stopped": STR, "wall_s": NUM,
+             "objects": ("list", OBJECT_INFO), "frames": ("list", FRAME)})
+DIST = obj({k: NUM for k in ("mean", "p50", "p95", "p99", "max", "min")})
+RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level": INT, "frames_requested": INT,
+           "frames": INT, "stopped": STR, "wall_s": NUM, "frame_ms": DIST, "fps": NUM, "first_frame_ms": NUM,
+           "scheduler_ms": DIST, "stage_ms_mean": obj({s: NUM for s in STAGES}), "backend_cpu_ms": DIST,
+           "backend_wall_ms": DIST, "backend_gpu_ms_mean": NUM, "backend_gpu_frames": INT, "triangles": DIST,
+           "pattern_triangles_mean": NUM, "strip_triangles_mean": NUM, "drawn_triangles_mean": NUM,
+           "culled_mean": NUM, "effective_epsilon_mean": NUM, "level_histogram_mean": vec(LEVELS)})
+SUMMARY = obj({"schema": STR, "tool": STR, "scene": STR, "backend": STR, "renderer": STR, "surface": STR, "path": STR,
+               "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN)})
+
+
+def is_num(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def validate(value, schema, where="$"):
+    """Returns a list of problems: every key present, no other key, every type right."""
+    problems = []
+    if schema == NUM:
+        ok = is_num(value)
+    elif schema == INT:
+        ok = isinstance(value, int) and not isinstance(value, bool)
+    elif schema == STR:
+        ok = isinstance(value, str)
+    elif schema == BOOL:
+        ok = isinstance(value, bool)
+    elif schema[0] == "vec":
+        ok = isinstance(value, list) and len(value) == schema[1] and all(is_num(x) for x in value)
+    elif schema[0] == "ints":
+        ok = isinstance(value, list) and len(value) == schema[1] and all(
+            isinstance(x, int) and not isinstance(x, bool) for x in value)
+    elif schema[0] == "list":
+        if not isinstance(value, list):
+            return ["%s: expected a list" % where]
+        for i, v in enumerate(value):
+            problems += validate(v, schema[1], "%s[%d]" % (where, i))
+            if len(problems) > 10:
+                break
+        return problems
+    elif schema[0] == "obj":
+        if not isinstance(value, dict):
+            return ["%s: expected an object" % where]
+        fields = schema[1]
+        for k in fields:
+            if k not in value:
+                problems.append("%s: missing key %s" % (where, k))
+            else:
+                problems += validate(value[k], fields[k], where + "." + k)
+        for k in value:
+            if k not in fields:
+                problems.append("%s: unexpected key %s" % (where, k))
+        return problems
+    else:
+        raise ValueError(schema)
+    return [] if ok else ["%s: %r is not a %s" % (where, value, schema if isinstance(schema, str) else schema[0])]
+
+
+def validate_summary(s):
+    if not isinstance(s, dict) or not isinstance(s.get("runs"), list):
+        return ["not a summary"]
+    for r in s["runs"]:
+        r.pop("relative_to_first", None)
+    return validate(s, SUMMARY)
+
+
+# ---- PNG ---------------------------------------------------------------------
+
+def png_decode(path):
+    """(width, height, colour type, set of distinct pixels) of an 8-bit PNG."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError("no PNG signature")
+    pos, idat, ihdr = 8, b"", None
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if zlib.crc32(kind + body) != struct.unpack(">I", data[pos + 8 + n:pos + 12 + n])[0]:
+            raise ValueError("bad CRC in " + kind.decode())
+        if kind == b"IHDR":
+            ihdr = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    w, h, depth, ctype = ihdr[0], ihdr[1], ihdr[2], ihdr[3]
+    bpp = {6: 4, 2: 3, 0: 1, 4: 2}[ctype]
+    if depth != 8:
+        raise ValueError("bit depth %d" % depth)
+    raw = zlib.decompress(idat)
+    stride = w * bpp
+    prev = bytearray(stride)
+    colours = set()
+    for y in range(h):
+        ft = raw[y * (stride + 1)]
+        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        if ft == 1:
+            for i in range(bpp, stride):
+                line[i] = (line[i] + line[i - bpp]) & 255
+        elif ft == 2:
+            line = bytearray((a + b) & 255 for a, b in zip(line, prev))
+        elif ft == 3:
+            for i in range(stride):
+                left = line[i - bpp] if i >= bpp else 0
+                line[i] = (line[i] + ((left + prev[i]) >> 1)) & 255
+        elif ft == 4:
+            for i in range(stride):
+                a = line[i - bpp] if i >= bpp else 0
+                b = prev[i]
+                c = prev[i - bpp] if i >= bpp else 0
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else (b if pb <= pc else c))) & 255
+        if y % 4 == 0:
+            colours.update(bytes(line[i:i + bpp]) for i in range(0, stride, bpp * 3))
+        prev = line
+    return w, h, ctype, colours
+
+
+# ---- checks of one run ---------------------------------------------------------
+
+def check_run(name, out, frames, backend, screenshots_every=0):
+    """Validates the files of one run folder; returns the trace (or None)."""
+    t = load_json(os.path.join(out, "trace.json"))
+    if not check(name + ": trace.json parses", isinstance(t, dict), t):
+        return None
+    problems = validate(t, TRACE)
+    check(name + ": trace.json matches the schema (every key and type, every frame)", not problems, problems[:10])
+    if problems:
+        return None
+    check(name + ": schema name, backend, frame counts",
+          t["schema"] == "tlod-play-trace/1" and t["backend"] == backend and t["frames_completed"] == frames
+          and len(t["frames"]) == frames and t["frames_requested"] == frames and t["stopped"] == "completed",
+          (t["schema"], t["backend"], t["frames_completed"], len(t["frames"]), t["stopped"]))
+    bad = []
+    for i, f in enumerate(t["frames"]):
+        objs = f["objects"]
+        if f["frame"] != i or abs(f["time_s"] - i / t["fps"]) > 1e-6:
+            bad.append("frame %d: number/time" % i)
+        if f["triangles"] != f["pattern_triangles"] + f["strip_triangles"]:
+            bad.append("frame %d: triangles != pattern + strip" % i)
+        for k in ("patches", "culled", "strips", "pattern_triangles", "strip_triangles", "triangles",
+                  "drawn_triangles", "draw_calls"):
+            if f[k] != sum(o[k] for o in objs):
+                bad.append("frame %d: %s is not the sum over objects" % (i, k))
+        if f["level_histogram"] != [sum(o["level_histogram"][l] for o in objs) for l in range(LEVELS)]:
+            bad.append("frame %d: level histogram is not the sum over objects" % i)
+        for o in objs:
+            if sum(o["level_histogram"]) != o["visible"] or o["visible"] + o["culled"] != o["patches"]:
+                bad.append("frame %d %s: histogram/visible/culled/patches disagree" % (i, o["name"]))
+            if o["triangles"] != o["pattern_triangles"] + o["strip_triangles"]:
+                bad.append("frame %d %s: triangles" % (i, o["name"]))
+        if f["frame_ms"] <= 0 or f["scheduler_ms"] < 0 or f["backend_wall_ms"] <= 0:
+            bad.append("frame %d: times" % i)
+        if backend == "gl" and f["drawn_triangles"] == 0:
+            bad.append("frame %d: gl drew nothing" % i)
+        want_shot = screenshots_every and i % screenshots_every == 0
+        if bool(f["screenshot"]) != bool(want_shot):
+            bad.append("frame %d: screenshot entry %r" % (i, f["screenshot"]))
+    check(name + ": per-frame counts consistent (sums, histograms, visible + culled, times)", not bad, bad[:5])
+    check(name + ": objects are the cow and the cylinder",
+          [o["name"] for o in t["objects"]] == ["cow", "cylinder"] and t["objects"][0]["patches"] == 3285,
+          t["objects"])
+
+    # CSV: a header, then exactly one line per frame
+    with open(os.path.join(out, "trace.csv")) as fcsv:
+        lines = fcsv.read().splitlines()
+    header = lines[0].split(",") if lines else []
+    rows = [l.split(",") for l in lines[1:]]
+    check(name + ": trace.csv has a header and exactly one line per frame",
+          len(lines) == frames + 1 and header[:3] == ["frame", "time_s", "frame_ms"]
+          and all(len(r) == len(header) for r in rows), (len(lines), header[:3]))
+    if len(rows) == frames and "triangles" in header and "level_3" in header:
+        ti, li = header.index("triangles"), header.index("level_3")
+        check(name + ": CSV rows agree with the JSON trace",
+              all(int(r[0]) == f["frame"] and int(r[ti]) == f["triangles"] and int(r[li]) == f["level_histogram"][3]
+                  for r, f in zip(rows, t["frames"])))
+
+    # Chrome trace
+    c = load_json(os.path.join(out, "chrome_trace.json"))
+    ok = isinstance(c, dict) and isinstance(c.get("traceEvents"), list) and c["traceEvents"]
+    events = c["traceEvents"] if ok else []
+    fields_ok = all(isinstance(e, dict) and isinstance(e.get("name"), str) and e.get("ph") == "X"
+                    and is_num(e.get("ts")) and is_num(e.get("dur")) and e.get("dur") >= 0
+                    and isinstance(e.get("pid"), int) and isinstance(e.get("tid"), int)
+                    and isinstance(e.get("cat"), str) and isinstance(e.get("args"), dict) for e in events)
+    names = {e["name"] for e in events} if fields_ok else set()
+    per_frame = 1 + 2 * (1 + len(STAGES) + 1)  # frame + per object: update, stages, draw
+    check(name + ": chrome_trace.json parses; every event has name, ph X, ts, dur, pid, tid",
+          ok and fields_ok and len(events) >= frames * per_frame
+          and {"frame", "metric cow", "backend_draw cow", "scheduler_update cylinder"} <= names,
+          (ok, fields_ok, len(events), sorted(names)[:12]))
+
+    # summary
+    s = load_json(os.path.join(out, "summary.json"))
+    sp = validate_summary(s) if isinstance(s, dict) else ["does not parse"]
+    check(name + ": summary.json matches the schema", not sp, sp[:5])
+    if not sp:
+        r = s["runs"][0]
+        fm = sorted(f["frame_ms"] for f in t["frames"])
+        check(name + ": summary statistics (mean, p50, max of frame_ms)",
+              r["frames"] == frames and abs(r["frame_ms"]["mean"] - sum(fm) / len(fm)) < 1e-3 * max(1, fm[-1])
+              and abs(r["frame_ms"]["max"] - fm[-1]) < 1e-6 * max(1, fm[-1])
+              and abs(r["frame_ms"]["p50"] - fm[(len(fm) + 1) // 2 - 1]) < 1e-6 * max(1, fm[-1]),
+              (r["frame_ms"], fm[-1]))
+    check(name + ": summary.txt written", os.path.getsize(os.path.join(out, "summary.txt")) > 0)
+    return t
+
+
+def histograms(t):
+    return [[o["level_histogram"] for o in f["objects"]] for f in t["frames"]]
+
+
+def triangles(t):
+    return [[(o["pattern_triangles"], o["strip_triangles"]) for o in f["objects"]] for f in t["frames"]]
+
+
+def final_files(d):
+    return [p for p in glob.glob(os.path.join(d, "**"), recursive=True) if os.path.isfile(p)]
+
+
+# ---- usage -------------------------------------------------------------------
+rc, out, err = run("play", "--help")
+check("play --help exits 0 with usage", rc == 0 and "usage: tlod play" in out and "--compare" in out)
+
+# ---- GL available? -------------------------------------------------------------
+probe_start = time.time()
+rc, out, err = run("play", "--backend", "gl", "--frames", "1", "--size", "64x64", "-q", "--out",
+                   os.path.join(WORK, "probe"))
+startup_s = time.time() - probe_start  # set-up of a run: the SIGINT test waits well past it
+have_gl = rc == 0
+if not have_gl:
+    print("note: no GL context (%s): gl checks are skipped" % err.strip())
+
+# ---- cpu: 100 frames ---------------------------------------------------------------
+cpu_dir = os.path.join(WORK, "cpu")
+t0 = time.time()
+rc, out, err = run("play", "--backend", "cpu", "--frames", "100", "--size", SIZE_ARG, "--out", cpu_dir, "-q")
+check("cpu: 100 frames exit 0, quiet", rc == 0 and not out and not err, (rc, out, err))
+cpu = check_run("cpu", cpu_dir, 100, "cpu")
+
+# ---- repeatability ------------------------------------------------------------
+cpu2_dir = os.path.join(WORK, "cpu2")
+rc, out, err = run("play", "--backend", "cpu", "--frames", "100", "--size", SIZE_ARG, "--out", cpu2_dir, "-q")
+cpu2 = load_json(os.path.join(cpu2_dir, "trace.json"))
+if cpu and isinstance(cpu2, dict):
+    check("repeatability: two runs give identical levels and triangle counts per frame and object",
+          histograms(cpu) == histograms(cpu2) and triangles(cpu) == triangles(cpu2)
+          and [f["eye"] for f in cpu["frames"]] == [f["eye"] for f in cpu2["frames"]])
+    check("the path moves the camera and the levels change along it",
+          cpu["frames"][0]["eye"] != cpu["frames"][50]["eye"]
+          and len({f["triangles"] for f in cpu["frames"]}) > 10)
+else:
+    check("repeatability: second run", False, err)
+
+# ---- consistency with a direct scheduler run of frame 0's camera -------------------
+if cpu:
+    f0 = cpu["frames"][0]
+    cow = f0["objects"][0]
+    stats = os.path.join(WORK, "direct.json")
+    fmt = lambda v: ",".join("%.9g" % x for x in v)
+    rc, out, err = run("tessellate", "demo:cow", "-o", os.path.join(WORK, "direct.obj"), "--stats", stats, "-q",
+                       "--eye", fmt(f0["eye"]), "--target", fmt(f0["target"]), "--up", fmt(f0["up"]),
+                       "--fovy", "%.9g" % f0["fovy"], "--size", SIZE_ARG)
+    d = load_json(stats)
+    if check("direct run: tlod tessellate demo:cow with frame 0's camera", rc == 0 and isinstance(d, dict), err):
+        a = d["adaptive"]
+        hist = a["level_histogram"]
+        check("frame 0: the cow's level histogram equals the direct run's",
+              cow["level_histogram"][:len(hist)] == hist and not any(cow["level_histogram"][len(hist):]),
+              (cow["level_histogram"], hist))
+        check("frame 0: the cow's pattern / strip triangles and culled patches equal the direct run's",
+              cow["pattern_triangles"] == a["pattern_triangles"]
+              and cow["strip_triangles"] == a["strip_triangles_planned"] and cow["culled"] == a["culled"]
+              and cow["strips"] == a["strips"], (cow, a))
+        check("frame 0: the cpu backend realised as many triangles as the direct run wrote",
+              cow["drawn_triangles"] == d["output_counts"]["triangles"],
+              (cow["drawn_triangles"], d["output_counts"]["triangles"]))
+
+# ---- gl: 100 frames, screenshots every 25 -------------------------------------------
+if have_gl:
+    gl_dir = os.path.join(WORK, "gl")
+    rc, out, err = run("play", "--backend", "gl", "--frames", "100", "--size", SIZE_ARG, "--screenshot-every", "25",
+                       "--out", gl_dir, "-q")
+    check("gl: 100 frames exit 0", rc == 0, err)
+    gl = check_run("gl", gl_dir, 100, "gl", screenshots_every=25)
+    if gl and cpu:
+        check("gl and cpu: the scheduler gives identical levels and triangle counts on both backends",
+              histograms(gl) == histograms(cpu) and triangles(gl) == triangles(cpu))
+        check("gl: drawn triangles per frame equal the planned ones",
+              all(f["drawn_triangles"] == f["triangles"] for f in gl["frames"]))
+    shots = sorted(glob.glob(os.path.join(gl_dir, "screenshots", "*.png")))
+    names = [os.path.basename(p) for p in shots]
+    check("gl: screenshots/frame_NNNNN.png every 25 frames",
+          names == ["frame_%05d.png" % n for n in (0, 25, 50, 75)], names)
+    for p in shots:
+        try:
+            w, h, ctype, colours = png_decode(p)
+            check("screenshot %s: valid PNG %dx%d RGBA, not blank (%d colours sampled)" % (
+                os.path.basename(p), w, h, len(colours)), (w, h) == SIZE and ctype == 6 and len(colours) > 1)
+        except Exception as e:  # noqa: BLE001 -- any decoding problem is a failure
+            check("screenshot %s decodes" % os.path.basename(p), False, e)
+    rc, out, err = run("play", "--backend", "gl", "--mode", "uniform:2", "--path", "zoom", "--frames", "12",
+                       "--size", "128x72", "--out", os.path.join(WORK, "gl_uniform"), "-q")
+    check("gl: uniform:2 along the zoom path exits 0", rc == 0, err)
+
+# ---- --compare -------------------------------------------------------------------------
+cmp_dir = os.path.join(WORK, "compare")
+rc, out, err = run("play", "--backend", "cpu", "--compare", "adaptive,uniform:2,flat", "--frames", "20", "--size",
+                   SIZE_ARG, "--out", cmp_dir)
+check("compare: exit 0, summary on stdout", rc == 0 and "uniform:2" in out and "frame ms" in out, (rc, err))
+s = load_json(os.path.join(cmp_dir, "summary.json"))
+sp = validate_summary(s) if isinstance(s, dict) else ["does not parse"]
+check("compare: one combined summary.json with a run per mode",
+      not sp and [r["mode"] for r in s["runs"]] == ["adaptive", "uniform:2", "flat"]
+      and [r["dir"] for r in s["runs"]] == ["adaptive", "uniform-2", "flat"], sp or s)
+traces = {m: load_json(os.path.join(cmp_dir, m, "trace.json")) for m in ("adaptive", "uniform-2", "flat")}
+if all(isinstance(x, dict) and not validate(x, TRACE) for x in traces.values()):
+    u, fl, ad = traces["uniform-2"], traces["flat"], traces["adaptive"]
+    check("compare: uniform:2 puts every visible patch at level 2 (culling applies)",
+          all(o["level_histogram"][2] == o["visible"] for f in u["frames"] for o in f["objects"]))
+    check("compare: flat puts every visible patch at level 0",
+          all(o["level_histogram"][0] == o["visible"] and o["strip_triangles"] == 0
+              for f in fl["frames"] for o in f["objects"]))
+    if cpu:
+        check("compare: its adaptive run repeats the single run frame by frame",
+              histograms(ad) == histograms(cpu)[:20] and triangles(ad) == triangles(cpu)[:20])
+else:
+    check("compare: per-mode traces in subfolders match the schema", False, list(traces))
+
+# ---- a keyframe file -----------------------------------------------------------------
+path_file = os.path.join(WORK, "path.json")
+keys = [{"time": 0, "eye": [0, 2, 20], "target": [0, 0, 0]},
+        {"time": 0.5, "eye": [15, 4, 10], "target": [1, 0, 0], "fovy": 40},
+        {"time": 1.5, "eye": [20, 2, -5], "target": [0, 1, 0], "up": [0, 1, 0], "fovy": 50}]
+with open(path_file, "w") as f:
+    json.dump({"name": "test", "keyframes": keys}, f)
+rc, out, err = run("play", "--backend", "cpu", "--path", path_file, "--size", SIZE_ARG, "--out",
+                   os.path.join(WORK, "pathfile"), "-q")
+t = load_json(os.path.join(WORK, "pathfile", "trace.json"))
+if check("path file: plays, one pass by default (1.5 s at 60 fps: 91 frames)",
+         rc == 0 and isinstance(t, dict) and len(t["frames"]) == 91, (rc, err)):
+    fr = t["frames"]
+    close = lambda a, b: all(abs(x - y) < 1e-4 for x, y in zip(a, b))
+    check("path file: the spline passes through the keyframes (eye, target, fovy)",
+          close(fr[0]["eye"], keys[0]["eye"]) and close(fr[30]["eye"], keys[1]["eye"])
+          and close(fr[30]["target"], keys[1]["target"]) and abs(fr[30]["fovy"] - 40) < 1e-4
+          and close(fr[90]["eye"], keys[2]["eye"]) and abs(fr[0]["fovy"] - 45) < 1e-4, [fr[i]["eye"] for i in (0, 30, 90)])
+    check("path file: fovy linear between keys", abs(fr[15]["fovy"] - 42.5) < 1e-3, fr[15]["fovy"])
+rc, out, err = run("play", "--backend", "cpu", "--path", path_file, "--loop", "--frames", "120", "--size", SIZE_ARG,
+                   "--out", os.path.join(WORK, "pathloop"), "-q")
+t = load_json(os.path.join(WORK, "pathloop", "trace.json"))
+check("path file --loop: starts over at the end (frame 90 is frame 0's camera)",
+      rc == 0 and isinstance(t, dict) and t["frames"][90]["eye"] == t["frames"][0]["eye"], err)
+
+# ---- bad input: one line, exit 1 or 2, nothing under final names -------------------------
+def bad_path(name, content):
+    p = os.path.join(WORK, name)
+    with open(p, "w") as f:
+        f.write(content)
+    return p
+
+
+k0 = '{"time": 0, "eye": [0, 2, 20], "target": [0, 0, 0]}'
+bad_glb = sorted(glob.glob(os.path.join(DATA, "glTF-Validator/glb/*.glb")))
+bad_cases = [
+    ("missing scene file", ["play", os.path.join(WORK, "no_such.obj")], 1),
+    ("broken scene file", ["play", bad_glb[0] if bad_glb else os.path.join(WORK, "no.glb")], 1),
+    ("path JSON missing 'eye'", ["play", "--path", bad_path("p_missing.json",
+                                '{"keyframes": [%s, {"time": 1, "target": [0, 0, 0]}]}' % k0)], 1),
+    ("path JSON non-increasing times", ["play", "--path", bad_path("p_times.json",
+                                       '{"keyframes": [%s, %s]}' % (k0, k0))], 1),
+    ("path JSON with one keyframe", ["play", "--path", bad_path("p_one.json", '{"keyframes": [%s]}' % k0)], 1),
+    ("path JSON syntax error", ["play", "--path", bad_path("p_syntax.json", '{"keyframes": [%s,' % k0)], 1),
+    ("path file missing", ["play", "--path", os.path.join(WORK, "nope.json")], 1),
+    ("unknown backend", ["play", "--backend", "metal"], 2),
+    ("--mode uniform:x", ["play", "--mode", "uniform:x"], 2),
+    ("--mode uniform:11", ["play", "--mode", "uniform:11"], 2),
+    ("--size 0x10", ["play", "--size", "0x10"], 2),
+    ("--size 12", ["play", "--size", "12"], 2),
+    ("--screenshot-every with cpu", ["play", "--backend", "cpu", "--screenshot-every", "5"], 2),
+    ("--frames and --duration", ["play", "--frames", "5", "--duration", "1"], 2),
+    ("--compare with one mode", ["play", "--compare", "adaptive"], 2),
+    ("unknown option", ["play", "--frob"], 2),
+]
+for i, (what, args, code) in enumerate(bad_cases):
+    out_dir = os.path.join(WORK, "bad%d" % i)
+    rc, out, err = run(*args, "--out", out_dir)
+    check("bad input: %s -> exit %d, one error line, no output" % (what, code),
+          rc == code and one_error_line(err) and not os.path.exists(out_dir), (rc, err, final_files(out_dir)))
+
+# ---- no GL context: the default falls back to cpu, an explicit gl fails -------------------
+no_egl = {"__EGL_VENDOR_LIBRARY_FILENAMES": os.path.join(WORK, "no_such_vendor.json")}  # glvnd finds no driver
+rc, out, err = run("play", "--frames", "3", "--size", SIZE_ARG, "--out", os.path.join(WORK, "fallback"), env=no_egl)
+t = load_json(os.path.join(WORK, "fallback", "trace.json"))
+check("no GL context: the default backend falls back to cpu with a note",
+      rc == 0 and "playing on the cpu backend" in err and isinstance(t, dict) and t["backend"] == "cpu", (rc, err))
+out_dir = os.path.join(WORK, "no_gl")
+rc, out, err = run("play", "--backend", "gl", "--frames", "3", "--out", out_dir, env=no_egl)
+check("no GL context: --backend gl fails with the reason, exit 1, no output",
+      rc == 1 and one_error_line(err) and "no GL context" in err and not os.path.exists(out_dir), (rc, err))
+
+# ---- SIGINT: stops after the current frame and writes what was played -------------------
+int_dir = os.path.join(WORK, "interrupted")
+backend = "gl" if have_gl else "cpu"
+p = subprocess.Popen([TLOD, "play", "--backend", backend, "--frames", "20000", "--loop", "--size", SIZE_ARG, "--out",
+                      int_dir, "-q"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+time.sleep(max(2.5, 8 * startup_s))  # past the set-up, a few frames in (a SIGINT during set-up gives 0 frames)
+p.send_signal(signal.SIGINT)
+try:
+    out, err = p.communicate(timeout=60)
+    rc = p.returncode
+except subprocess.TimeoutExpired:
+    p.kill()
+    out, err = p.communicate()
+    rc = None
+check("SIGINT: exits with 130", rc == 130, (rc, err))
+t = load_json(os.path.join(int_dir, "trace.json"))
+if check("SIGINT: trace.json written and valid", isinstance(t, dict) and not validate(t, TRACE), t):
+    n = t["frames_completed"]
+    check("SIGINT: the trace holds the frames so far (0 < frames < requested), marked interrupted",
+          0 < n < 20000 and len(t["frames"]) == n and t["stopped"] == "interrupted", (n, t["stopped"]))
+    with open(os.path.join(int_dir, "trace.csv")) as f:
+        check("SIGINT: trace.csv has a line per frame played", len(f.read().splitlines()) == n + 1)
+    c = load_json(os.path.join(int_dir, "chrome_trace.json"))
+    s = load_json(os.path.join(int_dir, "summary.json"))
+    check("SIGINT: chrome trace and summary written",
+          isinstance(c, dict) and isinstance(s, dict) and s["runs"][0]["frames"] == n)
+
+# ---- no arguments: the default run ----------------------------------------------------
+if have_gl:
+    cwd = os.path.join(WORK, "default")
+    os.makedirs(cwd)
+    t1 = time.time()
+    rc, out, err = run("play", cwd=cwd, timeout=180)
+    secs = time.time() - t1
+    runs = glob.glob(os.path.join(cwd, "runs", "*"))
+    check("no arguments: exit 0, one runs/<timestamp> folder, summary printed (%.1f s)" % secs,
+          rc == 0 and len(runs) == 1 and "frame ms" in out and "adaptive" in out, (rc, err, runs))
+    if len(runs) == 1:
+        files = sorted(os.listdir(runs[0]))
+        check("no arguments: the run folder holds the five files",
+              files == ["chrome_trace.json", "summary.json", "summary.txt", "trace.csv", "trace.json"], files)
+        t = load_json(os.path.join(runs[0], "trace.json"))
+        check("no arguments: demo scene, gl, adaptive, orbit, 240 frames at 1280x720",
+              isinstance(t, dict) and t["backend"] == "gl" and t["mode"] == "adaptive" and t["path"] == "orbit"
+              and t["frames_completed"] == 240 and (t["width"], t["height"]) == (1280, 720)
+              and t["scene"] == "demo:scene", t if not isinstance(t, dict) else t["frames_completed"])
+
+tmp = [p for p in glob.glob(os.path.join(WORK, "**", "*.tmp*"), recursive=True)]
+check("no temporary files left anywhere", not tmp, tmp)
+
+print("(%.0f s)" % (time.time() - t0))
+print("%d passed, %d failed" % (passed, failed))
+sys.exit(1 if failed else 0)
