@@ -275,7 +275,7 @@ static tlod_result _ply_list_count(_ply_reader* r, const _ply_property* p, size_
 static tlod_result _ply_skip_property(_ply_reader* r, const _ply_property* p) {
   _ply_value v;
   if (!p->is_list) return _ply_value_read(r, p->type, &v);
-  size_t n;
+  size_t n = 0;
   tlod_result res = _ply_list_count(r, p, &n);
   for (size_t i = 0; i < n && res == TLOD_SUCCESS; ++i)
     res = _ply_value_read(r, p->type, &v);
