@@ -32,6 +32,7 @@
 #include "tesslod/cpu.h"
 #include "tesslod/lod.h"
 #include "test.h"
+#include "test_alloc.h"
 
 #define PAT_MAX 5 /* patterns built to this level */
 #define DEG (SHAPES_PI / 180.0)
@@ -55,30 +56,6 @@ static double now_seconds(void) {
 /* ------------------------------------------------------------------------ */
 
 /* The fail_at-th call (0-based) fails; with fail_all every later one too. */
-typedef struct counting_allocator {
-  long calls, allocs, frees, failed;
-  long fail_at; /* -1: never */
-  bool fail_all;
-} counting_allocator;
-
-static void* counting_alloc(size_t size, void* user_data) {
-  counting_allocator* c = user_data;
-  long call = c->calls++;
-  if (c->fail_at >= 0 && (call == c->fail_at || (c->fail_all && call > c->fail_at))) {
-    c->failed++;
-    return NULL;
-  }
-  void* p = malloc(size ? size : 1);
-  if (p) c->allocs++;
-  return p;
-}
-
-static void counting_free(void* ptr, void* user_data) {
-  counting_allocator* c = user_data;
-  if (ptr) c->frees++;
-  free(ptr);
-}
-
 /* Chunks of 5 in reverse order on 3 "workers". */
 typedef struct reverse_pool {
   long calls, chunks;
