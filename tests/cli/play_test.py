@@ -521,6 +521,71 @@ if have_gl:
               and t["frames_completed"] == 240 and (t["width"], t["height"]) == (1280, 720)
               and t["scene"] == "demo:scene", t if not isinstance(t, dict) else t["frames_completed"])
 
+
+# --path gltf: a camera of the scene file, moved by its animation. The file is
+# made here: a tetrahedron, a camera node under a parent translated by (0, 1, 0),
+# a translation channel with keys at 0, 1, 2 s and a rotation channel
+# (quarter turn about y) with keys at 0 and 2 s.
+import base64, math
+def animated_camera_gltf(path):
+    pos = [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]
+    idx = [0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]
+    times_t = [0.0, 1.0, 2.0]
+    trans = [0, 0, 5, 2, 0, 5, 2, 2, 6]
+    times_r = [0.0, 2.0]
+    s = math.sqrt(0.5)
+    rot = [0, 0, 0, 1, 0, s, 0, s]
+    blob = struct.pack("<12f", *pos) + struct.pack("<12H", *idx) + struct.pack("<3f", *times_t) + \
+        struct.pack("<9f", *trans) + struct.pack("<2f", *times_r) + struct.pack("<8f", *rot)
+    views, off = [], 0
+    for n in (48, 24, 12, 36, 8, 32):
+        views.append({"buffer": 0, "byteOffset": off, "byteLength": n})
+        off += n
+    g = {"asset": {"version": "2.0"}, "scene": 0,
+         "scenes": [{"nodes": [0, 1]}],
+         "nodes": [{"mesh": 0}, {"translation": [0, 1, 0], "children": [2]}, {"camera": 0}],
+         "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+         "accessors": [
+             {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+             {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"},
+             {"bufferView": 2, "componentType": 5126, "count": 3, "type": "SCALAR", "min": [0], "max": [2]},
+             {"bufferView": 3, "componentType": 5126, "count": 3, "type": "VEC3"},
+             {"bufferView": 4, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [2]},
+             {"bufferView": 5, "componentType": 5126, "count": 2, "type": "VEC4"}],
+         "bufferViews": views,
+         "buffers": [{"byteLength": len(blob),
+                      "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+         "animations": [{"channels": [{"sampler": 0, "target": {"node": 2, "path": "translation"}},
+                                      {"sampler": 1, "target": {"node": 2, "path": "rotation"}}],
+                         "samplers": [{"input": 2, "output": 3}, {"input": 4, "output": 5}]}]}
+    with open(path, "w") as f:
+        json.dump(g, f)
+
+cam_file = os.path.join(WORK, "animated_camera.gltf")
+animated_camera_gltf(cam_file)
+out = os.path.join(WORK, "gltf_path")
+rc, so, se = run("play", cam_file, "--backend", "cpu", "--path", "gltf", "--fps", "10", "--out", out, "-q")
+t = load_json(os.path.join(out, "trace.json")) if rc == 0 else None
+frames = t["frames"] if isinstance(t, dict) else []
+def near(a, b, tol=1e-4):
+    return all(abs(x - y) <= tol for x, y in zip(a, b))
+ok = len(frames) == 21
+if ok:
+    f0, f10, f20 = frames[0], frames[10], frames[20]
+    ok = near(f0["eye"], [0, 1, 5]) and near(f10["eye"], [2, 1, 5]) and near(f20["eye"], [2, 3, 6])
+    # at 0 s the camera looks down -z; at 2 s a quarter turn about y makes it look down -x
+    d0 = [f0["target"][i] - f0["eye"][i] for i in range(3)]
+    d2 = [f20["target"][i] - f20["eye"][i] for i in range(3)]
+    ok = ok and near(d0, [0, 0, -1]) and near(d2, [-1, 0, 0], 1e-3) and abs(f0["fovy"] - math.degrees(0.8)) < 1e-3
+check("--path gltf: the file's camera, parent transform and animation (21 frames at 10 fps)", ok,
+      se if rc else str([(f["eye"], f["target"]) for f in frames[:1] + frames[10:11] + frames[20:21]]))
+rc, so, se = run("play", cam_file, "--backend", "cpu", "--path", "gltf:3", "--out", os.path.join(WORK, "gltf_bad"))
+check("--path gltf:3 on a file with one camera: exit 1, one line naming it",
+      rc == 1 and one_error_line(se) and "camera 3" in se and not os.path.exists(os.path.join(WORK, "gltf_bad")), se)
+rc, so, se = run("play", "--backend", "cpu", "--path", "gltf", "--out", os.path.join(WORK, "gltf_demo"))
+check("--path gltf on the demo scene: exit 2", rc == 2 and one_error_line(se), se)
+
 tmp = [p for p in glob.glob(os.path.join(WORK, "**", "*.tmp*"), recursive=True)]
 check("no temporary files left anywhere", not tmp, tmp)
 

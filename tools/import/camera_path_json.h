@@ -53,6 +53,14 @@ bool camera_path_json_load(const char* path, camera_path_json_key** keys, uint32
                            size_t error_size);
 void camera_path_json_free(camera_path_json_key* keys);
 
+/* Camera `camera` of a glTF file as keyframes (gltf_camera_path.cpp): its
+ * node's world transform, moved by the translation/rotation channels of the
+ * first animation that targets that node, sampled at their key times; a
+ * still camera gives two keys one second apart. Free with
+ * camera_path_json_free. */
+bool gltf_camera_path_load(const char* path, uint32_t camera, camera_path_json_key** keys, uint32_t* count, char* error,
+                           size_t error_size);
+
 #ifdef __cplusplus
 }
 #endif

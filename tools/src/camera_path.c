@@ -69,12 +69,10 @@ static bool check_keys(const camera_path* p, char* error, size_t error_size) {
   return true;
 }
 
-bool camera_path_load(const char* file, camera_path* out, char* error, size_t error_size) {
-  memset(out, 0, sizeof(*out));
-  camera_path_json_key* keys = NULL;
-  uint32_t count = 0;
-  if (!camera_path_json_load(file, &keys, &count, error, error_size)) return false;
-  snprintf(out->name, sizeof(out->name), "%s", file);
+/* Takes over keys (file or glTF camera) and checks them as any path. */
+static bool from_keys(const char* file, const char* name, camera_path_json_key* keys, uint32_t count, camera_path* out,
+                      char* error, size_t error_size) {
+  snprintf(out->name, sizeof(out->name), "%s", name);
   out->keys = calloc(count + 1u, sizeof(camera_key));
   if (!out->keys) {
     camera_path_json_free(keys);
@@ -98,6 +96,24 @@ bool camera_path_load(const char* file, camera_path* out, char* error, size_t er
     return false;
   }
   return true;
+}
+
+bool camera_path_load(const char* file, camera_path* out, char* error, size_t error_size) {
+  memset(out, 0, sizeof(*out));
+  camera_path_json_key* keys = NULL;
+  uint32_t count = 0;
+  if (!camera_path_json_load(file, &keys, &count, error, error_size)) return false;
+  return from_keys(file, file, keys, count, out, error, error_size);
+}
+
+bool camera_path_load_gltf(const char* scene, uint32_t camera, camera_path* out, char* error, size_t error_size) {
+  memset(out, 0, sizeof(*out));
+  camera_path_json_key* keys = NULL;
+  uint32_t count = 0;
+  if (!gltf_camera_path_load(scene, camera, &keys, &count, error, error_size)) return false;
+  char name[300];
+  snprintf(name, sizeof(name), "gltf:%u", camera);
+  return from_keys(scene, name, keys, count, out, error, error_size);
 }
 
 /* ---- built-in paths ------------------------------------------------------ */

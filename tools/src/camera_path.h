@@ -35,6 +35,9 @@ bool camera_path_builtin(const char* name, const float bmin[3], const float bmax
 /* Reads and checks a keyframe file. False with one line in error
  * ("<file>: <element>: <problem>") on any problem. */
 bool camera_path_load(const char* file, camera_path* out, char* error, size_t error_size);
+/* Camera `camera` of a glTF scene file, animated by its first animation
+ * (see gltf_camera_path_load in tools/import/camera_path_json.h). */
+bool camera_path_load_gltf(const char* scene, uint32_t camera, camera_path* out, char* error, size_t error_size);
 void camera_path_free(camera_path* p);
 
 /* Seconds from the first keyframe to the last. */

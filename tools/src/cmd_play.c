@@ -113,6 +113,7 @@ void play_usage(FILE* f) {
       "  --max-level L       adaptive: finest level, 1..%d (default 6)\n"
       "  --size WxH          viewport in pixels (default 1280x720)\n"
       "  --path P            orbit (default) | flyby | zoom | FILE.json (keyframes, see docs/play.md)\n"
+      "                      | gltf[:N] (camera N of the glTF scene, with its animation)\n"
       "  --frames N          frames to play (default: " PLAY_DEFAULT_FRAMES_NOTE ")\n"
       "  --duration S        seconds of path time to play (frames = S * fps); not with --frames\n"
       "  --fps F             fixed time step 1/F s per frame (default 60): runs are repeatable\n"
@@ -788,7 +789,16 @@ int cmd_play(int argc, char** argv) {
   camera_path path = {0};
   char err[1024];
   bool builtin = camera_path_is_builtin(o.path);
-  if (!builtin && !camera_path_load(o.path, &path, err, sizeof(err))) rc = cli_error(CLI_FAILED, "%s", err);
+  unsigned gltf_camera = 0;
+  char tail;
+  bool gltf = !strcmp(o.path, "gltf") || sscanf(o.path, "gltf:%u%c", &gltf_camera, &tail) == 1;
+  if (gltf && (!o.scene || !strncmp(o.scene, "demo:", 5))) {
+    rc = cli_error(CLI_USAGE, "--path %s: the scene must be a .gltf or .glb file with cameras", o.path);
+  } else if (gltf) {
+    if (!camera_path_load_gltf(o.scene, gltf_camera, &path, err, sizeof(err))) rc = cli_error(CLI_FAILED, "%s", err);
+  } else if (!builtin && !camera_path_load(o.path, &path, err, sizeof(err))) {
+    rc = cli_error(CLI_FAILED, "%s", err);
+  }
   play_scene scene = {0};
   if (rc == CLI_OK) rc = scene_load(&o, &scene);
   if (rc == CLI_OK && builtin && !camera_path_builtin(o.path, scene.bmin, scene.bmax, &path))
