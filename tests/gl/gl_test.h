@@ -16,7 +16,6 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
-#include <dlfcn.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,23 +51,6 @@
   } while (0)
 
 /* ------------------------------------------------------------------------ */
-/* Driver lifetime under LeakSanitizer                                      */
-/* ------------------------------------------------------------------------ */
-
-/* Mesa's swrast_dri.so keeps allocations in its globals and is dlclose()d
- * by eglTerminate / at exit; LSan then reports them from an "<unknown
- * module>" that no suppression file can name (measured: 2 x 56 bytes per
- * process). Keeping the driver mapped (RTLD_NODELETE) keeps those blocks
- * reachable, so LSan stays quiet about Mesa without hiding any of our
- * leaks. Missing libraries are ignored. */
-__attribute__((constructor)) static void gl_test_keep_driver_loaded(void) {
-  static const char* const libs[] = {"libEGL_mesa.so.0", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so",
-                                     "/usr/lib/dri/swrast_dri.so"};
-  for (size_t i = 0; i < sizeof libs / sizeof libs[0]; ++i)
-    (void)dlopen(libs[i], RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
-}
-
-/* ------------------------------------------------------------------------ */
 /* Context                                                                  */
 /* ------------------------------------------------------------------------ */
 
@@ -89,24 +71,7 @@ static inline tlod_platform* gl_test_platform(uint32_t w, uint32_t h, char* erro
   return p;
 }
 
-static inline const char* gl_error_name(GLenum e) {
-  switch (e) {
-  case GL_NO_ERROR:
-    return "GL_NO_ERROR";
-  case GL_INVALID_ENUM:
-    return "GL_INVALID_ENUM";
-  case GL_INVALID_VALUE:
-    return "GL_INVALID_VALUE";
-  case GL_INVALID_OPERATION:
-    return "GL_INVALID_OPERATION";
-  case GL_INVALID_FRAMEBUFFER_OPERATION:
-    return "GL_INVALID_FRAMEBUFFER_OPERATION";
-  case GL_OUT_OF_MEMORY:
-    return "GL_OUT_OF_MEMORY";
-  default:
-    return "other GL error";
-  }
-}
+static inline const char* gl_error_name(GLenum e) { return tlod_platform_gl_error_name(e); }
 
 /* An offscreen FBO of the test's own (RGBA8 + DEPTH24_STENCIL8). */
 typedef struct gl_target {

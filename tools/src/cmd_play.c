@@ -23,7 +23,6 @@
 
 #include <GL/gl.h>
 #if defined(__SANITIZE_ADDRESS__)
-#include <dlfcn.h>
 #endif
 #else
 typedef struct tlod_platform tlod_platform;
@@ -706,22 +705,6 @@ static int write_run(const play_trace* t, const char* dir) {
   return CLI_OK;
 }
 
-#if TLOD_HAS_GL && defined(__SANITIZE_ADDRESS__)
-/* Sanitizer builds only: Mesa's swrast_dri.so keeps allocations in its
- * globals and is dlclose()d at exit, and LeakSanitizer then reports them
- * from an "<unknown module>" no suppression can name. Keeping the driver
- * mapped keeps them reachable without hiding any leak of ours (the same as
- * tests/gl/gl_test.h). Missing libraries are ignored. */
-static void keep_gl_driver_loaded(void) {
-  static const char* const libs[] = {"libEGL_mesa.so.0", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so",
-                                     "/usr/lib/dri/swrast_dri.so"};
-  for (size_t i = 0; i < sizeof libs / sizeof libs[0]; ++i)
-    (void)dlopen(libs[i], RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
-}
-#else
-static void keep_gl_driver_loaded(void) {}
-#endif
-
 /* Makes the GL context (headless or window). NULL with *rc set when it cannot
  * and GL was required; NULL with CLI_OK when the default falls back to cpu. */
 static tlod_platform* open_platform(const play_options* o, int* rc, const char** backend) {
@@ -729,7 +712,6 @@ static tlod_platform* open_platform(const play_options* o, int* rc, const char**
   char err[512] = "";
 #if TLOD_HAS_GL
   tlod_platform* p = NULL;
-  keep_gl_driver_loaded();
   tlod_platform_desc d = {
       .width = o->width, .height = o->height, .window = o->window, .visible = o->window, .title = "tlod play"};
   if (tlod_platform_create(&d, &p, err, sizeof(err))) {

@@ -103,6 +103,8 @@ void tlod_platform_swap(tlod_platform* p);
 
 /* Monotonic clock, milliseconds (arbitrary origin). */
 double tlod_platform_time_ms(void);
+/* "GL_INVALID_OPERATION" etc. for a glGetError() value. */
+const char* tlod_platform_gl_error_name(unsigned error);
 
 /* Writes an 8-bit RGBA PNG (rows top first) to a temporary name next to
  * path, then renames it over path, so readers never see half a file. On
