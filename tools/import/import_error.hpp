@@ -5,6 +5,8 @@
 
 #include <cstdarg>
 #include <cstdio>
+#include <exception>
+#include <new>
 #include <string>
 
 #include "import_internal.h"
@@ -27,6 +29,22 @@ inline std::string format(const char* fmt, ...) {
 }
 
 [[noreturn]] inline void fail(tlod_result code, const std::string& message) { throw ImportError{code, message}; }
+
+// Runs an importer so that no exception crosses into C: each becomes the
+// job's error ("<format> parse error: ..." for foreign exceptions).
+template <class F> tlod_result guarded(const _tlod_import_job* job, const char* format_name, F&& run) {
+  try {
+    return run();
+  } catch (const ImportError& e) {
+    return _tlod_import_fail(job, e.code, "%s", e.message.c_str());
+  } catch (const std::bad_alloc&) {
+    return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory");
+  } catch (const std::exception& e) {
+    return _tlod_import_fail(job, TLOD_ERROR_PARSE, "%s parse error: %s", format_name, e.what());
+  } catch (...) {
+    return _tlod_import_fail(job, TLOD_ERROR_PARSE, "%s parse error: unknown exception", format_name);
+  }
+}
 
 } // namespace tlod_import_detail
 

@@ -514,15 +514,5 @@ tlod_result import_obj(const _tlod_import_job* job) {
 } // namespace
 
 extern "C" tlod_result _tlod_import_obj(const _tlod_import_job* job) {
-  try {
-    return import_obj(job);
-  } catch (const ImportError& e) {
-    return _tlod_import_fail(job, e.code, "%s", e.message.c_str());
-  } catch (const std::bad_alloc&) {
-    return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory");
-  } catch (const std::exception& e) {
-    return _tlod_import_fail(job, TLOD_ERROR_PARSE, "OBJ parse error: %s", e.what());
-  } catch (...) {
-    return _tlod_import_fail(job, TLOD_ERROR_PARSE, "OBJ parse error: unknown exception");
-  }
+  return tlod_import_detail::guarded(job, "OBJ", [job] { return import_obj(job); });
 }
