@@ -89,12 +89,12 @@ tlod_context_desc tlod_context_query_desc(const tlod_context* ctx) { return ctx 
 
 const char* tlod_context_last_error(const tlod_context* ctx) { return ctx ? ctx->last_error : ""; }
 
-void* _tlod_alloc(const tlod_context* ctx, size_t size) {
+void* tlod_context_alloc(const tlod_context* ctx, size_t size) {
   if (size == 0) size = 1;
   return ctx->desc.allocator.alloc_fn(size, ctx->desc.allocator.user_data);
 }
 
-void* _tlod_calloc(const tlod_context* ctx, size_t count, size_t size) {
+void* tlod_context_calloc(const tlod_context* ctx, size_t count, size_t size) {
   if (size != 0 && count > SIZE_MAX / size) return NULL;
   size_t bytes = count * size;
   void* p = _tlod_alloc(ctx, bytes);
@@ -102,7 +102,7 @@ void* _tlod_calloc(const tlod_context* ctx, size_t count, size_t size) {
   return p;
 }
 
-void _tlod_free(const tlod_context* ctx, void* ptr) {
+void tlod_context_free(const tlod_context* ctx, void* ptr) {
   if (ptr) ctx->desc.allocator.free_fn(ptr, ctx->desc.allocator.user_data);
 }
 
@@ -115,7 +115,7 @@ static void vlog(const tlod_context* ctx, tlod_log_level level, const char* fmt,
   ctx->desc.logger.func(level, msg, ctx->desc.logger.user_data);
 }
 
-tlod_result _tlod_fail(tlod_context* ctx, tlod_result result, const char* fmt, ...) {
+tlod_result tlod_context_fail(tlod_context* ctx, tlod_result result, const char* fmt, ...) {
   if (!ctx) return result;
   va_list ap;
   va_start(ap, fmt);
@@ -125,16 +125,16 @@ tlod_result _tlod_fail(tlod_context* ctx, tlod_result result, const char* fmt, .
   return result;
 }
 
-void _tlod_log(const tlod_context* ctx, tlod_log_level level, const char* fmt, ...) {
+void tlod_context_log(const tlod_context* ctx, tlod_log_level level, const char* fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
   vlog(ctx, level, fmt, ap);
   va_end(ap);
 }
 
-uint32_t _tlod_worker_count(const tlod_context* ctx) { return ctx->desc.thread_count; }
+uint32_t tlod_context_worker_count(const tlod_context* ctx) { return ctx->desc.thread_count; }
 
-void _tlod_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* data, uint32_t count) {
+void tlod_context_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* data, uint32_t count) {
   if (count == 0) return;
   if (ctx->desc.parallel_for.func) {
     ctx->desc.parallel_for.func(fn, data, count, ctx->desc.parallel_for.user_data);
@@ -145,7 +145,7 @@ void _tlod_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* data, ui
   }
 }
 
-double _tlod_now_ms(void) {
+double tlod_now_ms(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;

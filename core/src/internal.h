@@ -10,11 +10,7 @@
 extern "C" {
 #endif
 
-#if defined(__GNUC__)
-#define _TLOD_PRINTF(a, b) __attribute__((format(printf, a, b)))
-#else
-#define _TLOD_PRINTF(a, b)
-#endif
+#define _TLOD_PRINTF TLOD_PRINTF_FORMAT
 
 typedef struct _tlod_pool _tlod_pool;
 
@@ -25,22 +21,17 @@ struct tlod_context {
   char last_error[512];
 };
 
-/* Allocation through the context's hooks. _tlod_calloc zeroes; sizes are
- * checked for overflow (count * size). */
-void* _tlod_alloc(const tlod_context* ctx, size_t size);
-void* _tlod_calloc(const tlod_context* ctx, size_t count, size_t size);
-void _tlod_free(const tlod_context* ctx, void* ptr);
-
-/* Records the message as the context's last error, logs it and returns result. */
-tlod_result _tlod_fail(tlod_context* ctx, tlod_result result, const char* fmt, ...) _TLOD_PRINTF(3, 4);
-void _tlod_log(const tlod_context* ctx, tlod_log_level level, const char* fmt, ...) _TLOD_PRINTF(3, 4);
-
-/* Monotonic wall clock, milliseconds (stage timings). */
-double _tlod_now_ms(void);
-
-/* Runs fn over [0, count) on the context's workers; returns when done. */
-void _tlod_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* data, uint32_t count);
-uint32_t _tlod_worker_count(const tlod_context* ctx);
+/* Core's own spelling of the public context plumbing (tesslod/core.h,
+ * "For the layers above core"): allocation through the context's hooks,
+ * errors naming the element, logging, parallel-for, the clock. */
+#define _tlod_alloc tlod_context_alloc
+#define _tlod_calloc tlod_context_calloc
+#define _tlod_free tlod_context_free
+#define _tlod_fail tlod_context_fail
+#define _tlod_log tlod_context_log
+#define _tlod_now_ms tlod_now_ms
+#define _tlod_parallel_for tlod_context_parallel_for
+#define _tlod_worker_count tlod_context_worker_count
 
 /* Built-in thread pool (thread_pool.c). */
 tlod_result _tlod_pool_create(tlod_context* ctx, uint32_t threads, _tlod_pool** out);

@@ -610,3 +610,19 @@ tlod_result tlod_mesh_update(tlod_mesh* mesh, const float* positions, uint32_t p
   compute_bbox(mesh);
   return TLOD_SUCCESS;
 }
+
+tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* m) {
+  if (!m) return (tlod_mesh_view){0};
+  /* Explicit casts: C does not convert T (*)[3] to const T (*)[3] implicitly. */
+  return (tlod_mesh_view){
+      .vertex_count = m->vertex_count,
+      .positions = (const float(*)[3])m->positions,
+      .normals = (const float(*)[3])m->normals,
+      .weld_id = m->weld_id,
+      .face_count = m->face_count,
+      .faces = (const uint32_t(*)[4])m->faces,
+      .face_corners = m->face_corners,
+      .links = (const tlod_edge_link(*)[4])m->links,
+      .face_input_index = m->face_input,
+  };
+}

@@ -9,8 +9,7 @@
 static tlod_surface_desc surface_desc_defaults(const tlod_surface_desc* in) {
   tlod_surface_desc d = in ? *in : (tlod_surface_desc){0};
   if (d.type == TLOD_SURFACE_DEFAULT) d.type = TLOD_SURFACE_PHONG;
-  if (!d.alpha_set) d.alpha = 0.75f;
-  d.alpha_set = true;
+  if (d.alpha_mode == TLOD_ALPHA_DEFAULT) d.alpha_mode = TLOD_ALPHA_GLOBAL, d.alpha = 0.75f;
   if (d.shading_normal == TLOD_SHADING_NORMAL_DEFAULT) d.shading_normal = TLOD_SHADING_NORMAL_INTERPOLATED;
   if (!d.label) d.label = "surface";
   return d;
@@ -94,12 +93,15 @@ static tlod_result validate_surface_desc(tlod_context* ctx, const tlod_mesh* mes
   if ((unsigned)d->shading_normal >= TLOD_SHADING_NORMAL_NUM)
     return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': unknown shading normal %d", d->label,
                       (int)d->shading_normal);
-  if (!(d->alpha >= 0.0f && d->alpha <= 1.0f))
+  if ((unsigned)d->alpha_mode >= TLOD_ALPHA_NUM)
+    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': unknown alpha mode %d", d->label,
+                      (int)d->alpha_mode);
+  if (d->alpha_mode == TLOD_ALPHA_GLOBAL && !(d->alpha >= 0.0f && d->alpha <= 1.0f))
     return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': alpha %g outside [0, 1]", d->label,
                       (double)d->alpha);
-  if (d->use_vertex_alpha && !mesh->alphas)
-    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': use_vertex_alpha but mesh '%s' has no alphas",
-                      d->label, mesh->label);
+  if (d->alpha_mode == TLOD_ALPHA_PER_VERTEX && !mesh->alphas)
+    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                      "surface '%s': alpha mode PER_VERTEX but mesh '%s' has no alphas", d->label, mesh->label);
   if (d->type == TLOD_SURFACE_PN) {
     for (uint32_t f = 0; f < mesh->face_count; f++) {
       if (mesh->face_corners[f] != 3)
@@ -166,7 +168,8 @@ tlod_result tlod_surface_create(tlod_context* ctx, const tlod_mesh* mesh, const 
     return r;
   }
   for (uint32_t v = 0; v < mesh->vertex_count; v++)
-    s->alpha[v] = d.type == TLOD_SURFACE_FLAT ? 0.0f : (d.use_vertex_alpha ? mesh->alphas[v] : d.alpha);
+    s->alpha[v] =
+        d.type == TLOD_SURFACE_FLAT ? 0.0f : (d.alpha_mode == TLOD_ALPHA_PER_VERTEX ? mesh->alphas[v] : d.alpha);
   take_snapshot(s);
   build_job job = {s, NULL};
   _tlod_parallel_for(ctx, build_range, &job, s->patch_count);

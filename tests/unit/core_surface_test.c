@@ -144,9 +144,8 @@ typedef struct surf_cfg {
 
 static tlod_surface* new_surface(tlod_context* ctx, const tlod_mesh* mesh, const surf_cfg* cfg) {
   tlod_surface_desc d = {.type = cfg->type,
+                         .alpha_mode = cfg->vertex_alpha ? TLOD_ALPHA_PER_VERTEX : TLOD_ALPHA_GLOBAL,
                          .alpha = (float)cfg->alpha,
-                         .alpha_set = true,
-                         .use_vertex_alpha = cfg->vertex_alpha,
                          .shading_normal = cfg->shading,
                          .label = "test"};
   tlod_surface* s = NULL;
@@ -1460,7 +1459,8 @@ TEST(test_bad_alpha_rejected) {
   for (int k = 0; k < 6; ++k) {
     tlod_surface* s = (tlod_surface*)&md;
     tlod_result r = tlod_surface_create(
-        ctx, mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha = bad[k], .alpha_set = true}, &s);
+        ctx, mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha_mode = TLOD_ALPHA_GLOBAL, .alpha = bad[k]},
+        &s);
     CHECK_MSG(r == TLOD_ERROR_INVALID_ARGUMENT, "alpha %g: %s", (double)bad[k], tlod_result_string(r));
     CHECK_MSG(s == NULL, "alpha %g: *out not cleared", (double)bad[k]);
     CHECK_MSG(strlen(tlod_context_last_error(ctx)) > 0, "alpha %g: no message", (double)bad[k]);
@@ -1469,9 +1469,10 @@ TEST(test_bad_alpha_rejected) {
   const float good[] = {0.0f, 1.0f};
   for (int k = 0; k < 2; ++k) {
     tlod_surface* s = NULL;
-    CHECK(tlod_surface_create(ctx, mesh,
-                              &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha = good[k], .alpha_set = true},
-                              &s) == TLOD_SUCCESS);
+    CHECK(tlod_surface_create(
+              ctx, mesh,
+              &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha_mode = TLOD_ALPHA_GLOBAL, .alpha = good[k]},
+              &s) == TLOD_SUCCESS);
     CHECK(tlod_surface_query_desc(s).alpha == good[k]);
     tlod_surface_destroy(s);
   }

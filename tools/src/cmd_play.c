@@ -316,7 +316,7 @@ static int add_object(play_scene* s, const play_options* o, const char* source, 
   if (o->surface == TLOD_SURFACE_PN && (rc = cli_split_quads(&ob->in)) != CLI_OK) return rc;
   if ((rc = cli_create_mesh(s->ctx, &ob->in, TLOD_NORMALS_KEEP, 0.0f, &ob->mesh)) != CLI_OK) return rc;
   /* As tlod tessellate: alpha 0.75, so a frame matches a direct run of the same camera. */
-  tlod_surface_desc sd = {.type = o->surface, .alpha = 0.75f, .alpha_set = true, .label = name};
+  tlod_surface_desc sd = {.type = o->surface, .alpha_mode = TLOD_ALPHA_GLOBAL, .alpha = 0.75f, .label = name};
   if (tlod_surface_create(s->ctx, ob->mesh, &sd, &ob->surface) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "%s: %s", source, tlod_context_last_error(s->ctx));
   tlod_mesh_info info = tlod_mesh_query_info(ob->mesh);

@@ -323,7 +323,7 @@ static int build(const tess_options* o, tess_run* r, tess_timings* t) {
   double t1 = cli_now_ms();
   if ((rc = cli_create_mesh(r->ctx, &r->in, o->normals, o->crease, &r->mesh)) != CLI_OK) return rc;
   double t2 = cli_now_ms();
-  tlod_surface_desc sd = {.type = o->surface, .alpha = o->alpha, .alpha_set = true, .label = o->in};
+  tlod_surface_desc sd = {.type = o->surface, .alpha_mode = TLOD_ALPHA_GLOBAL, .alpha = o->alpha, .label = o->in};
   if (tlod_surface_create(r->ctx, r->mesh, &sd, &r->surface) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "%s", tlod_context_last_error(r->ctx));
   double t3 = cli_now_ms();

@@ -224,24 +224,6 @@ static void patch_map(const tess* t, uint32_t f, uint32_t* map) {
 
 /* ---- evaluation ------------------------------------------------------------ */
 
-static void eval_exact(const tess* t, uint32_t f, const _tlod_corners* c, const tlod_pattern_vertex* pv, uint32_t x,
-                       float pos[3], float nrm[3]) {
-  const level_table* lt = table_of(t, f);
-  uint8_t kind = lt->kind[x];
-  if (kind < KIND_EDGE) {
-    uint32_t v = t->m->faces[f][kind];
-    memcpy(pos, t->m->positions[v], sizeof(float) * 3);
-    memcpy(nrm, t->m->normals[v], sizeof(float) * 3);
-  } else if (kind < KIND_INTERIOR) {
-    _tlod_patch_edge_point(t->s, f, kind - KIND_EDGE, (float)lt->param[x] / (float)t->n_grid, pos, nrm);
-  } else {
-    tlod_surface_point p;
-    _tlod_patch_eval_with(t->s, f, c, pv[x].u, pv[x].v, 0, &p);
-    memcpy(pos, p.position, sizeof(float) * 3);
-    memcpy(nrm, p.normal, sizeof(float) * 3);
-  }
-}
-
 /* Geomorph: a vertex first inserted at the drawn level starts at its
  * parents' midpoint (the coarser level's surface) and reaches the surface
  * at blend 1. Parents belong to a coarser level and are exact. */
@@ -290,11 +272,8 @@ static void eval_patches(void* data, uint32_t begin, uint32_t end, uint32_t work
     uint32_t count;
     const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape_of(t, f), &count);
     const level_table* lt = table_of(t, f);
-    _tlod_corners c;
-    _tlod_patch_corners(t->s, f, &c);
     patch_map(t, f, w->map);
-    for (uint32_t x = 0; x < lt->nv; x++)
-      eval_exact(t, f, &c, pv, x, w->pos[x], w->nrm[x]);
+    tlod_surface_eval_grid(t->s, f, t->lmax, &pv[0].i, sizeof(*pv), lt->nv, &w->pos[0][0], &w->nrm[0][0]);
     if (t->morph && lv > 0) {
       for (uint32_t x = tlod_pattern_vertex_count(shape_of(t, f), (uint32_t)lv - 1); x < lt->nv; x++)
         morph_vertex(t, f, pv, x, w);

@@ -295,14 +295,19 @@ typedef enum tlod_shading_normal {
   _TLOD_SHADING_NORMAL_FORCE_U32 = 0x7FFFFFFF
 } tlod_shading_normal;
 
+/* Where the Phong shape factor alpha of each vertex comes from. */
+typedef enum tlod_alpha_mode {
+  TLOD_ALPHA_DEFAULT = 0, /* 0.75 at every vertex (the Phong paper's choice) */
+  TLOD_ALPHA_GLOBAL,      /* desc.alpha at every vertex; 0 is a real value (the flat patch) */
+  TLOD_ALPHA_PER_VERTEX,  /* the mesh's per-vertex alphas (the mesh must have them) */
+  TLOD_ALPHA_NUM,
+  _TLOD_ALPHA_FORCE_U32 = 0x7FFFFFFF
+} tlod_alpha_mode;
+
 typedef struct tlod_surface_desc {
   tlod_surface_type type;
-  /* Phong shape factor. Default 0.75 (the Phong paper's choice); set
-   * alpha_set = true to use 0. Per-vertex alphas from the mesh win when
-   * use_vertex_alpha is true. */
-  float alpha;
-  bool alpha_set;
-  bool use_vertex_alpha;
+  tlod_alpha_mode alpha_mode; /* default: 0.75 everywhere */
+  float alpha;                /* TLOD_ALPHA_GLOBAL only: [0, 1]; ignored otherwise */
   tlod_shading_normal shading_normal;
   const char* label;
 } tlod_surface_desc;
@@ -341,6 +346,138 @@ TLOD_API tlod_result tlod_surface_refresh(tlod_surface* surface, uint32_t* updat
 
 /* Evaluates patch at (u, v): see PARAMETERS above. Thread-safe. */
 TLOD_API void tlod_surface_eval(const tlod_surface* surface, uint32_t patch, float u, float v, tlod_surface_point* out);
+
+/* ------------------------------------------------------------------------ */
+/* Enum names                                                               */
+/* ------------------------------------------------------------------------ */
+
+/* One table per enum, (value, name): the names tools parse and print. The
+ * DEFAULT value has no name of its own; *_name() gives its resolved value's. */
+#define TLOD_SURFACE_TYPE_NAMES(X) X(TLOD_SURFACE_FLAT, "flat") X(TLOD_SURFACE_PHONG, "phong") X(TLOD_SURFACE_PN, "pn")
+#define TLOD_SHADING_NORMAL_NAMES(X)                                                                                   \
+  X(TLOD_SHADING_NORMAL_INTERPOLATED, "interpolated") X(TLOD_SHADING_NORMAL_TRUE, "true")
+#define TLOD_ALPHA_MODE_NAMES(X) X(TLOD_ALPHA_GLOBAL, "global") X(TLOD_ALPHA_PER_VERTEX, "per-vertex")
+#define TLOD_NORMAL_MODE_NAMES(X)                                                                                      \
+  X(TLOD_NORMALS_KEEP, "keep") X(TLOD_NORMALS_ANGLE, "angle") X(TLOD_NORMALS_AREA, "area")
+
+/* Name of a value ("phong"); NULL for a value outside the enum. */
+TLOD_API const char* tlod_surface_type_name(tlod_surface_type type);
+TLOD_API const char* tlod_shading_normal_name(tlod_shading_normal mode);
+TLOD_API const char* tlod_alpha_mode_name(tlod_alpha_mode mode);
+TLOD_API const char* tlod_normal_mode_name(tlod_normal_mode mode);
+/* Value of a name (exact, case-sensitive); false (and *out untouched) when
+ * the name is none of the table's. */
+TLOD_API bool tlod_surface_type_from_name(const char* name, tlod_surface_type* out);
+TLOD_API bool tlod_shading_normal_from_name(const char* name, tlod_shading_normal* out);
+TLOD_API bool tlod_alpha_mode_from_name(const char* name, tlod_alpha_mode* out);
+TLOD_API bool tlod_normal_mode_from_name(const char* name, tlod_normal_mode* out);
+
+/* ------------------------------------------------------------------------ */
+/* For the layers above core (lod, backends) and for backend authors        */
+/* ------------------------------------------------------------------------ */
+/*
+ * Everything a module built on core needs, so that no module reads core's
+ * private structs: the context's allocator, error and parallel-for, a
+ * read-only view of a mesh's and a surface's arrays (for hot loops: no call
+ * per element), packed per-patch records in the layout GPU shaders read,
+ * and the evaluation of a whole pattern of points on one patch through the
+ * canonical edge function.
+ */
+
+#if defined(__GNUC__)
+#define TLOD_PRINTF_FORMAT(fmt, args) __attribute__((format(printf, fmt, args)))
+#else
+#define TLOD_PRINTF_FORMAT(fmt, args)
+#endif
+
+/* size bytes through the context's allocator (16-byte aligned), NULL when
+ * it fails. _calloc zeroes and checks count * size for overflow. size 0
+ * allocates 1 byte. Free with tlod_context_free(); NULL is a no-op. */
+TLOD_API void* tlod_context_alloc(const tlod_context* ctx, size_t size);
+TLOD_API void* tlod_context_calloc(const tlod_context* ctx, size_t count, size_t size);
+TLOD_API void tlod_context_free(const tlod_context* ctx, void* ptr);
+/* Records a printf-formatted message as the context's last error, sends it
+ * to the logger as an error and returns result (for `return tlod_context_fail(...)`). */
+TLOD_API tlod_result tlod_context_fail(tlod_context* ctx, tlod_result result, const char* fmt, ...)
+    TLOD_PRINTF_FORMAT(3, 4);
+/* Sends a printf-formatted message to the logger, prefixed with the context's label. */
+TLOD_API void tlod_context_log(const tlod_context* ctx, tlod_log_level level, const char* fmt, ...)
+    TLOD_PRINTF_FORMAT(3, 4);
+/* Runs fn over [0, count) on the context's workers (the engine's job system
+ * or the built-in pool) and returns when every chunk has run. */
+TLOD_API void tlod_context_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* task_data, uint32_t count);
+/* Upper bound on the worker ids fn receives (>= 1). */
+TLOD_API uint32_t tlod_context_worker_count(const tlod_context* ctx);
+/* Monotonic wall clock in milliseconds, for stage timings. */
+TLOD_API double tlod_now_ms(void);
+
+/* Read-only arrays of a mesh. Valid until the mesh is updated
+ * (tlod_mesh_update) or destroyed; positions and normals change in place on
+ * update, the rest never. Faces are the kept faces, in input order. */
+typedef struct tlod_mesh_view {
+  uint32_t vertex_count;
+  const float (*positions)[3];
+  const float (*normals)[3];        /* unit length */
+  const uint32_t* weld_id;          /* smallest vertex index with the same (welded) position */
+  uint32_t face_count;              /* kept faces == patches */
+  const uint32_t (*faces)[4];       /* corner vertex indices; [3] unused for triangles */
+  const uint8_t* face_corners;      /* 3 or 4 */
+  const tlod_edge_link (*links)[4]; /* per face edge, see tlod_mesh_edge_link() */
+  const uint32_t* face_input_index; /* input face of each kept face */
+} tlod_mesh_view;
+TLOD_API tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* mesh);
+
+/* Read-only arrays of a surface. Valid until the surface is refreshed or
+ * destroyed (refresh rewrites the patch data in place). */
+typedef struct tlod_surface_view {
+  tlod_surface_type type; /* resolved */
+  uint32_t patch_count;   /* == the mesh's face count */
+  const tlod_patch_info* patches;
+  const float* vertex_alpha; /* per mesh vertex: the Phong shape factor in use (0 for FLAT) */
+} tlod_surface_view;
+TLOD_API tlod_surface_view tlod_surface_query_view(const tlod_surface* surface);
+
+/* One patch as GPU shaders read it: std430-compatible (every member a
+ * multiple of 16 bytes, no padding), 368 bytes. Unused entries are zero. */
+typedef struct tlod_patch_record {
+  float corner[4][4];      /* corner positions xyz, w = the corner's alpha */
+  float normal[4][4];      /* corner unit normals xyz, w = 0 */
+  uint32_t weld[4];        /* corner weld ids (canonical edge direction) */
+  uint32_t info[4];        /* [0] corner count (3 or 4), [1..3] zero */
+  float pn_control[10][4]; /* PN: b300 b030 b003 b210 b120 b021 b012 b102 b201 b111, w = 0 */
+  float pn_normal[3][4];   /* PN: mid-edge normals n110 n011 n101, w = 0 */
+} tlod_patch_record;
+#if defined(__cplusplus) && __cplusplus >= 201103L
+static_assert(sizeof(tlod_patch_record) == 23 * 16, "tlod_patch_record is the std430 Patch");
+#elif defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L
+_Static_assert(sizeof(tlod_patch_record) == 23 * 16, "tlod_patch_record is the std430 Patch");
+#endif
+/* Writes the records of patches [first, first + count) to out. Patches past
+ * the end: TLOD_ERROR_INVALID_ARGUMENT (nothing written). */
+TLOD_API tlod_result tlod_surface_patch_records(const tlod_surface* surface, uint32_t first, uint32_t count,
+                                                tlod_patch_record* out);
+
+/* Where grid point (i, j) lies on a patch, on the grid of 2^grid_log2
+ * segments per edge (triangles: u = i / 2^g, v = j / 2^g, i + j <= 2^g;
+ * quads: 0 <= i, j <= 2^g): 0..3 a corner (triangle i, j, k; quad 0..3),
+ * TLOD_GRID_EDGE + e on edge e (from corner e to corner (e + 1) % n;
+ * *param = the end corner's weight times 2^g), TLOD_GRID_INTERIOR inside
+ * (*param untouched). Pure. */
+#define TLOD_GRID_EDGE 4u
+#define TLOD_GRID_INTERIOR 8u
+TLOD_API uint32_t tlod_grid_point_kind(uint32_t corner_count, uint32_t grid_log2, uint32_t i, uint32_t j,
+                                       uint32_t* param);
+
+/* Evaluates count grid points of one patch: point k has grid coordinates
+ * ij[0], ij[1] of the uint16_t pair at (const char*)ij + k * ij_stride (so a
+ * pattern vertex array can be passed as it is). Corners are the mesh's
+ * vertices exactly, edge points come from the canonical edge function
+ * (bitwise equal on both patches of a smooth edge), interior points from the
+ * patch's formula with its corners gathered once. positions and normals
+ * receive 3 floats per point; normals may be NULL. Thread-safe. */
+TLOD_API void tlod_surface_eval_grid(const tlod_surface* surface, uint32_t patch, uint32_t grid_log2,
+                                     const uint16_t* ij, size_t ij_stride, uint32_t count, float* positions,
+                                     float* normals);
 
 #ifdef __cplusplus
 }
