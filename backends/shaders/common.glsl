@@ -1,6 +1,6 @@
 // tesslod shaders -- shared declarations: patch, pattern and frame data in
-// storage buffers (the layout mirrors backends/gl/src/gl_layout.h), and the
-// canonical edge evaluation (DESIGN.md invariant 1: both patches of an edge
+// storage buffers (backends/gl/src/gl_internal.h mirrors the layout), and the
+// canonical edge evaluation (docs/design.md invariant 1: both patches of an edge
 // evaluate its points with the same function, inputs and order, marked
 // precise so no FMA contraction can differ).
 

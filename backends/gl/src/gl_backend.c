@@ -353,7 +353,7 @@ static uint32_t issue_draws(gl_backend* b, const tlod_draw_list* dl, uint32_t re
   return calls;
 }
 
-/* Tessellated vertices of a patch whose largest level is l (PLATFORM.md). */
+/* Tessellated vertices of a patch whose largest level is l (docs/platform.md section 1.2). */
 static uint32_t tess_vertices(uint32_t corners, uint32_t l) {
   uint32_t n = 1u << l;
   if (corners == 4) return (n + 1) * (n + 1);

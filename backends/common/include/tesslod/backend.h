@@ -66,7 +66,7 @@ typedef struct tlod_backend_desc {
   /* gl: draw with GL_PATCHES and tessellation shaders instead of refinement
    * patterns, for comparison: outer levels per edge from both sides (no
    * strips), no geomorphs, and split-normal edges crack. Draws are batched
-   * below 65,536 tessellated vertices (a Mesa limit, PLATFORM.md). */
+   * below 65,536 tessellated vertices (a Mesa limit, docs/platform.md section 1.2). */
   bool hardware_tessellation;
   const char* label;
 } tlod_backend_desc;
