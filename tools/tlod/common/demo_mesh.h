@@ -15,7 +15,8 @@ typedef struct tlod_demo_mesh {
 } tlod_demo_mesh;
 
 /* The VTK cow (VTK BSD-3 licence, see tools/data/LICENSE-cow.txt): a real,
- * closed, mixed triangle/quad model. */
+ * closed, mixed triangle/quad model. Generated at build time from
+ * tools/data/cow.vtp by tools/data/embed_vtp.py. */
 extern const tlod_demo_mesh tlod_demo_cow;
 
 #endif
