@@ -1,102 +1,55 @@
 /*
- * tesslod/lod.h -- refinement patterns (module tesslod::lod)
+ * tesslod/lod.h -- the level-of-detail scheduler (module tesslod::lod)
  *
  * WHAT IT DOES
- *   Builds the nested refinement patterns of Schwarz, Staginski and
- *   Stamminger ("GPU-based rendering of PN triangle meshes with adaptive
- *   tessellation", 2006): pattern l splits a triangle (or a quad) by l
- *   successive 1-to-4 splits, so it has 2^l - 1 inserted vertices per edge,
- *   4^l triangles (quads: 2 * 4^l triangles on a (2^l + 1)^2 grid).
- *   All levels share one vertex array: the vertices of level l are the
- *   first tlod_pattern_vertex_count(shape, l) entries, and each vertex first
- *   inserted at level l > 0 names its two parents at level l - 1 (the
- *   endpoints of the coarser edge it splits), which geomorphs blend from.
+ *   Plans every frame of an adaptively tessellated surface, for one or more
+ *   cameras: per mesh vertex the silhouette depth d_i (Boubekeur & Alexa),
+ *   per patch the frustum test and the projected error bound e_max at
+ *   level 0 (Schwarz, Staginski & Stamminger 2006), then a refinement level
+ *   per patch by policy, under an optional triangle budget or frame-time
+ *   target, with geomorph state so that level changes blend in over time.
+ *   The result is a draw list: instances bucketed by (shape, level),
+ *   connection strips where neighbouring patches differ, and statistics.
+ *   Includes tesslod/patterns.h (the refinement and connection patterns the
+ *   draw list refers to).
  *
  * DOES NOT
- *   evaluate surfaces (tesslod/core.h) or draw anything (backends).
+ *   - evaluate the surface or build vertex data (tesslod/core.h and the
+ *     backends do, from the draw list);
+ *   - draw anything or talk to a GPU;
+ *   - keep the view arrays of the mesh or surface across frames: each update
+ *     reads them afresh, so tlod_mesh_update() + tlod_surface_refresh()
+ *     between frames are picked up by the next update.
  *
- * ORIENTATION
- *   Triangles are counter-clockwise in (u, v) for the triangle (u=1 at corner
- *   i, v=1 at corner j, w=1 at corner k), and for the quad (0,0) (1,0) (1,1)
- *   (0,1), so they keep the input face's winding.
+ * STEP BY STEP
+ *   1. tlod_patterns_create(ctx, &(tlod_patterns_desc){0}, &pat)
+ *   2. tlod_scheduler_create(ctx, surface, pat, &(tlod_scheduler_desc){0}, &sch)
+ *      (every zero field is a default: epsilon 0.5 px, HYBRID policy,
+ *      TIME geomorphs over 200 ms);
+ *   3. every frame: tlod_scheduler_update(sch, &(tlod_frame_desc){.views = ...,
+ *      .view_count = n, .dt_ms = ...}), then tlod_scheduler_draw_list(sch, v)
+ *      per view, valid until the next update;
+ *   4. tlod_scheduler_destroy(sch); tlod_patterns_destroy(pat).
+ *
+ * THREADING AND ALLOCATION
+ *   A scheduler belongs to one thread at a time (its context's). Each stage
+ *   of an update runs over vertices or patches on the context's
+ *   parallel-for; every worker writes only its own entries and the
+ *   reductions run afterwards in a fixed order, so draw lists are bitwise
+ *   the same for any thread count. Allocation goes through the context's
+ *   allocator: per view arrays on the first update with that many views,
+ *   and the strip array when a frame needs more strips than any before;
+ *   otherwise an update does not allocate.
  */
 #ifndef TESSLOD_LOD_H
 #define TESSLOD_LOD_H
 
 #include "tesslod/core.h"
+#include "tesslod/patterns.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-#define TLOD_MAX_LEVEL 10
-#define TLOD_DEFAULT_MAX_LEVEL 6
-
-typedef enum tlod_pattern_shape {
-  TLOD_PATTERN_TRIANGLE = 0,
-  TLOD_PATTERN_QUAD = 1,
-  TLOD_PATTERN_SHAPE_NUM,
-  _TLOD_PATTERN_SHAPE_FORCE_U32 = 0x7FFFFFFF
-} tlod_pattern_shape;
-
-typedef struct tlod_pattern_vertex {
-  /* Grid coordinates over 2^max_level: u = i / 2^max_level, v = j / 2^max_level
-   * (exact in float, so edge points are exactly on the edge). */
-  uint16_t i, j;
-  float u, v;
-  uint8_t level;      /* level that first inserts it (0: a corner) */
-  uint32_t parent[2]; /* vertex indices at level - 1; both UINT32_MAX for corners */
-} tlod_pattern_vertex;
-
-typedef struct tlod_patterns tlod_patterns;
-
-typedef struct tlod_patterns_desc {
-  uint32_t max_level; /* 0 == TLOD_DEFAULT_MAX_LEVEL (6); at most TLOD_MAX_LEVEL */
-} tlod_patterns_desc;
-
-/* Vertices of pattern `level` (pure; no patterns object needed). */
-TLOD_API uint32_t tlod_pattern_vertex_count(tlod_pattern_shape shape, uint32_t level);
-/* Triangles of pattern `level`: 4^l (triangle), 2 * 4^l (quad). */
-TLOD_API uint32_t tlod_pattern_triangle_count(tlod_pattern_shape shape, uint32_t level);
-
-TLOD_API tlod_result tlod_patterns_create(tlod_context* ctx, const tlod_patterns_desc* desc, tlod_patterns** out);
-TLOD_API void tlod_patterns_destroy(tlod_patterns* patterns);
-TLOD_API uint32_t tlod_patterns_max_level(const tlod_patterns* patterns);
-/* The shared vertex array (finest level); *count receives its length. */
-TLOD_API const tlod_pattern_vertex* tlod_patterns_vertices(const tlod_patterns* patterns, tlod_pattern_shape shape,
-                                                           uint32_t* count);
-/* Index triples of pattern `level` into the shared vertex array. */
-TLOD_API const uint32_t* tlod_patterns_indices(const tlod_patterns* patterns, tlod_pattern_shape shape, uint32_t level,
-                                               uint32_t* index_count);
-/* Vertices along edge e of pattern `level`, from corner e to corner (e+1) % n
- * (corners: triangle i, j, k; quad 0..3): 2^level + 1 vertex indices
- * written to out. Returns the count. */
-TLOD_API uint32_t tlod_patterns_edge(const tlod_patterns* patterns, tlod_pattern_shape shape, uint32_t level,
-                                     uint32_t edge, uint32_t* out);
-/* Where pattern vertex (i, j) (grid coordinates over 2^max_level) lies on its
- * patch: 0..3 a corner (triangle i, j, k; quad 0..3), 4 + e on edge e (from
- * corner e to corner (e + 1) % n; *param = the end corner's weight times
- * 2^max_level), 8 inside (*param untouched). Pure. */
-#define TLOD_PATTERN_KIND_EDGE 4u
-#define TLOD_PATTERN_KIND_INTERIOR 8u
-TLOD_API uint32_t tlod_pattern_vertex_kind(tlod_pattern_shape shape, uint32_t max_level, uint32_t i, uint32_t j,
-                                           uint32_t* param);
-/* Bytes held by the nested set, and (out) the bytes separate per-level
- * vertex + index arrays would take for the same levels. */
-TLOD_API size_t tlod_patterns_memory(const tlod_patterns* patterns, size_t* separate_bytes);
-
-/* ------------------------------------------------------------------------ */
-/* Connection patterns                                                      */
-/* ------------------------------------------------------------------------ */
-
-/* A strip joining edge polyline a (level la: points 0..2^la) to polyline b
- * (level lb, given in a's direction), zipped by parameter: triangles as
- * point references, r <= 2^la is a[r], else b[r - 2^la - 1]. Oriented so a
- * is traversed backwards (a bounds the face on the strip's left). The two
- * triangles at the shared corners, degenerate by construction, are left
- * out. Patterns are built once per (la, lb) and shared (Schwarz et al.). */
-TLOD_API const uint32_t* tlod_patterns_connection(const tlod_patterns* patterns, uint32_t la, uint32_t lb,
-                                                  uint32_t* triangle_count);
 
 /* ------------------------------------------------------------------------ */
 /* Scheduler                                                                */
@@ -117,7 +70,8 @@ typedef enum tlod_lod_policy {
    * for ERROR; a patch facing the camera (s = 0) uses relax * eps, where
    * shading hides the flat geometry. */
   TLOD_POLICY_HYBRID,
-  /* Every visible patch at max_level: uniform tessellation, for comparisons. */
+  /* Every visible patch at max_level (lowered only by a triangle budget):
+   * uniform tessellation, for comparisons. Culling still applies. */
   TLOD_POLICY_UNIFORM,
   TLOD_POLICY_NUM,
   _TLOD_POLICY_FORCE_U32 = 0x7FFFFFFF
@@ -197,7 +151,8 @@ typedef enum tlod_stage {
   TLOD_STAGE_LEVELS,         /* levels, budget search */
   TLOD_STAGE_MORPH,          /* geomorph state */
   TLOD_STAGE_STRIPS,         /* buckets and strips */
-  TLOD_STAGE_NUM
+  TLOD_STAGE_NUM,
+  _TLOD_STAGE_FORCE_U32 = 0x7FFFFFFF
 } tlod_stage;
 
 typedef struct tlod_draw_list {
@@ -237,7 +192,9 @@ TLOD_API const tlod_draw_list* tlod_scheduler_draw_list(const tlod_scheduler* sc
 TLOD_API void tlod_scheduler_reset(tlod_scheduler* scheduler);
 
 /* Pure helpers (also used by tests as the reference). */
-/* The level rule: 0 when e_max <= eps, else the smallest l with 4^-l e_max <= eps, at most max_level. */
+/* The level rule of TLOD_POLICY_ERROR: 0 when e_max <= eps, else the
+ * smallest l with 4^-l e_max <= eps, at most max_level (the scheduler's own
+ * rule, not a copy of it). */
 TLOD_API uint32_t tlod_level_for_error(float e_max, float epsilon, uint32_t max_level);
 /* Pixels per world unit at view depth z (perspective) or everywhere (orthographic). */
 TLOD_API float tlod_projection_scale(const float proj[16], uint32_t viewport_height, float depth);
@@ -245,4 +202,4 @@ TLOD_API float tlod_projection_scale(const float proj[16], uint32_t viewport_hei
 #ifdef __cplusplus
 }
 #endif
-#endif
+#endif /* TESSLOD_LOD_H */
