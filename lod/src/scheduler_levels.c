@@ -83,7 +83,8 @@ static void fit_epsilon(_tlod_frame* fr) {
 void _tlod_fit_budget(_tlod_frame* fr) {
   const tlod_scheduler_desc* d = &fr->s->desc;
   tlod_context_parallel_for(fr->s->ctx, target_task, fr, fr->s->patch_count);
-  if (!d->triangle_budget || target_triangles(fr) <= d->triangle_budget) return;
+  /* FLAT is the floor already: no budget can lower it. */
+  if (!d->triangle_budget || d->policy == TLOD_POLICY_FLAT || target_triangles(fr) <= d->triangle_budget) return;
   if (d->policy == TLOD_POLICY_SILHOUETTE || d->policy == TLOD_POLICY_UNIFORM) {
     fit_cap(fr);
   } else {

@@ -188,6 +188,8 @@ static float silhouette_target(const tlod_scheduler_desc* d, float contour, floa
 
 float _tlod_level_rule(const tlod_scheduler_desc* d, float e_max, float contour, float eps, float cap) {
   switch (d->policy) {
+  case TLOD_POLICY_FLAT:
+    return 0.0f;
   case TLOD_POLICY_UNIFORM:
     return (float)(d->max_level < cap ? d->max_level : (uint32_t)cap);
   case TLOD_POLICY_SILHOUETTE:

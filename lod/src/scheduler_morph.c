@@ -47,10 +47,11 @@ float _tlod_morph_of(float cont, uint32_t level) {
  * the shared value jumps whenever either side changes level (its coarser
  * edge vertices then become exact). Equal-level neighbours whose blends
  * differ get a strip instead (Schwarz et al. 2006, sec. 5), as do creases
- * and level differences. */
+ * and level differences. FLAT draws the input faces: no strip at all. */
 bool _tlod_strip_needed(const _tlod_frame* fr, const float* cont, uint32_t f, uint32_t e) {
   tlod_edge_link link = fr->mesh.links[f][e];
   uint32_t g = link.face;
+  if (fr->s->desc.policy == TLOD_POLICY_FLAT) return false;
   if (g == _TLOD_NO_FACE || g < f || !fr->vs->visible[g]) return false;
   uint32_t lf = _tlod_drawn_level(cont[f]), lg = _tlod_drawn_level(cont[g]);
   return !link.smooth || lf != lg || _tlod_morph_of(cont[f], lf) != _tlod_morph_of(cont[g], lg);

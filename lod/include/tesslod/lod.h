@@ -24,8 +24,8 @@
  * STEP BY STEP
  *   1. tlod_patterns_create(ctx, &(tlod_patterns_desc){0}, &pat)
  *   2. tlod_scheduler_create(ctx, surface, pat, &(tlod_scheduler_desc){0}, &sch)
- *      (every zero field is a default: epsilon 0.5 px, HYBRID policy,
- *      TIME geomorphs over 200 ms);
+ *      (every zero field is a documented default: epsilon 0.5 px, HYBRID
+ *      policy, TIME geomorphs over 200 ms);
  *   3. every frame: tlod_scheduler_update(sch, &(tlod_frame_desc){.views = ...,
  *      .view_count = n, .dt_ms = ...}), then tlod_scheduler_draw_list(sch, v)
  *      per view, valid until the next update;
@@ -73,6 +73,11 @@ typedef enum tlod_lod_policy {
   /* Every visible patch at max_level (lowered only by a triangle budget):
    * uniform tessellation, for comparisons. Culling still applies. */
   TLOD_POLICY_UNIFORM,
+  /* Every visible patch at level 0 (the input faces on the curved corners),
+   * no refinement, no strips, whatever epsilon, budget or max_level say:
+   * the untessellated baseline. Culling, e_max and d_i are still computed
+   * for the statistics. */
+  TLOD_POLICY_FLAT,
   TLOD_POLICY_NUM,
   _TLOD_POLICY_FORCE_U32 = 0x7FFFFFFF
 } tlod_lod_policy;
@@ -89,18 +94,34 @@ typedef enum tlod_morph_mode {
   _TLOD_MORPH_FORCE_U32 = 0x7FFFFFFF
 } tlod_morph_mode;
 
+/* Every zero field is a default. Where zero would also be a value, the
+ * value it stands for has its own spelling, named here. */
 typedef struct tlod_scheduler_desc {
-  float epsilon_px;   /* screen-space error bound, pixels; 0 == 0.5 */
-  uint32_t max_level; /* 0 == the patterns' max level */
-  tlod_lod_policy policy;
-  float silhouette_depth; /* m of d_i = (1 - |n.v|) m, segments per edge; 0 == 2^max_level */
-  float hybrid_relax;     /* HYBRID epsilon factor away from contours; 0 == 16 (2 levels) */
-  tlod_morph_mode morph;
-  float morph_ms;             /* TIME: duration of one level step; 0 == 200 */
-  uint32_t triangle_budget;   /* 0 == none; else epsilon is raised until the frame fits */
-  float frame_time_target_ms; /* 0 == none; else epsilon follows measured frame times */
-  bool no_frustum_cull;       /* keep patches outside the frustum */
-  const char* label;
+  /* Screen-space error bound, pixels, > 0. 0 == 0.5 (an error of 0 px
+   * cannot be met by any level). */
+  float epsilon_px;
+  /* Finest level drawn. 0 == the patterns' max level; level 0 everywhere
+   * is TLOD_POLICY_FLAT. */
+  uint32_t max_level;
+  tlod_lod_policy policy; /* 0 == HYBRID */
+  /* m of d_i = (1 - |n.v|) m, segments per edge, > 0. 0 == 2^max_level
+   * (no m of 0: the contour measure s = max d_i / m divides by it). */
+  float silhouette_depth;
+  /* HYBRID epsilon factor away from contours, >= 1 (1: HYBRID is ERROR).
+   * 0 == 16 (2 levels); values below 1 are rejected. */
+  float hybrid_relax;
+  tlod_morph_mode morph; /* 0 == TIME */
+  /* TIME: frame time of one level step, > 0. 0 == 200; switching at once
+   * is TLOD_MORPH_NONE. */
+  float morph_ms;
+  /* Most triangles (patterns + strips) per frame; epsilon is raised (the
+   * level cap lowered for SILHOUETTE and UNIFORM) until the frame fits,
+   * level 0 being the floor. 0 == none. */
+  uint32_t triangle_budget;
+  /* Frame-time target; epsilon follows the measured frame times. 0 == none. */
+  float frame_time_target_ms;
+  bool no_frustum_cull; /* keep patches outside the frustum; default false (cull) */
+  const char* label;    /* default "scheduler" */
 } tlod_scheduler_desc;
 
 /* One camera. Matrices are column-major (OpenGL): clip = proj * view * world. */

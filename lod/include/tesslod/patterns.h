@@ -69,7 +69,11 @@ typedef struct tlod_pattern_vertex {
 typedef struct tlod_patterns tlod_patterns;
 
 typedef struct tlod_patterns_desc {
-  uint32_t max_level; /* 0 == TLOD_DEFAULT_MAX_LEVEL (6); at most TLOD_MAX_LEVEL */
+  /* Finest level built, at most TLOD_MAX_LEVEL. 0 == TLOD_DEFAULT_MAX_LEVEL
+   * (6): a set of level 0 alone would hold nothing worth building (level 0
+   * is every shape's own corners; the scheduler's TLOD_POLICY_FLAT draws
+   * it from any set). */
+  uint32_t max_level;
 } tlod_patterns_desc;
 
 /* Vertices of pattern `level` (pure; no patterns object needed). */
