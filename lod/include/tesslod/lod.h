@@ -220,6 +220,34 @@ TLOD_API uint32_t tlod_level_for_error(float e_max, float epsilon, uint32_t max_
 /* Pixels per world unit at view depth z (perspective) or everywhere (orthographic). */
 TLOD_API float tlod_projection_scale(const float proj[16], uint32_t viewport_height, float depth);
 
+/* ------------------------------------------------------------------------ */
+/* Enum names                                                               */
+/* ------------------------------------------------------------------------ */
+
+/* (value, name), the same shape as core's tables (tesslod/core.h): the
+ * names tools parse and print. DEFAULT has no name of its own; *_name()
+ * gives its resolved value's. */
+#define TLOD_LOD_POLICY_NAMES(X)                                                                                       \
+  X(TLOD_POLICY_ERROR, "error")                                                                                        \
+  X(TLOD_POLICY_SILHOUETTE, "silhouette")                                                                              \
+  X(TLOD_POLICY_HYBRID, "hybrid") X(TLOD_POLICY_UNIFORM, "uniform") X(TLOD_POLICY_FLAT, "flat")
+#define TLOD_MORPH_MODE_NAMES(X)                                                                                       \
+  X(TLOD_MORPH_NONE, "none") X(TLOD_MORPH_TIME, "time") X(TLOD_MORPH_CONTINUOUS, "continuous")
+#define TLOD_STAGE_NAMES(X)                                                                                            \
+  X(TLOD_STAGE_SILHOUETTE, "silhouette")                                                                               \
+  X(TLOD_STAGE_METRIC, "metric")                                                                                       \
+  X(TLOD_STAGE_LEVELS, "levels") X(TLOD_STAGE_MORPH, "morph") X(TLOD_STAGE_STRIPS, "strips")
+
+/* Name of a value ("hybrid"); NULL for a value outside the enum. */
+TLOD_API const char* tlod_lod_policy_name(tlod_lod_policy policy);
+TLOD_API const char* tlod_morph_mode_name(tlod_morph_mode mode);
+TLOD_API const char* tlod_stage_name(tlod_stage stage);
+/* Value of a name (exact, case-sensitive); false (and *out untouched) when
+ * the name is none of the table's. */
+TLOD_API bool tlod_lod_policy_from_name(const char* name, tlod_lod_policy* out);
+TLOD_API bool tlod_morph_mode_from_name(const char* name, tlod_morph_mode* out);
+TLOD_API bool tlod_stage_from_name(const char* name, tlod_stage* out);
+
 #ifdef __cplusplus
 }
 #endif

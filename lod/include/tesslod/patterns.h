@@ -120,6 +120,17 @@ TLOD_API size_t tlod_patterns_memory(const tlod_patterns* patterns, size_t* sepa
 TLOD_API const uint32_t* tlod_patterns_connection(const tlod_patterns* patterns, uint32_t la, uint32_t lb,
                                                   uint32_t* triangle_count);
 
+/* ------------------------------------------------------------------------ */
+/* Enum names                                                               */
+/* ------------------------------------------------------------------------ */
+
+/* (value, name), the same shape as core's tables (tesslod/core.h). */
+#define TLOD_PATTERN_SHAPE_NAMES(X) X(TLOD_PATTERN_TRIANGLE, "triangle") X(TLOD_PATTERN_QUAD, "quad")
+/* Name of a shape; NULL for a value outside the enum. */
+TLOD_API const char* tlod_pattern_shape_name(tlod_pattern_shape shape);
+/* Value of a name (exact, case-sensitive); false (and *out untouched) when unknown. */
+TLOD_API bool tlod_pattern_shape_from_name(const char* name, tlod_pattern_shape* out);
+
 #ifdef __cplusplus
 }
 #endif
