@@ -1,29 +1,24 @@
-/* tlod -- names of the library's enums. */
+/* tlod -- option lists from the library's enum name tables. */
 #include "tool_names.h"
 
-const char* const tool_surface_options[] = {"flat", "phong", "pn", NULL};
-const char* const tool_normal_options[] = {"keep", "angle", "area", NULL};
-const char* const tool_policy_options[] = {"error", "silhouette", "hybrid", NULL};
+#define NAME_OF(value, text) text,
+
+const char* const tool_surface_options[] = {TLOD_SURFACE_TYPE_NAMES(NAME_OF) NULL};
+const char* const tool_normal_options[] = {TLOD_NORMAL_MODE_NAMES(NAME_OF) NULL};
+const char* const tool_policy_options[] = {TLOD_LOD_POLICY_NAMES(NAME_OF) NULL};
 const char* const tool_backend_options[] = {"cpu", "gl", "vulkan", NULL};
 
-static const char* const stage_names[TLOD_STAGE_NUM] = {"silhouette", "metric", "levels", "morph", "strips"};
+/* cli_parse_enum's index is added to the first named value: the tables must
+ * list the values in enum order. */
+_Static_assert(TLOD_SURFACE_PN - TLOD_SURFACE_FLAT == 2, "surface names in enum order");
+_Static_assert(TLOD_NORMALS_AREA - TLOD_NORMALS_KEEP == 2, "normal mode names in enum order");
+_Static_assert(TLOD_POLICY_FLAT - TLOD_POLICY_ERROR == 4, "policy names in enum order");
 
-const char* tool_surface_name(tlod_surface_type type) {
-  if (type == TLOD_SURFACE_FLAT) return "flat";
-  return type == TLOD_SURFACE_PN ? "pn" : "phong";
+const char* tool_surface_name(tlod_surface_type type) { return tlod_surface_type_name(type); }
+
+const char* tool_policy_name(tlod_lod_policy policy) { return tlod_lod_policy_name(policy); }
+
+const char* tool_stage_name(int stage) {
+  const char* name = tlod_stage_name((tlod_stage)stage);
+  return name ? name : "?";
 }
-
-const char* tool_policy_name(tlod_lod_policy policy) {
-  switch (policy) {
-  case TLOD_POLICY_ERROR:
-    return "error";
-  case TLOD_POLICY_SILHOUETTE:
-    return "silhouette";
-  case TLOD_POLICY_UNIFORM:
-    return "uniform";
-  default:
-    return "hybrid";
-  }
-}
-
-const char* tool_stage_name(int stage) { return stage >= 0 && stage < TLOD_STAGE_NUM ? stage_names[stage] : "?"; }

@@ -1,6 +1,7 @@
-/* The tools' names for the library's enums, all in one place (to be
- * replaced by the library's own name functions when core and lod have them).
- * The *_options lists are NULL-terminated, for cli_parse_enum. */
+/* The CLI's option lists for the library's enums, made from the library's
+ * own name tables (TLOD_*_NAMES in tesslod/core.h and tesslod/lod.h), so
+ * parsing and printing use one spelling. The lists are NULL-terminated, for
+ * cli_parse_enum; entry e is the enum's first named value + e. */
 #ifndef TLOD_TOOLS_TOOL_NAMES_H
 #define TLOD_TOOLS_TOOL_NAMES_H
 
@@ -10,16 +11,14 @@
 extern const char* const tool_surface_options[];
 /* "keep", "angle", "area": TLOD_NORMALS_KEEP + index. */
 extern const char* const tool_normal_options[];
-/* "error", "silhouette", "hybrid": TLOD_POLICY_ERROR + index. */
+/* "error", "silhouette", "hybrid", "uniform", "flat": TLOD_POLICY_ERROR + index. */
 extern const char* const tool_policy_options[];
 /* "cpu", "gl", "vulkan": backend names. */
 extern const char* const tool_backend_options[];
 
-/* "flat", "phong" (also for the default), "pn". */
+/* The library's names ("phong" also for the default). */
 const char* tool_surface_name(tlod_surface_type type);
-/* "error", "silhouette", "uniform", "hybrid" (also for the default). */
 const char* tool_policy_name(tlod_lod_policy policy);
-/* "silhouette", "metric", "levels", "morph", "strips". */
 const char* tool_stage_name(int stage);
 
 #endif

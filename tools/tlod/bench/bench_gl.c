@@ -87,7 +87,7 @@ static int scene_cases(const char* in, uint32_t w, uint32_t h, uint32_t frames, 
   if (rc != CLI_OK) return rc;
   uint32_t worst = worst_level(&s, w, h);
   gl_case cases[] = {
-      {"flat (no tessellation)", {.epsilon_px = 1e30f, .morph = TLOD_MORPH_NONE}, false}, /* level 0 everywhere */
+      {"flat (no tessellation)", {.policy = TLOD_POLICY_FLAT, .morph = TLOD_MORPH_NONE}, false},
       {"adaptive error 0.5 px", {.policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE}, false},
       {"adaptive hybrid 0.5 px", {.policy = TLOD_POLICY_HYBRID, .morph = TLOD_MORPH_NONE}, false},
       {"uniform (worst patch's level)",

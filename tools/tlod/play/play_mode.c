@@ -41,8 +41,7 @@ tlod_scheduler_desc play_mode_desc(const play_options* o, const play_mode* m, co
   if (m->kind == MODE_UNIFORM && m->level > 0)
     return (tlod_scheduler_desc){
         .max_level = m->level, .policy = TLOD_POLICY_UNIFORM, .morph = TLOD_MORPH_NONE, .label = label};
-  return (tlod_scheduler_desc){
-      .epsilon_px = 1e30f, .max_level = 1, .policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE, .label = label};
+  return (tlod_scheduler_desc){.policy = TLOD_POLICY_FLAT, .morph = TLOD_MORPH_NONE, .label = label};
 }
 
 uint32_t play_modes_max_level(const play_options* o) {
