@@ -92,7 +92,7 @@ install(FILES
   DESTINATION ${TLOD_INSTALL_CMAKEDIR})
 
 # --- pkg-config ----------------------------------------------------------------------------
-# The libraries are static, so their own dependencies (libm, pthreads) go into Libs, not
+# The libraries are static, so their own dependencies (GL, libm, pthreads) go into Libs, not
 # Libs.private: `pkg-config --libs tesslod` must link without --static.
 # Link order: dependents first. Libraries are registered after the libraries they depend on
 # (core, lod, cpu), so the reversed registration order is a valid static link order.
@@ -111,6 +111,17 @@ if(CMAKE_THREAD_LIBS_INIT)
   set(TLOD_PC_THREAD_LIBS "${CMAKE_THREAD_LIBS_INIT}")
 else()
   set(TLOD_PC_THREAD_LIBS "-lpthread") # glibc >= 2.34: pthreads are in libc; -lpthread is a harmless stub
+endif()
+# The GL backend links the GL library (OpenGL::OpenGL, GLVND's libOpenGL): it goes into Libs too,
+# by name (-lOpenGL), so the file does not carry this machine's library path.
+set(TLOD_PC_GL_LIBS "")
+if(TARGET tlod_gl AND tlod_gl IN_LIST _tlod_targets)
+  if(NOT OPENGL_opengl_LIBRARY)
+    message(FATAL_ERROR "tesslod_install.cmake: the GL backend is built but OPENGL_opengl_LIBRARY is not set")
+  endif()
+  get_filename_component(_gl_name "${OPENGL_opengl_LIBRARY}" NAME_WE)
+  string(REGEX REPLACE "^lib" "" _gl_name "${_gl_name}")
+  set(TLOD_PC_GL_LIBS "-l${_gl_name} ")
 endif()
 
 # Relocatable: the prefix is derived from the .pc file's own location, so
@@ -136,3 +147,4 @@ unset(_tlod_targets)
 unset(_tlod_header_dirs)
 unset(_tlod_header_names)
 unset(_tlod_reversed)
+unset(_gl_name)

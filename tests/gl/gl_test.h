@@ -1,6 +1,6 @@
 /*
  * gl_test.h -- shared fixtures of the GL tests (tests/gl/<name>_test.c): a
- * headless context from samples/common, cameras, tesslod fixtures, and a
+ * headless context from platform/, cameras, tesslod fixtures, and a
  * small independent GL mesh renderer for CPU-tessellated reference meshes.
  * Owned by the GL tests; header-only (every function static).
  *

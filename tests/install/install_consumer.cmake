@@ -3,6 +3,9 @@
 #   2. checks the installed layout and that the export leaks no build/source paths
 #   3. find_package(tesslod CONFIG) consumer: configure + build in <prefix>/consumer-build, run it
 #   4. pkg-config consumer: cc consumer.c $(pkg-config --cflags --libs tesslod), run it
+# With TLOD_BACKEND_GL, both consumers also build consumer_gl.c (TLOD_CONSUMER_GL=1): the installed
+# "gl" backend draws in an EGL context the consumer makes (the pkg-config one adds `egl` for that;
+# the GL library itself must come from tesslod.pc / the CMake package).
 # CONSUMER_FLAGS (e.g. -fsanitize=address,undefined) go on both consumers' compile and link lines.
 cmake_minimum_required(VERSION 3.25)
 
@@ -47,10 +50,16 @@ run("install" "${CMAKE_COMMAND}" --install "${TLOD_BINARY_DIR}" --prefix "${TLOD
 # --- 2. layout --------------------------------------------------------------------------------
 set(inc "${TLOD_PREFIX}/${TLOD_INCLUDEDIR}")
 set(lib "${TLOD_PREFIX}/${TLOD_LIBDIR}")
-foreach(h core.h lod.h cpu.h)
+set(expect_headers core.h lod.h cpu.h backend.h)
+set(expect_libs core lod cpu backend)
+if(TLOD_BACKEND_GL)
+  list(APPEND expect_headers gl.h)
+  list(APPEND expect_libs gl)
+endif()
+foreach(h IN LISTS expect_headers)
   expect_exists("${inc}/tesslod/${h}")
 endforeach()
-foreach(l core lod cpu)
+foreach(l IN LISTS expect_libs)
   expect_exists("${lib}/libtesslod_${l}.a")
 endforeach()
 foreach(f tesslodConfig.cmake tesslodConfigVersion.cmake tesslodTargets.cmake)
@@ -128,6 +137,34 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "[install_consumer] pkg-config --cflags --libs tesslod failed (${rc})")
 endif()
 message(STATUS "[install_consumer] pkg-config --cflags --libs tesslod: ${pc_flags}")
+# Everything the static libraries need is in Libs (not Libs.private): libm, pthreads, and the GL
+# library when the GL backend is built.
+set(pc_need -lm)
+if(TLOD_BACKEND_GL)
+  list(APPEND pc_need -ltesslod_gl -lOpenGL)
+endif()
+separate_arguments(pc_got UNIX_COMMAND "${pc_flags}")
+foreach(flag IN LISTS pc_need)
+  if(NOT flag IN_LIST pc_got)
+    message(FATAL_ERROR "[install_consumer] pkg-config --libs tesslod lacks ${flag}: ${pc_flags}")
+  endif()
+endforeach()
+if(NOT "-lpthread" IN_LIST pc_got AND NOT "-pthread" IN_LIST pc_got)
+  message(FATAL_ERROR "[install_consumer] pkg-config --libs tesslod lacks -lpthread / -pthread: ${pc_flags}")
+endif()
+set(pc_sources "${CONSUMER_SOURCE_DIR}/consumer.c")
+set(pc_defs "")
+if(TLOD_BACKEND_GL)
+  # The consumer's own EGL context: egl.pc (libegl-dev). libOpenGL comes from tesslod.pc alone.
+  execute_process(COMMAND "${PKG_CONFIG_EXECUTABLE}" --cflags --libs egl
+                  OUTPUT_VARIABLE egl_flags OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "[install_consumer] pkg-config --cflags --libs egl failed (${rc}; libegl-dev)")
+  endif()
+  string(APPEND pc_flags " ${egl_flags}")
+  list(APPEND pc_sources "${CONSUMER_SOURCE_DIR}/consumer_gl.c")
+  set(pc_defs -DTLOD_CONSUMER_GL=1)
+endif()
 string(FIND "${pc_flags}" "-I${TLOD_PREFIX}/" pos)
 if(pos EQUAL -1)
   message(FATAL_ERROR "[install_consumer] tesslod.pc does not point into ${TLOD_PREFIX}")
@@ -136,7 +173,7 @@ separate_arguments(pc_args UNIX_COMMAND "${pc_flags}")
 set(pc_exe "${TLOD_PREFIX}/consumer-pkgconfig")
 # Libraries after the source file: static link order.
 run("build consumer (pkg-config)" "${CONSUMER_C_COMPILER}" -std=c11 -Wall -Wextra -Wpedantic -Werror ${consumer_flags}
-    "${CONSUMER_SOURCE_DIR}/consumer.c" -o "${pc_exe}" ${pc_args} ${consumer_flags})
+    ${pc_defs} ${pc_sources} -o "${pc_exe}" ${pc_args} ${consumer_flags})
 run("run consumer (pkg-config)" "${pc_exe}")
 
 message(STATUS "[install_consumer] OK: find_package and pkg-config consumers built and ran against ${TLOD_PREFIX}")

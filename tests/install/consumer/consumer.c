@@ -1,6 +1,8 @@
 /* A downstream C11 program built only against an installed tesslod (tests/install):
  * context -> 2-triangle mesh -> Phong surface -> patterns -> CPU tessellation at level 2.
- * Two triangles at level 2 give 2 * 4^2 = 32 triangles (a flat square: no crease, no strip). */
+ * Two triangles at level 2 give 2 * 4^2 = 32 triangles (a flat square: no crease, no strip).
+ * Built with TLOD_CONSUMER_GL=1 (the GL backend is installed), it also draws the square with the
+ * "gl" backend in a headless EGL context (consumer_gl.c). */
 #include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
@@ -9,6 +11,10 @@
 #include <tesslod/core.h>
 #include <tesslod/cpu.h>
 #include <tesslod/lod.h>
+
+#if TLOD_CONSUMER_GL
+#include "consumer_gl.h"
+#endif
 
 static tlod_context* g_ctx;
 
@@ -61,6 +67,9 @@ int main(void) {
          TLOD_VERSION, tlod_surface_patch_count(surface), level, out->triangle_count, out->pattern_triangles,
          out->strip_triangles, out->vertex_count, ok ? "OK" : "WRONG");
   if (!ok) fprintf(stderr, "consumer: expected %" PRIu32 " triangles with finite positions\n", expected);
+#if TLOD_CONSUMER_GL
+  ok = consumer_gl(g_ctx, surface, patterns) && ok;
+#endif
 
   tlod_cpu_mesh_destroy(g_ctx, out);
   tlod_patterns_destroy(patterns);

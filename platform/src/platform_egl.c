@@ -1,7 +1,7 @@
 /*
  * platform_egl.c -- headless OpenGL 4.5 core contexts through EGL, the
  * platform's framebuffer and read-back, and the public entry points that do
- * not depend on the mode (owned by samples/common).
+ * not depend on the mode (owned by platform/).
  *
  * Based on the measured recipe of docs/platform.md section 1:
  * eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) (plain

@@ -1,7 +1,6 @@
 /*
  * platform_glfw.c -- window mode of the platform module: a GLFW 3.3 window
- * with an OpenGL 4.5 core forward-compatible context (owned by
- * samples/common).
+ * with an OpenGL 4.5 core forward-compatible context (owned by platform/).
  *
  * Based on docs/platform.md section 2: GLFW 3.3.8 is an X11 build
  * with no headless platform, so a window needs DISPLAY (Xvfb works); read

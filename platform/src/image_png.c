@@ -1,6 +1,5 @@
 /*
- * image_png.c -- PNG screenshots through stb_image_write (owned by
- * samples/common).
+ * image_png.c -- PNG screenshots through stb_image_write (owned by platform/).
  *
  * The encoder is Debian's libstb (docs/platform.md section 6: libstb-dev ships
  * libstb.so with stbi_write_png*), so no STB_IMAGE_WRITE_IMPLEMENTATION is

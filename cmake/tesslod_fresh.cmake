@@ -1,0 +1,95 @@
+# The ctest test `build_up_to_date`: fails when an executable of this build tree (unit and GL
+# tests, import_test, the tlod command the CLI tests run, samples) is missing or OLDER than one
+# of the tesslod static libraries it links, i.e. ctest would run binaries that do not test the
+# libraries as built (a partial build: `--target tlod_core`, or a build folder reconfigured
+# with other settings and built only in part). scripts/test also runs it before ctest.
+#
+# Included at the END of the top-level CMakeLists.txt (every target must exist). Writes
+# <build>/tesslod-fresh-<config>.txt at generate time, one line per executable:
+#   <executable>|<library archive>;<library archive>...
+# with each executable's transitive in-project static libraries (not every library of the
+# tree: in a parallel build a unit test may be linked before libtesslod_gl.a is written).
+# cmake/tesslod_fresh_check.cmake reads it and compares modification times (microseconds).
+include_guard(GLOBAL)
+
+function(_tlod_fresh_collect_dirs dir out)
+  set(dirs "${dir}")
+  get_property(subs DIRECTORY "${dir}" PROPERTY SUBDIRECTORIES)
+  foreach(sub IN LISTS subs)
+    _tlod_fresh_collect_dirs("${sub}" sub_dirs)
+    list(APPEND dirs ${sub_dirs})
+  endforeach()
+  set(${out} "${dirs}" PARENT_SCOPE)
+endfunction()
+
+# Appends to ${out_var} the in-project static libraries a target links, transitively.
+function(_tlod_fresh_libs target out_var)
+  set(libs ${${out_var}})
+  set(todo "")
+  get_target_property(type ${target} TYPE)
+  if(NOT type STREQUAL "INTERFACE_LIBRARY")
+    get_target_property(direct ${target} LINK_LIBRARIES)
+    if(direct)
+      list(APPEND todo ${direct})
+    endif()
+  endif()
+  get_target_property(iface ${target} INTERFACE_LINK_LIBRARIES)
+  if(iface)
+    list(APPEND todo ${iface})
+  endif()
+  foreach(item IN LISTS todo)
+    # $<BUILD_INTERFACE:x>, $<LINK_ONLY:x> -> x; other generator expressions are not targets.
+    string(REGEX REPLACE "^\\$<(BUILD_INTERFACE|LINK_ONLY):(.*)>$" "\\2" item "${item}")
+    if(item MATCHES "[$<>]" OR NOT TARGET "${item}")
+      continue()
+    endif()
+    get_target_property(aliased ${item} ALIASED_TARGET)
+    if(aliased)
+      set(item ${aliased})
+    endif()
+    get_target_property(imported ${item} IMPORTED)
+    if(imported OR item IN_LIST libs)
+      continue()
+    endif()
+    get_target_property(item_type ${item} TYPE)
+    if(item_type STREQUAL "STATIC_LIBRARY")
+      list(APPEND libs ${item})
+      _tlod_fresh_libs(${item} libs)
+    elseif(item_type STREQUAL "INTERFACE_LIBRARY")
+      _tlod_fresh_libs(${item} libs)
+    endif()
+  endforeach()
+  set(${out_var} "${libs}" PARENT_SCOPE)
+endfunction()
+
+function(tlod_add_fresh_test)
+  _tlod_fresh_collect_dirs("${PROJECT_SOURCE_DIR}" dirs)
+  set(lines "")
+  set(count 0)
+  foreach(dir IN LISTS dirs)
+    get_property(targets DIRECTORY "${dir}" PROPERTY BUILDSYSTEM_TARGETS)
+    foreach(t IN LISTS targets)
+      get_target_property(type ${t} TYPE)
+      get_target_property(excluded ${t} EXCLUDE_FROM_ALL)
+      if(NOT type STREQUAL "EXECUTABLE" OR excluded)
+        continue()
+      endif()
+      set(libs "")
+      _tlod_fresh_libs(${t} libs)
+      set(files "")
+      foreach(l IN LISTS libs)
+        list(APPEND files "$<TARGET_FILE:${l}>")
+      endforeach()
+      string(APPEND lines "$<TARGET_FILE:${t}>|${files}\n")
+      math(EXPR count "${count} + 1")
+    endforeach()
+  endforeach()
+  if(count EQUAL 0)
+    message(FATAL_ERROR "tesslod_fresh.cmake: no executables found (include it at the end of the top level)")
+  endif()
+  set(manifest "${PROJECT_BINARY_DIR}/tesslod-fresh-$<CONFIG>.txt")
+  file(GENERATE OUTPUT "${manifest}" CONTENT "${lines}")
+  add_test(NAME build_up_to_date
+    COMMAND ${CMAKE_COMMAND} "-DMANIFEST=${manifest}" -P "${PROJECT_SOURCE_DIR}/cmake/tesslod_fresh_check.cmake")
+  set_tests_properties(build_up_to_date PROPERTIES LABELS build TIMEOUT 60)
+endfunction()
