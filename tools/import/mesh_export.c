@@ -4,7 +4,7 @@
  * Every format carries positions bit-exactly: OBJ and the glTF min/max use
  * "%.9g", which round-trips any float through strtof; the binary formats
  * store the float bits little-endian. Files are written through
- * tlod_atomic_file (tools/atomic_file/): under a unique temporary name next
+ * tlod_atomic_file (platform/atomic_file/): under a unique temporary name next
  * to the target, renamed when complete, so a failure never leaves a
  * truncated file under the requested name. */
 #include <math.h>
