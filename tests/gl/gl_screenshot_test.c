@@ -4,7 +4,7 @@
  *
  *   - a GL-backend frame (160 x 120, not square, so width / height swaps
  *     show) read with tlod_platform_read_rgba (top row first) equals
- *     tlod_backend_read_image (bottom row first) flipped, exactly;
+ *     tlod_device_read_image (bottom row first) flipped, exactly;
  *   - tlod_png_write produces a valid PNG: the 8-byte signature, an IHDR
  *     chunk first with the width, height, bit depth 8 and colour type 6
  *     (RGBA), and stb_image decodes it back to the same bytes;
@@ -85,13 +85,13 @@ TEST(test_screenshot) {
   tlod_context* ctx = NULL;
   CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
   shape sph = shape_icosphere(2);
+  tlod_patterns* pat = new_patterns(ctx, 5);
+  CHECK(pat);
+  tlod_device* dev = new_gl_device(ctx, pat, "gl_screenshot", (tlod_device_gl_desc){0});
+  CHECK(dev);
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PN, 5));
-  tlod_backend* backend = NULL;
-  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl"}, &backend);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_create(\"gl\"): %s: %s (compiled in: %s)", tlod_result_string(r),
-            tlod_context_last_error(ctx), tlod_backend_names());
-  CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PN, pat, dev));
+  tlod_result r;
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
   CHECK(sch);
   camera cam = camera_look(1.2, -2.6, 1.4, 0, 0, 0.2, 45, W, H);
@@ -100,26 +100,27 @@ TEST(test_screenshot) {
   CHECK(dl);
   tlod_platform_bind(platform);
   clear_frame(W, H);
-  tlod_backend_frame frame = backend_frame(dl, &v);
-  frame.wireframe = true;
-  CHECK(tlod_backend_draw(backend, &frame) == TLOD_SUCCESS);
+  one_draw frame;
+  one_draw_make(&frame, fx.ds, dl, &v);
+  frame.desc.wireframe = true;
+  CHECK(tlod_device_draw(dev, &frame.desc) == TLOD_SUCCESS);
 
   uint8_t* top_first = malloc(4 * W * H);
   uint8_t* bottom_first = malloc(4 * W * H);
   CHECK(top_first && bottom_first);
   CHECK(tlod_platform_read_rgba(platform, top_first));
-  r = tlod_backend_read_image(backend, W, H, bottom_first);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_read_image: %s: %s", tlod_result_string(r), tlod_context_last_error(ctx));
+  r = tlod_device_read_image(dev, W, H, bottom_first);
+  CHECK_MSG(r == TLOD_SUCCESS, "tlod_device_read_image: %s: %s", tlod_result_string(r), tlod_context_last_error(ctx));
   uint32_t covered = 0, rows_differ = 0;
   for (uint32_t y = 0; y < H; ++y) {
     rows_differ += memcmp(top_first + (size_t)y * W * 4, bottom_first + (size_t)(H - 1 - y) * W * 4, W * 4) != 0;
     for (uint32_t x = 0; x < W; ++x)
       covered += !is_background(top_first + 4 * ((size_t)y * W + x));
   }
-  printf("  frame %ux%u: %u pixels covered; platform vs backend read-back: %u rows differ\n", W, H, covered,
+  printf("  frame %ux%u: %u pixels covered; platform vs device read-back: %u rows differ\n", W, H, covered,
          rows_differ);
   CHECK_MSG(covered > 2000, "the frame has only %u covered pixels", covered);
-  CHECK_MSG(rows_differ == 0, "%u rows differ between tlod_platform_read_rgba (flipped) and tlod_backend_read_image",
+  CHECK_MSG(rows_differ == 0, "%u rows differ between tlod_platform_read_rgba (flipped) and tlod_device_read_image",
             rows_differ);
 
   /* a scratch directory */
@@ -175,8 +176,9 @@ TEST(test_screenshot) {
   free(top_first);
   free(bottom_first);
   tlod_scheduler_destroy(sch);
-  tlod_backend_destroy(backend);
   fixture_free(&fx);
+  tlod_device_destroy(dev);
+  tlod_patterns_destroy(pat);
   shape_free(&sph);
   tlod_context_destroy(ctx);
   tlod_platform_destroy(platform);

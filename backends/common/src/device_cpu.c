@@ -1,65 +1,98 @@
-/* tesslod::backend -- the "cpu" backend: realises each draw list as a mesh
- * with the reference tessellator (what GPU backends are compared against). */
-
-#include "backend_internal.h"
+/* tesslod::backend -- the "cpu" device: realises each item's draw list as a
+ * mesh with the reference tessellator (what GPU backends are compared
+ * against); one mesh per item slot, reused from draw to draw. */
+#include "device_internal.h"
 #include "tesslod/cpu.h"
 
-typedef struct cpu_backend {
+typedef struct cpu_device {
   tlod_context* ctx;
-  const tlod_surface* surface;
   const tlod_patterns* patterns;
-  tlod_cpu_mesh* mesh;
-  tlod_backend_timings timings;
-} cpu_backend;
+  tlod_device_stats* stats;
+  tlod_cpu_mesh** meshes; /* per item slot */
+  uint32_t mesh_count;
+} cpu_device;
 
-static tlod_result cpu_create(tlod_context* ctx, const tlod_backend_desc* desc, void** state) {
-  (void)desc;
-  cpu_backend* b = _tlod_calloc(ctx, 1, sizeof(*b));
-  if (!b) return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "cpu backend: out of memory");
-  b->ctx = ctx;
-  b->timings.gpu_ms = -1.0;
-  *state = b;
+static tlod_result cpu_create(tlod_context* ctx, const tlod_device_desc* desc, tlod_device_stats* stats, void** state) {
+  cpu_device* d = tlod_context_calloc(ctx, 1, sizeof(*d));
+  if (!d) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "cpu device: out of memory");
+  d->ctx = ctx;
+  d->patterns = desc->patterns;
+  d->stats = stats;
+  *state = d;
   return TLOD_SUCCESS;
 }
 
 static void cpu_destroy(void* state) {
-  cpu_backend* b = state;
-  tlod_cpu_mesh_destroy(b->ctx, b->mesh);
-  _tlod_free(b->ctx, b);
+  cpu_device* d = state;
+  for (uint32_t k = 0; k < d->mesh_count; k++)
+    tlod_cpu_mesh_destroy(d->ctx, d->meshes[k]);
+  tlod_context_free(d->ctx, d->meshes);
+  tlod_context_free(d->ctx, d);
 }
 
-static tlod_result cpu_upload(void* state, const tlod_surface* surface, const tlod_patterns* patterns) {
-  cpu_backend* b = state;
-  b->surface = surface;
-  b->patterns = patterns;
+/* The surface itself is all the cpu device needs. */
+static tlod_result cpu_create_surface(void* state, const tlod_surface* surface, void** surface_state) {
+  (void)state, (void)surface;
+  *surface_state = NULL;
   return TLOD_SUCCESS;
 }
 
-static tlod_result cpu_draw(void* state, const tlod_backend_frame* frame) {
-  cpu_backend* b = state;
-  if (!b->surface) return _tlod_fail(b->ctx, TLOD_ERROR_INVALID_ARGUMENT, "cpu backend: draw before upload");
-  double t0 = _tlod_now_ms();
-  tlod_cpu_tessellate_desc d = {.draw_list = frame->draw_list};
-  tlod_result r = b->mesh ? tlod_cpu_tessellate_into(b->ctx, b->surface, b->patterns, &d, b->mesh)
-                          : tlod_cpu_tessellate(b->ctx, b->surface, b->patterns, &d, &b->mesh);
+static tlod_result cpu_update_surface(void* state, void* surface_state, const tlod_surface* surface) {
+  (void)state, (void)surface_state, (void)surface;
+  return TLOD_SUCCESS;
+}
+
+static void cpu_destroy_surface(void* state, void* surface_state) { (void)state, (void)surface_state; }
+
+static tlod_result grow_meshes(cpu_device* d, uint32_t n) {
+  if (n <= d->mesh_count) return TLOD_SUCCESS;
+  tlod_cpu_mesh** m = tlod_context_calloc(d->ctx, n, sizeof(*m));
+  if (!m) return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "cpu device: out of memory for %u items", n);
+  for (uint32_t k = 0; k < d->mesh_count; k++)
+    m[k] = d->meshes[k];
+  tlod_context_free(d->ctx, d->meshes);
+  d->meshes = m;
+  d->mesh_count = n;
+  return TLOD_SUCCESS;
+}
+
+static tlod_result cpu_draw(void* state, const tlod_draw_desc* desc, const _tlod_draw_ref* refs,
+                            tlod_draw_item_stats* item_stats) {
+  cpu_device* d = state;
+  double t0 = tlod_now_ms();
+  tlod_result r = grow_meshes(d, desc->item_count);
   if (r != TLOD_SUCCESS) return r;
-  b->timings.cpu_ms = b->timings.wall_ms = _tlod_now_ms() - t0;
-  b->timings.triangles = b->mesh->triangle_count;
-  b->timings.vertices = b->mesh->vertex_count;
-  b->timings.draw_calls = 0;
+  uint64_t triangles = 0, vertices = 0;
+  for (uint32_t k = 0; k < desc->item_count; k++) {
+    double ti = tlod_now_ms();
+    tlod_cpu_tessellate_desc td = {.draw_list = refs[k].item->draw_list};
+    r = d->meshes[k] ? tlod_cpu_tessellate_into(d->ctx, refs[k].surface, d->patterns, &td, d->meshes[k])
+                     : tlod_cpu_tessellate(d->ctx, refs[k].surface, d->patterns, &td, &d->meshes[k]);
+    if (r != TLOD_SUCCESS) return r;
+    item_stats[k] = (tlod_draw_item_stats){.triangles = d->meshes[k]->triangle_count,
+                                           .vertices = d->meshes[k]->vertex_count,
+                                           .cpu_ms = tlod_now_ms() - ti};
+    triangles += d->meshes[k]->triangle_count;
+    vertices += d->meshes[k]->vertex_count;
+  }
+  d->stats->cpu_ms = d->stats->wall_ms = tlod_now_ms() - t0;
+  d->stats->triangles = triangles;
+  d->stats->vertices = vertices;
+  d->stats->draw_calls = 0;
   return TLOD_SUCCESS;
 }
 
 static tlod_result cpu_read_image(void* state, uint32_t width, uint32_t height, uint8_t* rgba) {
   (void)width, (void)height, (void)rgba;
-  cpu_backend* b = state;
-  return _tlod_fail(b->ctx, TLOD_ERROR_UNSUPPORTED,
-                    "cpu backend: it realises meshes and has no image (use tlod_backend_cpu_mesh)");
+  cpu_device* d = state;
+  return tlod_context_fail(d->ctx, TLOD_ERROR_UNSUPPORTED,
+                           "cpu device: it realises meshes and has no image (use tlod_cpu_device_mesh)");
 }
 
-static tlod_backend_timings cpu_timings(const void* state) { return ((const cpu_backend*)state)->timings; }
+const _tlod_device_vtbl _tlod_cpu_device_vtbl = {
+    cpu_create, cpu_destroy, cpu_create_surface, cpu_update_surface, cpu_destroy_surface, cpu_draw, cpu_read_image};
 
-const tlod_backend_vtbl _tlod_cpu_backend_vtbl = {cpu_create, cpu_destroy,    cpu_upload,
-                                                  cpu_draw,   cpu_read_image, cpu_timings};
-
-const tlod_cpu_mesh* _tlod_cpu_backend_mesh(const void* state) { return ((const cpu_backend*)state)->mesh; }
+const tlod_cpu_mesh* _tlod_cpu_device_mesh(const void* state, uint32_t item) {
+  const cpu_device* d = state;
+  return item < d->mesh_count ? d->meshes[item] : NULL;
+}
