@@ -81,18 +81,11 @@ static bool play(tlod_device* dev, object* objs, tlod_draw_item* items, const tl
 }
 
 TEST(test_one_device_many_objects) {
-  char err[512] = "";
-  tlod_platform* platform = gl_test_platform(W, H, err, sizeof err);
-  CHECK_MSG(platform, "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
-  CHECK(pat);
-  tlod_platform_bind(platform);
-  tlod_device* dev =
-      new_gl_device(ctx, pat, "gl_device", (tlod_device_gl_desc){.surface_types = 1u << TLOD_SURFACE_PHONG});
-  CHECK(dev);
-  tlod_device_stats st = tlod_device_query_stats(dev);
+  gl_session gs;
+  CHECK_MSG(gl_session_open(&gs, W, H, MAX_LEVEL, "gl_device",
+                            (tlod_device_gl_desc){.surface_types = 1u << TLOD_SURFACE_PHONG}),
+            "no GL context or device (see above)");
+  tlod_device_stats st = tlod_device_query_stats(gs.dev);
   const uint32_t links_per_device = st.gl.program_links;
   printf("  device created: %u program links, %u pattern upload (%llu bytes), %.1f ms\n", st.gl.program_links,
          st.gl.pattern_uploads, (unsigned long long)st.gl.pattern_bytes, st.gl.create_ms);
@@ -104,7 +97,7 @@ TEST(test_one_device_many_objects) {
   tlod_draw_item items[OBJECTS];
   uint64_t patch_bytes = 0;
   for (uint32_t k = 0; k < OBJECTS; k++) {
-    CHECK(fixture_make(&objs[k].fx, ctx, &shapes[k % 2], TLOD_SURFACE_PHONG, pat, dev));
+    CHECK(fixture_make(&objs[k].fx, gs.ctx, &shapes[k % 2], TLOD_SURFACE_PHONG, gs.pat, gs.dev));
     objs[k].sched = new_scheduler(&objs[k].fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
     CHECK(objs[k].sched);
     items[k] = (tlod_draw_item){.surface = objs[k].fx.ds, .has_model = true};
@@ -113,11 +106,11 @@ TEST(test_one_device_many_objects) {
   }
   /* a surface type the device has no programs for */
   fixture pn;
-  CHECK(fixture_make(&pn, ctx, &shapes[0], TLOD_SURFACE_PN, pat, NULL));
+  CHECK(fixture_make(&pn, gs.ctx, &shapes[0], TLOD_SURFACE_PN, gs.pat, NULL));
   tlod_device_surface* refused = NULL;
-  tlod_result r = tlod_device_create_surface(dev, pn.surf, &refused);
+  tlod_result r = tlod_device_create_surface(gs.dev, pn.surf, &refused);
   CHECK_MSG(r == TLOD_ERROR_UNSUPPORTED && !refused, "pn surface on a phong-only device: %s", tlod_result_string(r));
-  printf("  pn surface on the phong device: %s\n", tlod_context_last_error(ctx));
+  printf("  pn surface on the phong device: %s\n", tlod_context_last_error(gs.ctx));
   fixture_free(&pn);
 
   camera cam = camera_look(0.5, -9.0, 6.0, 0, 0, 0, 50, W, H);
@@ -125,8 +118,8 @@ TEST(test_one_device_many_objects) {
   tlod_view_desc v = camera_view(&cam);
   uint32_t covered = 0;
   uint64_t triangles = 0;
-  CHECK(play(dev, objs, items, &v, &covered, &triangles));
-  st = tlod_device_query_stats(dev);
+  CHECK(play(gs.dev, objs, items, &v, &covered, &triangles));
+  st = tlod_device_query_stats(gs.dev);
   printf("  mode 1: %u objects x %d frames in %llu draws: %u pixels covered, %llu triangles a frame, %u draw calls; "
          "program links %u, pattern uploads %u, patch bytes %llu\n",
          OBJECTS, FRAMES, (unsigned long long)st.draws, covered, (unsigned long long)triangles, st.draw_calls,
@@ -145,8 +138,8 @@ TEST(test_one_device_many_objects) {
     CHECK(objs[k].sched);
   }
   uint32_t covered2 = 0;
-  CHECK(play(dev, objs, items, &v, &covered2, &triangles));
-  st = tlod_device_query_stats(dev);
+  CHECK(play(gs.dev, objs, items, &v, &covered2, &triangles));
+  st = tlod_device_query_stats(gs.dev);
   printf("  mode 2 (uniform:2): %u pixels covered, %llu triangles a frame; program links %u, pattern uploads %u\n",
          covered2, (unsigned long long)triangles, st.gl.program_links, st.gl.pattern_uploads);
   CHECK_MSG(st.gl.program_links == links_per_device && st.gl.pattern_uploads == 1 && st.gl.patch_bytes == patch_bytes,
@@ -155,8 +148,8 @@ TEST(test_one_device_many_objects) {
   CHECK(covered2 > 2000);
 
   /* surface refresh: one update re-uploads that surface only */
-  CHECK(tlod_device_update_surface(dev, objs[3].fx.ds) == TLOD_SUCCESS);
-  st = tlod_device_query_stats(dev);
+  CHECK(tlod_device_update_surface(gs.dev, objs[3].fx.ds) == TLOD_SUCCESS);
+  st = tlod_device_query_stats(gs.dev);
   CHECK(st.surface_updates == 1 &&
         st.gl.patch_bytes == patch_bytes + sizeof(tlod_patch_record) * tlod_surface_patch_count(objs[3].fx.surf));
   CHECK(st.gl.program_links == links_per_device);
@@ -167,30 +160,20 @@ TEST(test_one_device_many_objects) {
   }
   for (int k = 0; k < 2; k++)
     shape_free(&shapes[k]);
-  tlod_device_destroy(dev);
-  tlod_patterns_destroy(pat);
-  tlod_context_destroy(ctx);
-  tlod_platform_destroy(platform);
+  gl_session_close(&gs);
 }
 
 /* Identity model == no model, bitwise; has_color reaches the pixels; the
  * default device links 2 programs per surface type (3 types). */
 TEST(test_model_and_colour) {
-  char err[512] = "";
-  tlod_platform* platform = gl_test_platform(W, H, err, sizeof err);
-  CHECK_MSG(platform, "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
-  CHECK(pat);
-  tlod_platform_bind(platform);
-  tlod_device* dev = new_gl_device(ctx, pat, "gl_model", (tlod_device_gl_desc){0});
-  CHECK(dev);
-  CHECK_MSG(tlod_device_query_stats(dev).gl.program_links == 6, "default device: %u links (flat, phong, pn: 6)",
-            tlod_device_query_stats(dev).gl.program_links);
+  gl_session gs;
+  CHECK_MSG(gl_session_open(&gs, W, H, MAX_LEVEL, "gl_model", (tlod_device_gl_desc){0}),
+            "no GL context or device (see above)");
+  CHECK_MSG(tlod_device_query_stats(gs.dev).gl.program_links == 6, "default device: %u links (flat, phong, pn: 6)",
+            tlod_device_query_stats(gs.dev).gl.program_links);
   shape sph = shape_torus(16, 10);
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PN, pat, dev));
+  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PN, gs.pat, gs.dev));
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
   CHECK(sch);
   camera cam = camera_look(1.4, -2.4, 1.6, 0, 0, 0, 50, W, H);
@@ -215,8 +198,8 @@ TEST(test_model_and_colour) {
       d.item.color[0] = 1.0f, d.item.color[1] = 0.0f, d.item.color[2] = 0.0f, d.item.color[3] = 1.0f;
     }
     clear_frame(W, H);
-    CHECK(tlod_device_draw(dev, &d.desc) == TLOD_SUCCESS);
-    CHECK(tlod_device_read_image(dev, W, H, img[k]) == TLOD_SUCCESS);
+    CHECK(tlod_device_draw(gs.dev, &d.desc) == TLOD_SUCCESS);
+    CHECK(tlod_device_read_image(gs.dev, W, H, img[k]) == TLOD_SUCCESS);
   }
   uint32_t differ = 0, covered = 0, red = 0;
   for (uint32_t i = 0; i < W * H; ++i) {
@@ -233,10 +216,7 @@ TEST(test_model_and_colour) {
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
   shape_free(&sph);
-  tlod_device_destroy(dev);
-  tlod_patterns_destroy(pat);
-  tlod_context_destroy(ctx);
-  tlod_platform_destroy(platform);
+  gl_session_close(&gs);
 }
 
 int main(void) {

@@ -180,18 +180,12 @@ static const char* const tri_fs = "#version 450 core\n"
                                   "void main() { o_color = color; }\n";
 
 TEST(test_engine_state) {
-  char err[512] = "";
-  tlod_platform* platform = gl_test_platform(W, H, err, sizeof err);
-  CHECK_MSG(platform, "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  gl_session gs;
+  CHECK_MSG(gl_session_open(&gs, W, H, 5, "engine_state", (tlod_device_gl_desc){0}),
+            "no GL context or device (see above)");
   shape sph = shape_icosphere(2);
-  tlod_patterns* pat = new_patterns(ctx, 5);
-  CHECK(pat);
-  tlod_device* dev = new_gl_device(ctx, pat, "engine_state", (tlod_device_gl_desc){0});
-  CHECK(dev);
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PN, pat, dev));
+  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PN, gs.pat, gs.dev));
   tlod_result r;
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
   CHECK(sch);
@@ -203,14 +197,14 @@ TEST(test_engine_state) {
   one_draw frame;
   one_draw_make(&frame, fx.ds, dl, &v);
 
-  /* tesslod's coverage alone, in the platform's FBO */
+  /* tesslod's coverage alone, in the gs.platform's FBO */
   uint8_t* alone = malloc(4 * W * H);
   uint8_t* before = malloc(4 * W * H);
   uint8_t* after = malloc(4 * W * H);
   CHECK(alone && before && after);
-  tlod_platform_bind(platform);
+  tlod_platform_bind(gs.platform);
   clear_frame(W, H);
-  CHECK(tlod_device_draw(dev, &frame.desc) == TLOD_SUCCESS);
+  CHECK(tlod_device_draw(gs.dev, &frame.desc) == TLOD_SUCCESS);
   gl_read_rgba(W, H, alone);
 
   /* ---- the engine ---- */
@@ -285,8 +279,8 @@ TEST(test_engine_state) {
 
   /* tesslod draws into the engine's framebuffer, twice: shaded, then
    * LEVELS with the wireframe overlay */
-  r = tlod_device_draw(dev, &frame.desc);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_device_draw: %s: %s", tlod_result_string(r), tlod_context_last_error(ctx));
+  r = tlod_device_draw(gs.dev, &frame.desc);
+  CHECK_MSG(r == TLOD_SUCCESS, "tlod_device_draw: %s: %s", tlod_result_string(r), tlod_context_last_error(gs.ctx));
   GLenum gl_err = glGetError();
   gl_state got = capture();
   int diffs = compare_state(&want, &got, "after draw");
@@ -294,9 +288,9 @@ TEST(test_engine_state) {
   gl_read_rgba(W, H, after);
   frame.desc.debug = TLOD_DEBUG_LEVELS;
   frame.desc.wireframe = true;
-  r = tlod_device_draw(dev, &frame.desc);
+  r = tlod_device_draw(gs.dev, &frame.desc);
   CHECK_MSG(r == TLOD_SUCCESS, "tlod_device_draw (wireframe): %s: %s", tlod_result_string(r),
-            tlod_context_last_error(ctx));
+            tlod_context_last_error(gs.ctx));
   gl_err = glGetError();
   got = capture();
   diffs += compare_state(&want, &got, "after wireframe draw");
@@ -354,11 +348,8 @@ TEST(test_engine_state) {
   free(after);
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
-  tlod_device_destroy(dev);
-  tlod_patterns_destroy(pat);
   shape_free(&sph);
-  tlod_context_destroy(ctx);
-  tlod_platform_destroy(platform);
+  gl_session_close(&gs);
 }
 
 /* An engine that times its passes has its own GL_TIME_ELAPSED (and
@@ -368,18 +359,12 @@ TEST(test_engine_state) {
  * GL_INVALID_OPERATION), and the engine's queries must still end and
  * report. */
 TEST(test_engine_queries_active) {
-  char err[512] = "";
-  tlod_platform* platform = gl_test_platform(W, H, err, sizeof err);
-  CHECK_MSG(platform, "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  gl_session gs;
+  CHECK_MSG(gl_session_open(&gs, W, H, 5, "engine_queries", (tlod_device_gl_desc){0}),
+            "no GL context or device (see above)");
   shape sph = shape_icosphere(2);
-  tlod_patterns* pat = new_patterns(ctx, 5);
-  CHECK(pat);
-  tlod_device* dev = new_gl_device(ctx, pat, "engine_queries", (tlod_device_gl_desc){0});
-  CHECK(dev);
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PHONG, pat, dev));
+  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PHONG, gs.pat, gs.dev));
   tlod_result r;
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
   CHECK(sch);
@@ -389,7 +374,7 @@ TEST(test_engine_queries_active) {
   CHECK(dl);
   one_draw frame;
   one_draw_make(&frame, fx.ds, dl, &v);
-  tlod_platform_bind(platform);
+  tlod_platform_bind(gs.platform);
   clear_frame(W, H);
   while (glGetError() != GL_NO_ERROR) {
   }
@@ -400,7 +385,7 @@ TEST(test_engine_queries_active) {
   for (int f = 0; f < 6; ++f) { /* the backend reads its queries a few frames late */
     glBeginQuery(GL_TIME_ELAPSED, q[0]);
     glBeginQuery(GL_PRIMITIVES_GENERATED, q[1]);
-    r = tlod_device_draw(dev, &frame.desc);
+    r = tlod_device_draw(gs.dev, &frame.desc);
     GLenum e = glGetError();
     if (e != GL_NO_ERROR && errors++ == 0) first_error = e;
     GLint active_time = 0, active_prims = 0;
@@ -429,11 +414,8 @@ TEST(test_engine_queries_active) {
   uint64_t pattern_triangles = dl->pattern_triangles; /* dl dies with the scheduler */
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
-  tlod_device_destroy(dev);
-  tlod_patterns_destroy(pat);
   shape_free(&sph);
-  tlod_context_destroy(ctx);
-  tlod_platform_destroy(platform);
+  gl_session_close(&gs);
   CHECK_MSG(errors == 0,
             "tlod_device_draw inside an engine's GL_TIME_ELAPSED / GL_PRIMITIVES_GENERATED queries: %d "
             "errors, first %s (0x%04X)",

@@ -308,6 +308,39 @@ static inline tlod_device* new_gl_device(tlod_context* ctx, const tlod_patterns*
   return dev;
 }
 
+/* What a device test starts with: a headless platform (its context
+ * current), a tesslod context, patterns and a "gl" device on them. */
+typedef struct gl_session {
+  tlod_platform* platform;
+  tlod_context* ctx;
+  tlod_patterns* pat;
+  tlod_device* dev;
+} gl_session;
+
+static inline void gl_session_close(gl_session* s) {
+  tlod_device_destroy(s->dev);
+  tlod_patterns_destroy(s->pat);
+  tlod_context_destroy(s->ctx);
+  if (s->platform) tlod_platform_destroy(s->platform);
+  memset(s, 0, sizeof *s);
+}
+
+/* false with the reason printed (GL tests then FAIL, never skip). */
+static inline bool gl_session_open(gl_session* s, uint32_t w, uint32_t h, uint32_t max_level, const char* label,
+                                   tlod_device_gl_desc gl) {
+  char err[512] = "";
+  memset(s, 0, sizeof *s);
+  s->platform = gl_test_platform(w, h, err, sizeof err);
+  if (!s->platform) return false;
+  tlod_platform_bind(s->platform);
+  if (tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &s->ctx) != TLOD_SUCCESS ||
+      !(s->pat = new_patterns(s->ctx, max_level)) || !(s->dev = new_gl_device(s->ctx, s->pat, label, gl))) {
+    gl_session_close(s);
+    return false;
+  }
+  return true;
+}
+
 /* One item (identity model, default colour) for one view: desc.items points
  * at item, so keep the struct where it is (do not copy it). */
 typedef struct one_draw {

@@ -184,7 +184,7 @@ TEST(test_null_counts) {
   CHECK(tlod_device_draw(dev, &d) == TLOD_SUCCESS);
   uint8_t px[4];
   CHECK(tlod_device_read_image(dev, 1, 1, px) == TLOD_ERROR_UNSUPPORTED);
-  CHECK(has(tlod_context_last_error(ctx), "null device"));
+  CHECK(has(tlod_context_last_error(ctx), "null device has no image"));
   CHECK(tlod_cpu_device_mesh(dev, 0) == NULL);
   tlod_device_destroy_surface(dev, ds[4]);
   tlod_device_destroy_surface(dev, NULL);

@@ -96,7 +96,7 @@ static void unlink_surface(tlod_device* dev, tlod_device_surface* ds) {
 }
 
 static void free_surface(tlod_device* dev, tlod_device_surface* ds) {
-  dev->vtbl->destroy_surface(dev->state, ds->state);
+  if (dev->vtbl->destroy_surface) dev->vtbl->destroy_surface(dev->state, ds->state);
   unlink_surface(dev, ds);
   tlod_context_free(dev->ctx, ds);
   dev->stats.surfaces_live--;
@@ -130,7 +130,7 @@ tlod_result tlod_device_create_surface(tlod_device* dev, const tlod_surface* sur
   ds->dev = dev;
   ds->surface = surface;
   ds->patch_count = tlod_surface_patch_count(surface);
-  tlod_result r = dev->vtbl->create_surface(dev->state, surface, &ds->state);
+  tlod_result r = dev->vtbl->create_surface ? dev->vtbl->create_surface(dev->state, surface, &ds->state) : TLOD_SUCCESS;
   if (r != TLOD_SUCCESS) {
     tlod_context_free(dev->ctx, ds);
     return r;
@@ -159,7 +159,8 @@ tlod_result tlod_device_update_surface(tlod_device* dev, tlod_device_surface* ds
     return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
                              "tlod_device_update_surface: surface '%s' has %u patches, it had %u (topology is fixed)",
                              ds->label, n, ds->patch_count);
-  tlod_result r = dev->vtbl->update_surface(dev->state, ds->state, ds->surface);
+  tlod_result r =
+      dev->vtbl->update_surface ? dev->vtbl->update_surface(dev->state, ds->state, ds->surface) : TLOD_SUCCESS;
   if (r == TLOD_SUCCESS) dev->stats.surface_updates++;
   return r;
 }
@@ -263,8 +264,17 @@ tlod_result tlod_device_draw(tlod_device* dev, const tlod_draw_desc* desc) {
   }
   memset(dev->item_stats, 0, sizeof(tlod_draw_item_stats) * n);
   dev->last_item_count = 0;
+  double t0 = tlod_now_ms();
   r = dev->vtbl->draw(dev->state, desc, dev->refs, dev->item_stats);
   if (r != TLOD_SUCCESS) return r;
+  if (!dev->vtbl->times_draws) dev->stats.cpu_ms = dev->stats.wall_ms = tlod_now_ms() - t0;
+  dev->stats.triangles = dev->stats.vertices = 0;
+  dev->stats.draw_calls = 0;
+  for (uint32_t k = 0; k < n; k++) {
+    dev->stats.triangles += dev->item_stats[k].triangles;
+    dev->stats.vertices += dev->item_stats[k].vertices;
+    dev->stats.draw_calls += dev->item_stats[k].draw_calls;
+  }
   dev->last_item_count = n;
   dev->stats.items = n;
   dev->stats.draws++;
@@ -278,6 +288,10 @@ tlod_result tlod_device_read_image(tlod_device* dev, uint32_t width, uint32_t he
   if (!rgba || !width || !height)
     return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_device_read_image: %s (%u x %u, rgba %s)",
                              !rgba ? "rgba is NULL" : "empty image", width, height, rgba ? "set" : "NULL");
+  if (!dev->vtbl->read_image)
+    return tlod_context_fail(dev->ctx, TLOD_ERROR_UNSUPPORTED, "tlod_device_read_image: the %s device has no image%s",
+                             dev->backend,
+                             dev->vtbl == &_tlod_cpu_device_vtbl ? " (it realises meshes: tlod_cpu_device_mesh)" : "");
   return dev->vtbl->read_image(dev->state, width, height, rgba);
 }
 

@@ -7,7 +7,6 @@
 typedef struct cpu_device {
   tlod_context* ctx;
   const tlod_patterns* patterns;
-  tlod_device_stats* stats;
   tlod_cpu_mesh** meshes; /* per item slot */
   uint32_t mesh_count;
 } cpu_device;
@@ -15,9 +14,9 @@ typedef struct cpu_device {
 static tlod_result cpu_create(tlod_context* ctx, const tlod_device_desc* desc, tlod_device_stats* stats, void** state) {
   cpu_device* d = tlod_context_calloc(ctx, 1, sizeof(*d));
   if (!d) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "cpu device: out of memory");
+  (void)stats;
   d->ctx = ctx;
   d->patterns = desc->patterns;
-  d->stats = stats;
   *state = d;
   return TLOD_SUCCESS;
 }
@@ -29,20 +28,6 @@ static void cpu_destroy(void* state) {
   tlod_context_free(d->ctx, d->meshes);
   tlod_context_free(d->ctx, d);
 }
-
-/* The surface itself is all the cpu device needs. */
-static tlod_result cpu_create_surface(void* state, const tlod_surface* surface, void** surface_state) {
-  (void)state, (void)surface;
-  *surface_state = NULL;
-  return TLOD_SUCCESS;
-}
-
-static tlod_result cpu_update_surface(void* state, void* surface_state, const tlod_surface* surface) {
-  (void)state, (void)surface_state, (void)surface;
-  return TLOD_SUCCESS;
-}
-
-static void cpu_destroy_surface(void* state, void* surface_state) { (void)state, (void)surface_state; }
 
 static tlod_result grow_meshes(cpu_device* d, uint32_t n) {
   if (n <= d->mesh_count) return TLOD_SUCCESS;
@@ -59,10 +44,8 @@ static tlod_result grow_meshes(cpu_device* d, uint32_t n) {
 static tlod_result cpu_draw(void* state, const tlod_draw_desc* desc, const _tlod_draw_ref* refs,
                             tlod_draw_item_stats* item_stats) {
   cpu_device* d = state;
-  double t0 = tlod_now_ms();
   tlod_result r = grow_meshes(d, desc->item_count);
   if (r != TLOD_SUCCESS) return r;
-  uint64_t triangles = 0, vertices = 0;
   for (uint32_t k = 0; k < desc->item_count; k++) {
     double ti = tlod_now_ms();
     tlod_cpu_tessellate_desc td = {.draw_list = refs[k].item->draw_list};
@@ -72,25 +55,12 @@ static tlod_result cpu_draw(void* state, const tlod_draw_desc* desc, const _tlod
     item_stats[k] = (tlod_draw_item_stats){.triangles = d->meshes[k]->triangle_count,
                                            .vertices = d->meshes[k]->vertex_count,
                                            .cpu_ms = tlod_now_ms() - ti};
-    triangles += d->meshes[k]->triangle_count;
-    vertices += d->meshes[k]->vertex_count;
   }
-  d->stats->cpu_ms = d->stats->wall_ms = tlod_now_ms() - t0;
-  d->stats->triangles = triangles;
-  d->stats->vertices = vertices;
-  d->stats->draw_calls = 0;
   return TLOD_SUCCESS;
 }
 
-static tlod_result cpu_read_image(void* state, uint32_t width, uint32_t height, uint8_t* rgba) {
-  (void)width, (void)height, (void)rgba;
-  cpu_device* d = state;
-  return tlod_context_fail(d->ctx, TLOD_ERROR_UNSUPPORTED,
-                           "cpu device: it realises meshes and has no image (use tlod_cpu_device_mesh)");
-}
-
-const _tlod_device_vtbl _tlod_cpu_device_vtbl = {
-    cpu_create, cpu_destroy, cpu_create_surface, cpu_update_surface, cpu_destroy_surface, cpu_draw, cpu_read_image};
+/* No state per surface: the surface itself is all the cpu device needs. */
+const _tlod_device_vtbl _tlod_cpu_device_vtbl = {cpu_create, cpu_destroy, NULL, NULL, NULL, cpu_draw, NULL, false};
 
 const tlod_cpu_mesh* _tlod_cpu_device_mesh(const void* state, uint32_t item) {
   const cpu_device* d = state;

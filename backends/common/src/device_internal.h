@@ -20,13 +20,19 @@ typedef struct _tlod_device_vtbl {
    * whenever it likes, and the last-draw fields in draw(). */
   tlod_result (*create)(tlod_context* ctx, const tlod_device_desc* desc, tlod_device_stats* stats, void** state);
   void (*destroy)(void* state);
+  /* The three surface entries may be NULL: no state per surface (cpu, null). */
   tlod_result (*create_surface)(void* state, const tlod_surface* surface, void** surface_state);
   tlod_result (*update_surface)(void* state, void* surface_state, const tlod_surface* surface);
   void (*destroy_surface)(void* state, void* surface_state);
-  /* item_stats has desc->item_count entries, zeroed. */
+  /* item_stats has desc->item_count entries, zeroed; the backend fills
+   * them, the dispatch sums them into the last-draw stats. */
   tlod_result (*draw)(void* state, const tlod_draw_desc* desc, const _tlod_draw_ref* refs,
                       tlod_draw_item_stats* item_stats);
+  /* NULL: the device has no image (TLOD_ERROR_UNSUPPORTED). */
   tlod_result (*read_image)(void* state, uint32_t width, uint32_t height, uint8_t* rgba);
+  /* false: the dispatch times draw() into cpu_ms and wall_ms; true: the
+   * backend does (gl: cpu_ms without the finish, wall_ms with it). */
+  bool times_draws;
 } _tlod_device_vtbl;
 
 extern const _tlod_device_vtbl _tlod_cpu_device_vtbl;

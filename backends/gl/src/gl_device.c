@@ -17,11 +17,32 @@
 
 enum { QUERY_RING = 4, TYPE_COUNT = TLOD_SURFACE_NUM };
 
-/* A linked program and its uniform locations (looked up once, at link). */
+/* The uniforms the device sets, by index; locations looked up once, at link
+ * (backends/shaders/common.glsl, shade.frag and the vertex stages). */
+enum {
+  U_VIEW_PROJ,
+  U_MODEL,
+  U_NORMAL_MATRIX,
+  U_LIGHT_DIR,
+  U_BASE_COLOR,
+  U_DEBUG,
+  U_EYE,
+  U_FORWARD,
+  U_ORTHO,
+  U_FIRST_INSTANCE,
+  U_SHAPE_BASE,
+  U_CORNERS,
+  U_GRID,
+  U_MAX_LEVEL,
+  U_COUNT
+};
+static const char* const uniform_names[U_COUNT] = {
+    "u_view_proj", "u_model", "u_normal_matrix",  "u_light_dir",  "u_base_color", "u_debug", "u_eye",
+    "u_forward",   "u_ortho", "u_first_instance", "u_shape_base", "u_corners",    "u_grid",  "u_max_level"};
+
 typedef struct gl_program {
   GLuint id;
-  GLint view_proj, model, normal_matrix, light_dir, base_color, debug, eye, forward, ortho;
-  GLint first_instance, shape_base, corners;
+  GLint loc[U_COUNT]; /* -1: not in this program (GL ignores the call) */
 } gl_program;
 
 /* The programs of one surface type. */
@@ -107,22 +128,11 @@ static void gl_destroy(void* state) {
 /* ---- programs and patterns (once per device) ----------------------------- */
 
 static void locate(gl_device* d, gl_program* p) {
-  GLuint id = p->id;
-  p->view_proj = glGetUniformLocation(id, "u_view_proj");
-  p->model = glGetUniformLocation(id, "u_model");
-  p->normal_matrix = glGetUniformLocation(id, "u_normal_matrix");
-  p->light_dir = glGetUniformLocation(id, "u_light_dir");
-  p->base_color = glGetUniformLocation(id, "u_base_color");
-  p->debug = glGetUniformLocation(id, "u_debug");
-  p->eye = glGetUniformLocation(id, "u_eye");
-  p->forward = glGetUniformLocation(id, "u_forward");
-  p->ortho = glGetUniformLocation(id, "u_ortho");
-  p->first_instance = glGetUniformLocation(id, "u_first_instance");
-  p->shape_base = glGetUniformLocation(id, "u_shape_base");
-  p->corners = glGetUniformLocation(id, "u_corners");
+  for (int u = 0; u < U_COUNT; u++)
+    p->loc[u] = glGetUniformLocation(p->id, uniform_names[u]);
   /* Constant for the device's patterns. */
-  glProgramUniform1ui(id, glGetUniformLocation(id, "u_grid"), 1u << d->lmax);
-  glProgramUniform1ui(id, glGetUniformLocation(id, "u_max_level"), d->lmax);
+  glProgramUniform1ui(p->id, p->loc[U_GRID], 1u << d->lmax);
+  glProgramUniform1ui(p->id, p->loc[U_MAX_LEVEL], d->lmax);
   d->stats->gl.program_links++;
 }
 
@@ -396,6 +406,13 @@ static tlod_result stage(gl_device* d, const tlod_draw_desc* desc, const _tlod_d
 
 /* ---- drawing ----------------------------------------------------------------- */
 
+/* The programs of a surface type in use: pattern and strip, and the two
+ * tessellation programs with hardware tessellation. */
+static int programs_of(const gl_device* d, const gl_programs* ps, const gl_program* out[4]) {
+  out[0] = &ps->pattern, out[1] = &ps->strip, out[2] = &ps->tess[0], out[3] = &ps->tess[1];
+  return d->hardware ? 4 : 2;
+}
+
 /* The view's uniforms, on every program the device linked. */
 static void set_view_uniforms(gl_device* d, const tlod_draw_desc* fr) {
   float light[3] = {fr->light_dir[0], fr->light_dir[1], fr->light_dir[2]};
@@ -410,33 +427,33 @@ static void set_view_uniforms(gl_device* d, const tlod_draw_desc* fr) {
   for (int t = 0; t < TYPE_COUNT; t++) {
     gl_programs* ps = &d->programs[t];
     if (!ps->linked) continue;
-    gl_program* progs[4] = {&ps->pattern, &ps->strip, &ps->tess[0], &ps->tess[1]};
-    for (int k = 0; k < (d->hardware ? 4 : 2); k++) {
+    const gl_program* progs[4];
+    for (int k = 0, n = programs_of(d, ps, progs); k < n; k++) {
       const gl_program* p = progs[k];
-      glProgramUniform3f(p->id, p->light_dir, light[0] / len, light[1] / len, light[2] / len);
-      glProgramUniform1ui(p->id, p->debug, (uint32_t)fr->debug);
-      glProgramUniform3fv(p->id, p->eye, 1, eye);
-      glProgramUniform3fv(p->id, p->forward, 1, fwd);
-      glProgramUniform1ui(p->id, p->ortho, fr->proj[15] == 1.0f ? 1u : 0u);
+      glProgramUniform3f(p->id, p->loc[U_LIGHT_DIR], light[0] / len, light[1] / len, light[2] / len);
+      glProgramUniform1ui(p->id, p->loc[U_DEBUG], (uint32_t)fr->debug);
+      glProgramUniform3fv(p->id, p->loc[U_EYE], 1, eye);
+      glProgramUniform3fv(p->id, p->loc[U_FORWARD], 1, fwd);
+      glProgramUniform1ui(p->id, p->loc[U_ORTHO], fr->proj[15] == 1.0f ? 1u : 0u);
     }
   }
 }
 
 static void set_item_uniforms(const gl_device* d, const gl_programs* ps, const _tlod_item_shading* sh) {
-  const gl_program* progs[4] = {&ps->pattern, &ps->strip, &ps->tess[0], &ps->tess[1]};
-  for (int k = 0; k < (d->hardware ? 4 : 2); k++) {
+  const gl_program* progs[4];
+  for (int k = 0, n = programs_of(d, ps, progs); k < n; k++) {
     const gl_program* p = progs[k];
-    glProgramUniformMatrix4fv(p->id, p->view_proj, 1, GL_FALSE, sh->mvp);
-    glProgramUniformMatrix4fv(p->id, p->model, 1, GL_FALSE, sh->model);
-    glProgramUniformMatrix3fv(p->id, p->normal_matrix, 1, GL_FALSE, sh->normal_matrix);
-    glProgramUniform4fv(p->id, p->base_color, 1, sh->color);
+    glProgramUniformMatrix4fv(p->id, p->loc[U_VIEW_PROJ], 1, GL_FALSE, sh->mvp);
+    glProgramUniformMatrix4fv(p->id, p->loc[U_MODEL], 1, GL_FALSE, sh->model);
+    glProgramUniformMatrix3fv(p->id, p->loc[U_NORMAL_MATRIX], 1, GL_FALSE, sh->normal_matrix);
+    glProgramUniform4fv(p->id, p->loc[U_BASE_COLOR], 1, sh->color);
   }
 }
 
 static void set_debug(const gl_device* d, const gl_programs* ps, uint32_t debug) {
-  const gl_program* progs[4] = {&ps->pattern, &ps->strip, &ps->tess[0], &ps->tess[1]};
-  for (int k = 0; k < (d->hardware ? 4 : 2); k++)
-    glProgramUniform1ui(progs[k]->id, progs[k]->debug, debug);
+  const gl_program* progs[4];
+  for (int k = 0, n = programs_of(d, ps, progs); k < n; k++)
+    glProgramUniform1ui(progs[k]->id, progs[k]->loc[U_DEBUG], debug);
 }
 
 /* One instanced draw per refinement pattern, then the item's strips in one draw. */
@@ -449,8 +466,8 @@ static uint32_t issue_draws(const gl_device* d, const gl_programs* ps, const tlo
   for (uint32_t k = 0; k < dl->bucket_count; k++) {
     const tlod_draw_bucket* bk = &dl->buckets[k];
     uint32_t sh = (uint32_t)bk->shape;
-    glProgramUniform1ui(p->id, p->first_instance, range->instance_first + bk->first);
-    glProgramUniform1ui(p->id, p->shape_base, d->shape_base[sh]);
+    glProgramUniform1ui(p->id, p->loc[U_FIRST_INSTANCE], range->instance_first + bk->first);
+    glProgramUniform1ui(p->id, p->loc[U_SHAPE_BASE], d->shape_base[sh]);
     glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)d->index_count[sh][bk->level], GL_UNSIGNED_INT,
                             (const void*)(sizeof(uint32_t) * (size_t)d->index_first[sh][bk->level]),
                             (GLsizei)bk->count);
@@ -486,7 +503,7 @@ static uint32_t issue_tess_draws(const gl_device* d, const gl_programs* ps, cons
     glUseProgram(p->id);
     glBindVertexArray(d->vao_pattern);
     glPatchParameteri(GL_PATCH_VERTICES, (GLint)corners);
-    glProgramUniform1ui(p->id, p->corners, corners);
+    glProgramUniform1ui(p->id, p->loc[U_CORNERS], corners);
     uint32_t start = range->instance_first + bk->first, end = start + bk->count, batch_vertices = 0;
     for (uint32_t i = start; i <= end; i++) {
       uint32_t v = 0;
@@ -500,7 +517,7 @@ static uint32_t issue_tess_draws(const gl_device* d, const gl_programs* ps, cons
       }
       if (i == end || batch_vertices + v > 65535u) {
         if (i > start) {
-          glProgramUniform1ui(p->id, p->first_instance, start);
+          glProgramUniform1ui(p->id, p->loc[U_FIRST_INSTANCE], start);
           glDrawArrays(GL_PATCHES, 0, (GLsizei)((i - start) * corners));
           calls++;
         }
@@ -529,8 +546,8 @@ static void read_query(gl_device* d) {
 }
 
 /* Item k: its patterns and strips, then (wireframe) its edges over them. */
-static uint32_t draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, uint32_t k,
-                          tlod_draw_item_stats* st) {
+static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, uint32_t k,
+                      tlod_draw_item_stats* st) {
   double t0 = tlod_now_ms();
   const gl_surface* gs = it->surface_state;
   const gl_programs* ps = &d->programs[gs->type];
@@ -560,7 +577,6 @@ static uint32_t draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_dr
   st->vertices = vertices;
   st->draw_calls = calls;
   st->cpu_ms += tlod_now_ms() - t0;
-  return calls;
 }
 
 static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
@@ -595,13 +611,8 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
     glBeginQuery(GL_PRIMITIVES_GENERATED, d->prim_queries[d->frame % QUERY_RING]);
   }
   set_view_uniforms(d, fr);
-  uint64_t triangles = 0, vertices = 0;
-  uint32_t calls = 0;
-  for (uint32_t k = 0; k < fr->item_count; k++) {
-    calls += draw_item(d, fr, &items[k], k, &item_stats[k]);
-    triangles += item_stats[k].triangles;
-    vertices += item_stats[k].vertices;
-  }
+  for (uint32_t k = 0; k < fr->item_count; k++)
+    draw_item(d, fr, &items[k], k, &item_stats[k]);
   if (timed) {
     glEndQuery(GL_PRIMITIVES_GENERATED);
     glEndQuery(GL_TIME_ELAPSED);
@@ -614,9 +625,6 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
     glFinish();
     d->stats->wall_ms = tlod_now_ms() - t0;
   }
-  d->stats->triangles = triangles;
-  d->stats->vertices = vertices;
-  d->stats->draw_calls = calls;
   return TLOD_SUCCESS;
 }
 
@@ -639,4 +647,4 @@ static tlod_result gl_read_image(void* state, uint32_t width, uint32_t height, u
 }
 
 const _tlod_device_vtbl _tlod_gl_device_vtbl = {gl_create,          gl_destroy, gl_create_surface, gl_update_surface,
-                                                gl_destroy_surface, gl_draw,    gl_read_image};
+                                                gl_destroy_surface, gl_draw,    gl_read_image,     true};
