@@ -102,7 +102,7 @@ struct tlod_surface {
   char label[64];
 };
 
-/* One canonical edge function (DESIGN.md invariant 1): the point at
+/* One canonical edge function (docs/design.md invariant 1): the point at
  * parameter t from mesh vertex a to vertex b, where weld_id[a] < weld_id[b].
  * The same inputs give bitwise equal outputs on every patch sharing the edge. */
 void _tlod_edge_eval(const tlod_surface* s, uint32_t a, uint32_t b, float t, float pos[3], float nrm[3]);

@@ -4,7 +4,7 @@
  *   T. Boubekeur, M. Alexa. Phong Tessellation. ACM TOG 27(5), 2008.
  *   J. Dupuy. Phong Tessellation for Quads. 2013 (tangents; the surface is C0
  *   across patch edges, not C1 as stated there).
- * Maths and the error bound: DESIGN.md. */
+ * Maths and the error bound: docs/design.md. */
 #include "surface_eval.h"
 
 static v3 normal_or(v3 n, v3 fallback) {

@@ -1,5 +1,5 @@
 /* tesslod::core -- surfaces: per-patch precomputation and the evaluation
- * entry point that routes corners, edges and interiors (DESIGN.md
+ * entry point that routes corners, edges and interiors (docs/design.md
  * invariants 1 and 2). */
 #include <stdio.h>
 #include <string.h>

@@ -1,5 +1,5 @@
 /* Private small-vector helpers. Kept inline and in one evaluation order so
- * that every caller rounds identically (DESIGN.md invariant 1). */
+ * that every caller rounds identically (docs/design.md invariant 1). */
 #ifndef TESSLOD_VEC3_H
 #define TESSLOD_VEC3_H
 

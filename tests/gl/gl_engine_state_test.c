@@ -354,7 +354,7 @@ TEST(test_engine_state) {
 
 /* An engine that times its passes has its own GL_TIME_ELAPSED (and
  * GL_PRIMITIVES_GENERATED) query active around the middleware's draw
- * (STYLE.md: per-pass timestamps). GL allows one active query per target:
+ * (docs/style.md item 12: per-pass timestamps). GL allows one active query per target:
  * tlod_device_draw must not begin another on the same target (that is
  * GL_INVALID_OPERATION), and the engine's queries must still end and
  * report. */

@@ -6,9 +6,9 @@
  * This work is based on: Boubekeur & Alexa 2008 (Phong tessellation), Dupuy
  * (Phong tessellation for quads), Vlachos et al. 2001 (curved PN triangles),
  * Schwarz, Staginski, Stamminger 2006 (error bound, refinement patterns), with
- * the corrections of DESIGN.md.
+ * the corrections of docs/design.md.
  *
- * Every reference below is written from the papers and DESIGN.md in double
+ * Every reference below is written from the papers and docs/design.md in double
  * precision, without reading the library's evaluation code. The library
  * evaluates in float from float inputs, so it is compared with the
  * reference evaluated on the very same float inputs (the mesh's final,
@@ -32,7 +32,7 @@
  *   REF_REL    1e-12  double reference versus double reference (identities).
  *   Error bound: measured <= error_bound * 4^-l + 1e-6 (float evaluation
  *                     slack); bounding sphere: |p - center| <= radius + 1e-6.
- *   Exact (memcmp) for corners and shared edges: DESIGN.md invariants 1, 2.
+ *   Exact (memcmp) for corners and shared edges: docs/design.md invariants 1, 2.
  *   PN with equal normals is held to FLAT_EXACT_REL, not FLAT_REL (see
  *   test_equal_normals_are_flat).
  *
@@ -217,7 +217,7 @@ static void ref_phong_tri(const patch_ref* r, double alpha, bool vertex_alpha, d
     out[c] = (1.0 - a) * p[c] + a * proj[c];
 }
 
-/* Phong triangle at alpha = 1, closed quadratic form of DESIGN.md. */
+/* Phong triangle at alpha = 1, closed quadratic form of docs/design.md. */
 static void ref_phong_tri_closed(const patch_ref* r, double u, double v, double out[3]) {
   double w = 1.0 - u - v, bw[3] = {u, v, w};
   v_set(out, 0, 0, 0);

@@ -4,7 +4,7 @@
  * Owned by the verification tests. Reads private state: none (public API only).
  *
  * This work is based on: Schwarz, Staginski, Stamminger 2006 (refinement
- * and connection patterns), DESIGN.md invariants 1 and 3.
+ * and connection patterns), docs/design.md invariants 1 and 3.
  *
  * Topological checks are exact: the no_weld output is welded by bitwise
  * equal float positions, never by a distance. Tolerances: output normals

@@ -8,7 +8,7 @@
  * rendering of PN triangle meshes with adaptive tessellation, VMV 2006
  * (sec. 3 screen-space metric, sec. 4 stitching, sec. 5 geomorphs);
  * T. Boubekeur, M. Alexa, Phong tessellation, SIGGRAPH Asia 2008 (silhouette
- * depth); DESIGN.md (maths, invariants 3 and 4).
+ * depth); docs/design.md (maths, invariants 3 and 4).
  *
  * References. Every expected value is computed here, in double precision,
  * from the public inputs only: the camera matrices built by this file

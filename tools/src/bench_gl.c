@@ -1,5 +1,5 @@
 /* tlod bench --suite gl -- GPU frame times on llvmpipe (wall clock around a
- * finish: its timer queries miss most of the work, PLATFORM.md): adaptive
+ * finish: its timer queries miss most of the work, docs/platform.md section 1.1): adaptive
  * against uniform against flat for the Table 1 scenes, Phong against flat
  * at equal triangle counts, and the pattern path against hardware
  * tessellation. Ratios within one run are the figures to read. */

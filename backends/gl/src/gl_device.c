@@ -484,7 +484,7 @@ static uint32_t issue_draws(const gl_device* d, const gl_programs* ps, const tlo
   return calls;
 }
 
-/* Tessellated vertices of a patch whose largest level is l (docs/platform.md). */
+/* Tessellated vertices of a patch whose largest level is l (docs/platform.md section 1.2). */
 static uint32_t tess_vertices(uint32_t corners, uint32_t l) {
   uint32_t n = 1u << l;
   if (corners == 4) return (n + 1) * (n + 1);

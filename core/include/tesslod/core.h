@@ -317,7 +317,8 @@ typedef struct tlod_patch_info {
   uint32_t corner_count; /* 3 or 4 */
   /* Bound on the distance between the surface and its flat (level 0)
    * patch, world units. The level-l pattern deviates by at most
-   * error_bound * 4^-l. PN: 9/4 * d'_max (Schwarz et al.); Phong: see DESIGN.md. */
+   * error_bound * 4^-l. PN: max(9/4 * d'_max (Schwarz et al.), the
+   * second-derivative bound); Phong: docs/design.md section 3.5. */
   float error_bound;
   float d_max;     /* PN: max tangent control point distance; Phong: alpha-scaled max |d_e| */
   float center[3]; /* bounding sphere of the curved patch */

@@ -22,7 +22,7 @@
  *   - handle input beyond the window's close button, or resizing (the
  *     framebuffer keeps the size it was created with);
  *   - belong to the tesslod libraries: backends receive the current context
- *     and never include this header (STYLE.md item 3).
+ *     and never include this header (docs/style.md item 3).
  *
  * STEP BY STEP
  *   char err[256];

@@ -2,7 +2,7 @@
  * image_png.c -- PNG screenshots through stb_image_write (owned by
  * samples/common).
  *
- * The encoder is Debian's libstb (PLATFORM.md section 6: libstb-dev ships
+ * The encoder is Debian's libstb (docs/platform.md section 6: libstb-dev ships
  * libstb.so with stbi_write_png*), so no STB_IMAGE_WRITE_IMPLEMENTATION is
  * compiled here and stb's code is not built with the project's sanitizers.
  * stbi_write_png_to_func streams into a FILE* we own, so every failure

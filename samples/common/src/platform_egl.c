@@ -3,7 +3,7 @@
  * platform's framebuffer and read-back, and the public entry points that do
  * not depend on the mode (owned by samples/common).
  *
- * Based on the measured recipe of /work/shared/PLATFORM.md section 1:
+ * Based on the measured recipe of docs/platform.md section 1:
  * eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) (plain
  * eglGetDisplay fails without DISPLAY), EGL_KHR_no_config_context +
  * EGL_KHR_surfaceless_context, and a user FBO (RGBA8 + DEPTH24_STENCIL8).

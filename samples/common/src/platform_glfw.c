@@ -3,7 +3,7 @@
  * with an OpenGL 4.5 core forward-compatible context (owned by
  * samples/common).
  *
- * Based on /work/shared/PLATFORM.md section 2: GLFW 3.3.8 is an X11 build
+ * Based on docs/platform.md section 2: GLFW 3.3.8 is an X11 build
  * with no headless platform, so a window needs DISPLAY (Xvfb works); read
  * the back buffer before swapping.
  */

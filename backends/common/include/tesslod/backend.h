@@ -98,7 +98,7 @@ typedef struct tlod_device_gl_desc {
   /* Draw with GL_PATCHES and tessellation shaders instead of refinement
    * patterns, for comparison: outer levels per edge from both sides (no
    * strips), no geomorphs, and split-normal edges crack. Draws are batched
-   * below 65,536 tessellated vertices (a Mesa limit, docs/platform.md).
+   * below 65,536 tessellated vertices (a Mesa limit, docs/platform.md section 1.2).
    * Links two more programs per surface type. */
   bool hardware_tessellation;
   /* Surface types the device links programs for, as a mask of
