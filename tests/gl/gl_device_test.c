@@ -128,6 +128,9 @@ TEST(test_one_device_many_objects) {
             st.gl.program_links, OBJECTS, links_per_device);
   CHECK(st.gl.pattern_uploads == 1 && st.gl.patch_bytes == patch_bytes && st.surfaces_live == OBJECTS);
   CHECK(st.draws == FRAMES && st.items_drawn == (uint64_t)FRAMES * OBJECTS);
+  /* gpu_ms names the draw it measured (read a few draws late, never this one) */
+  CHECK_MSG(st.gpu_ms < 0.0 ? st.gpu_draw == 0 : st.gpu_draw >= 1 && st.gpu_draw < st.draws, "gpu_ms %.3f of draw %llu",
+            st.gpu_ms, (unsigned long long)st.gpu_draw);
   CHECK_MSG(covered > 2000, "20 objects cover only %u pixels", covered);
   CHECK(glGetError() == GL_NO_ERROR);
 

@@ -65,6 +65,7 @@ typedef struct gl_device {
   uint32_t index_first[2][TLOD_MAX_LEVEL + 1], index_count[2][TLOD_MAX_LEVEL + 1], shape_base[2];
   GLuint queries[QUERY_RING];
   GLuint prim_queries[QUERY_RING];
+  uint64_t query_draw[QUERY_RING]; /* the draw (stats numbering) each query measured */
   uint64_t frame;
   /* Staging, grown as needed, for all items of a draw. */
   tlod_gl_instance* instances;
@@ -542,6 +543,7 @@ static void read_query(gl_device* d) {
   glGetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);
   glGetQueryObjectui64v(d->prim_queries[(d->frame + 1) % QUERY_RING], GL_QUERY_RESULT, &prims);
   d->stats->gpu_ms = (double)ns * 1e-6;
+  d->stats->gpu_draw = d->query_draw[(d->frame + 1) % QUERY_RING];
   d->stats->gl.primitives_generated = prims;
 }
 
@@ -607,6 +609,7 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   glGetQueryiv(GL_PRIMITIVES_GENERATED, GL_CURRENT_QUERY, &busy_prims);
   bool timed = !busy_time && !busy_prims;
   if (timed) {
+    d->query_draw[d->frame % QUERY_RING] = d->stats->draws + 1; /* the dispatch counts this draw on success */
     glBeginQuery(GL_TIME_ELAPSED, d->queries[d->frame % QUERY_RING]);
     glBeginQuery(GL_PRIMITIVES_GENERATED, d->prim_queries[d->frame % QUERY_RING]);
   }

@@ -206,6 +206,7 @@ typedef struct tlod_device_stats {
   /* The last draw. */
   double cpu_ms;      /* CPU time of the call (staging + commands) */
   double gpu_ms;      /* timer query of a draw a few draws back; < 0 when none is ready */
+  uint64_t gpu_draw;  /* the draw gpu_ms measured, numbered as .draws (1 = the first); 0: none */
   double wall_ms;     /* wall clock of the call, including the finish when asked */
   uint64_t triangles; /* drawn (from the draw lists; cpu: realised) */
   uint64_t vertices;  /* shaded (pattern and strip vertices; cpu: realised) */
