@@ -4,7 +4,6 @@
  *   M. Schwarz, M. Staginski, M. Stamminger. GPU-based rendering of PN
  *   triangle meshes with adaptive tessellation. VMV 2006, sec. 4 (connection
  *   patterns generated once per level pair and kept for every strip). */
-#include "internal.h"
 #include "patterns_internal.h"
 
 /* Zips a (points 0..na) and b (0..nb, in a's direction) by their parameters
@@ -39,10 +38,10 @@ tlod_result _tlod_patterns_build_connections(tlod_patterns* p) {
   for (uint32_t la = 0; la <= p->max_level; la++) {
     for (uint32_t lb = 0; lb <= p->max_level; lb++) {
       uint32_t na = 1u << la, nb = 1u << lb;
-      p->connect[la][lb] = _tlod_alloc(p->ctx, sizeof(uint32_t[3]) * (na + nb));
+      p->connect[la][lb] = tlod_context_alloc(p->ctx, sizeof(uint32_t[3]) * (na + nb));
       if (!p->connect[la][lb])
-        return _tlod_fail(p->ctx, TLOD_ERROR_OUT_OF_MEMORY,
-                          "tlod_patterns_create: out of memory (connection patterns)");
+        return tlod_context_fail(p->ctx, TLOD_ERROR_OUT_OF_MEMORY,
+                                 "tlod_patterns_create: out of memory (connection patterns)");
       p->connect_count[la][lb] = zip(na, nb, p->connect[la][lb]);
     }
   }
@@ -52,7 +51,7 @@ tlod_result _tlod_patterns_build_connections(tlod_patterns* p) {
 void _tlod_patterns_free_connections(tlod_patterns* p) {
   for (uint32_t la = 0; la <= TLOD_MAX_LEVEL; la++)
     for (uint32_t lb = 0; lb <= TLOD_MAX_LEVEL; lb++)
-      _tlod_free(p->ctx, p->connect[la][lb]);
+      tlod_context_free(p->ctx, p->connect[la][lb]);
 }
 
 const uint32_t* tlod_patterns_connection(const tlod_patterns* p, uint32_t la, uint32_t lb, uint32_t* triangle_count) {

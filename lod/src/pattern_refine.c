@@ -18,7 +18,6 @@
 #include <assert.h>
 #include <string.h>
 
-#include "internal.h"
 #include "patterns_internal.h"
 
 /* Corners in unit coordinates (times N gives fine coordinates), in corner
@@ -69,10 +68,11 @@ static uint32_t* map_slot(const build_state* st, uint32_t fa, uint32_t fb) {
 
 static void* alloc_array(tlod_context* ctx, size_t count, size_t size, const char* what, tlod_result* result) {
   /* calloc: vertex structs have padding, zeroing it keeps two builds bytewise equal. */
-  void* p = _tlod_calloc(ctx, count, size);
+  void* p = tlod_context_calloc(ctx, count, size);
   if (!p)
-    *result = _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY,
-                         "tlod_patterns_create: out of memory allocating %s (%zu x %zu bytes)", what, count, size);
+    *result =
+        tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY,
+                          "tlod_patterns_create: out of memory allocating %s (%zu x %zu bytes)", what, count, size);
   return p;
 }
 
@@ -205,11 +205,12 @@ static tlod_result build_set(tlod_patterns* p, tlod_pattern_shape shape, uint32_
 tlod_result tlod_patterns_create(tlod_context* ctx, const tlod_patterns_desc* desc, tlod_patterns** out) {
   if (out) *out = NULL;
   if (!ctx) return TLOD_ERROR_INVALID_ARGUMENT;
-  if (!out) return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_patterns_create: out is NULL");
+  if (!out) return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_patterns_create: out is NULL");
   uint32_t max_level = desc && desc->max_level ? desc->max_level : TLOD_DEFAULT_MAX_LEVEL;
   if (max_level > TLOD_MAX_LEVEL)
-    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
-                      "tlod_patterns_create: max_level %u is above TLOD_MAX_LEVEL (%d)", max_level, TLOD_MAX_LEVEL);
+    return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "tlod_patterns_create: max_level %u is above TLOD_MAX_LEVEL (%d)", max_level,
+                             TLOD_MAX_LEVEL);
 
   tlod_result r = TLOD_SUCCESS;
   tlod_patterns* p = alloc_array(ctx, 1, sizeof *p, "patterns", &r);
@@ -221,7 +222,7 @@ tlod_result tlod_patterns_create(tlod_context* ctx, const tlod_patterns_desc* de
   uint32_t* map = alloc_array(ctx, side * side, sizeof *map, "pattern index map", &r);
   for (uint32_t s = 0; map && r == TLOD_SUCCESS && s < TLOD_PATTERN_SHAPE_NUM; ++s)
     r = build_set(p, (tlod_pattern_shape)s, map);
-  _tlod_free(ctx, map);
+  tlod_context_free(ctx, map);
   if (r == TLOD_SUCCESS) r = _tlod_patterns_build_connections(p);
   if (r != TLOD_SUCCESS) {
     tlod_patterns_destroy(p);
@@ -236,13 +237,13 @@ void tlod_patterns_destroy(tlod_patterns* patterns) {
   tlod_context* ctx = patterns->ctx;
   for (uint32_t s = 0; s < TLOD_PATTERN_SHAPE_NUM; ++s) {
     _tlod_pattern_set* set = &patterns->sets[s];
-    _tlod_free(ctx, set->vertices);
-    _tlod_free(ctx, set->edges);
+    tlod_context_free(ctx, set->vertices);
+    tlod_context_free(ctx, set->edges);
     for (uint32_t l = 0; l <= TLOD_MAX_LEVEL; ++l)
-      _tlod_free(ctx, set->indices[l]);
+      tlod_context_free(ctx, set->indices[l]);
   }
   _tlod_patterns_free_connections(patterns);
-  _tlod_free(ctx, patterns);
+  tlod_context_free(ctx, patterns);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -250,6 +251,13 @@ void tlod_patterns_destroy(tlod_patterns* patterns) {
 /* ------------------------------------------------------------------------ */
 
 uint32_t tlod_patterns_max_level(const tlod_patterns* patterns) { return patterns ? patterns->max_level : 0; }
+
+/* Core classifies grid points for tlod_surface_eval_grid(); pattern vertices
+ * are such grid points, so there is one classification, core's. */
+uint32_t tlod_pattern_vertex_kind(tlod_pattern_shape shape, uint32_t max_level, uint32_t i, uint32_t j,
+                                  uint32_t* param) {
+  return tlod_grid_point_kind(shape == TLOD_PATTERN_TRIANGLE ? 3u : 4u, max_level, i, j, param);
+}
 
 const tlod_pattern_vertex* tlod_patterns_vertices(const tlod_patterns* patterns, tlod_pattern_shape shape,
                                                   uint32_t* count) {

@@ -810,7 +810,7 @@ static int no_temp_files_left(void) {
   DIR* d = opendir(".");
   int clean = 1;
   for (struct dirent* e; d && (e = readdir(d)) != NULL;)
-    if (strstr(e->d_name, ".tmp-")) clean = 0;
+    if (strstr(e->d_name, ".tmp")) clean = 0;
   if (d) closedir(d);
   return clean;
 }

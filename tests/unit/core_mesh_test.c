@@ -1,9 +1,9 @@
 /* Unit tests of the mesh module: validation, repairs, welding, adjacency,
  * normals, creases, updates, allocation failures.
- * Reads private state (internal.h) for alphas, which have no public query. */
+ * Public API only: a mesh's alphas are read through a PER_VERTEX surface's
+ * view (tlod_surface_query_view().vertex_alpha). */
 #include <stdint.h>
 
-#include "internal.h"
 #include "tesslod/core.h"
 #include "test.h"
 
@@ -44,6 +44,17 @@ static void capture_log(tlod_log_level level, const char* message, void* user) {
   log_capture* c = user;
   c->count++;
   if (strstr(message, "appended")) snprintf(c->last, sizeof(c->last), "%s", message);
+}
+
+/* The mesh's (clamped) per-vertex alphas, as a PER_VERTEX Phong surface
+ * uses them, copied into out[vertex_count]; false when the mesh has none. */
+static bool mesh_alphas(tlod_context* ctx, const tlod_mesh* m, float* out) {
+  tlod_surface* s = NULL;
+  tlod_surface_desc d = {.type = TLOD_SURFACE_PHONG, .alpha_mode = TLOD_ALPHA_PER_VERTEX};
+  if (tlod_surface_create(ctx, m, &d, &s) != TLOD_SUCCESS) return false;
+  memcpy(out, tlod_surface_query_view(s).vertex_alpha, sizeof(float) * tlod_mesh_vertex_count(m));
+  tlod_surface_destroy(s);
+  return true;
 }
 
 static tlod_context* make_context(void) {
@@ -557,9 +568,10 @@ TEST(alphas_clamped) {
       .positions = &octa_pos[0][0], .alphas = alphas, .vertex_count = 6, .indices = octa_idx, .index_count = 24};
   tlod_mesh* m = NULL;
   CHECK(tlod_mesh_create(ctx, &d, &m) == TLOD_SUCCESS);
-  CHECK(m->alphas != NULL);
-  CHECK(m->alphas[0] == 0.0f && m->alphas[1] == 0.25f && m->alphas[2] == 1.0f);
-  CHECK(m->alphas[5] == 0.75f);
+  float got[6];
+  CHECK(mesh_alphas(ctx, m, got));
+  CHECK(got[0] == 0.0f && got[1] == 0.25f && got[2] == 1.0f);
+  CHECK(got[5] == 0.75f);
   tlod_mesh_info info = tlod_mesh_query_info(m);
   CHECK(info.finding_count == 2);
   CHECK(has_finding(m, TLOD_FINDING_ALPHA_CLAMPED, 0));
@@ -913,13 +925,15 @@ TEST(strides_match_tight_arrays) {
   CHECK(tlod_mesh_create(ctx, &strided, &b) == TLOD_SUCCESS);
   tlod_mesh_info ia = tlod_mesh_query_info(a), ib = tlod_mesh_query_info(b);
   CHECK(same_info(&ia, &ib) && ia.normals_repaired == 1);
-  CHECK(tlod_mesh_vertex_count(a) == tlod_mesh_vertex_count(b));
+  CHECK(tlod_mesh_vertex_count(a) == tlod_mesh_vertex_count(b) && tlod_mesh_vertex_count(a) <= 48);
+  float alpha_a[48], alpha_b[48];
+  CHECK(mesh_alphas(ctx, a, alpha_a) && mesh_alphas(ctx, b, alpha_b));
   for (uint32_t v = 0; v < tlod_mesh_vertex_count(a); v++) {
     float pa[3], na[3], pb[3], nb[3];
     tlod_mesh_vertex(a, v, pa, na);
     tlod_mesh_vertex(b, v, pb, nb);
     CHECK(memcmp(pa, pb, sizeof(pa)) == 0 && memcmp(na, nb, sizeof(na)) == 0);
-    CHECK(a->alphas[v] == b->alphas[v]);
+    CHECK(alpha_a[v] == alpha_b[v]);
   }
   for (uint32_t f = 0; f < 12; f++)
     for (uint32_t e = 0; e < 3; e++) {

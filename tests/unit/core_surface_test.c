@@ -56,14 +56,6 @@
 #define DERIV_REL 1e-5
 #define REF_REL 1e-12
 
-/* Stops the calling test as soon as a helper's check failed. */
-#define CALL(expr)                                                                                                     \
-  do {                                                                                                                 \
-    int _failed_before = _test_checks_failed;                                                                          \
-    expr;                                                                                                              \
-    if (_test_checks_failed != _failed_before) return;                                                                 \
-  } while (0)
-
 /* ------------------------------------------------------------------------ */
 /* Small double vector helpers                                              */
 /* ------------------------------------------------------------------------ */

@@ -15,14 +15,6 @@
 #include "tesslod/lod.h"
 #include "test.h"
 
-/* Stops the calling test as soon as a helper's check failed. */
-#define CALL(expr)                                                                                                     \
-  do {                                                                                                                 \
-    int _failed_before = _test_checks_failed;                                                                          \
-    expr;                                                                                                              \
-    if (_test_checks_failed != _failed_before) return;                                                                 \
-  } while (0)
-
 static const tlod_pattern_shape k_shapes[2] = {TLOD_PATTERN_TRIANGLE, TLOD_PATTERN_QUAD};
 static const char* const k_shape_names[2] = {"triangle", "quad"};
 /* Corners in unit coordinates, in the order lod.h names them. */

@@ -37,14 +37,6 @@
 #define PAT_MAX 5 /* patterns built to this level */
 #define DEG (SHAPES_PI / 180.0)
 
-/* Stops the calling test as soon as a helper's check failed. */
-#define CALL(expr)                                                                                                     \
-  do {                                                                                                                 \
-    int _failed_before = _test_checks_failed;                                                                          \
-    expr;                                                                                                              \
-    if (_test_checks_failed != _failed_before) return;                                                                 \
-  } while (0)
-
 static double now_seconds(void) {
   struct timespec ts;
   timespec_get(&ts, TIME_UTC);

@@ -27,6 +27,14 @@ static int _test_failed;
 
 #define CHECK(cond) CHECK_MSG(cond, "%s", "")
 
+/* Stops the calling test as soon as a helper's check failed. */
+#define CALL(expr)                                                                                                     \
+  do {                                                                                                                 \
+    int _failed_before = _test_checks_failed;                                                                          \
+    expr;                                                                                                              \
+    if (_test_checks_failed != _failed_before) return;                                                                 \
+  } while (0)
+
 #define CHECK_NEAR(a, b, tol)                                                                                          \
   do {                                                                                                                 \
     double _a = (double)(a), _b = (double)(b), _t = (double)(tol);                                                     \

@@ -1,7 +1,7 @@
 /*
  * camera_path_json.h -- reads a `tlod play` camera path file (C API over a
  * C++17 nlohmann::json shim, camera_path_json.cpp). Owned by the CLI
- * (tools/src/camera_path.c is its only user); the format is documented in
+ * (tools/tlod/common/camera_path.c is its only user); the format is documented in
  * docs/play.md:
  *
  *   {

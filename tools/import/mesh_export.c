@@ -3,21 +3,18 @@
  *
  * Every format carries positions bit-exactly: OBJ and the glTF min/max use
  * "%.9g", which round-trips any float through strtof; the binary formats
- * store the float bits little-endian. Files are written under a temporary
- * name next to the target and renamed when complete, so a failure never
- * leaves a truncated file under the requested name. */
-#define _POSIX_C_SOURCE 200809L /* getpid() for a unique temporary name */
-
-#include <errno.h>
+ * store the float bits little-endian. Files are written through
+ * tlod_atomic_file (tools/atomic_file/): under a unique temporary name next
+ * to the target, renamed when complete, so a failure never leaves a
+ * truncated file under the requested name. */
 #include <math.h>
 #include <stdarg.h>
-#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "import_internal.h"
+#include "tlod_atomic_file.h"
 
 typedef struct _exp_job {
   const char* path;
@@ -393,31 +390,18 @@ static tlod_result _exp_write_format(_exp_job* job, _exp_format format) {
   return res;
 }
 
-/* Writes to "<path>.tmp-<pid>-<n>" ("x": never over an existing file),
- * then renames over path. */
+/* Writes through the atomic file writer: a unique temporary next to path,
+ * renamed over path when complete. */
 static tlod_result _exp_write_atomic(_exp_job* job, _exp_format format) {
-  static atomic_uint counter; /* makes names distinct between threads */
-  char* tmp = malloc(strlen(job->path) + 48);
-  if (!tmp) return _exp_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory");
-  for (int attempt = 0; attempt < 100 && !job->file; ++attempt) {
-    sprintf(tmp, "%s.tmp-%ld-%u", job->path, (long)getpid(), atomic_fetch_add(&counter, 1u));
-    job->file = fopen(tmp, "wbx");
-    if (!job->file && errno != EEXIST) break;
-  }
-  if (!job->file) {
-    tlod_result r = _exp_fail(job, TLOD_ERROR_IO, "cannot create '%s': %s", tmp, strerror(errno));
-    free(tmp);
-    return r;
-  }
+  char err[512];
+  tlod_atomic_file file;
+  if (!tlod_atomic_file_begin(&file, job->path, err, sizeof err)) return _exp_fail(job, TLOD_ERROR_IO, "%s", err);
+  job->file = file.file;
   tlod_result res = _exp_write_format(job, format);
-  const bool flushed = fflush(job->file) == 0 && !ferror(job->file);
-  const bool closed = fclose(job->file) == 0;
-  if (res == TLOD_SUCCESS && (job->write_failed || !flushed || !closed))
-    res = _exp_fail(job, TLOD_ERROR_IO, "cannot write '%s': %s", tmp, strerror(errno));
-  if (res == TLOD_SUCCESS && rename(tmp, job->path) != 0)
-    res = _exp_fail(job, TLOD_ERROR_IO, "cannot rename '%s' to '%s': %s", tmp, job->path, strerror(errno));
-  if (res != TLOD_SUCCESS) remove(tmp);
-  free(tmp);
+  if (res == TLOD_SUCCESS && job->write_failed) snprintf(err, sizeof err, "cannot write '%s'", job->path);
+  const bool kept = tlod_atomic_file_end(&file, res == TLOD_SUCCESS && !job->write_failed, err, sizeof err);
+  job->file = NULL;
+  if (res == TLOD_SUCCESS && !kept) res = _exp_fail(job, TLOD_ERROR_IO, "%s", err);
   return res;
 }
 

@@ -27,8 +27,13 @@
  *   4. tlod_surface_eval(surf, patch, u, v, &point)
  *   5. tlod_surface_destroy(surf); tlod_mesh_destroy(mesh);
  *      tlod_context_destroy(ctx)
+ *   Modules built on core (lod, backends) read meshes and surfaces through
+ *   tlod_mesh_query_view() / tlod_surface_query_view() (re-queried after an
+ *   update or refresh), evaluate whole patterns with tlod_surface_eval_grid()
+ *   and allocate, fail and log through tlod_context_alloc() & co. (section
+ *   "For the layers above core" at the end).
  *
- * THREADING, ALLOCATION, LOGGING
+ * THREADING AND ALLOCATION (AND LOGGING)
  *   A context and everything made from it belong to one thread at a time.
  *   Const queries and tlod_surface_eval() may be called from many threads at
  *   once. Work spread over threads inside a call goes through the context's

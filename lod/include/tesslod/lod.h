@@ -1,102 +1,55 @@
 /*
- * tesslod/lod.h -- refinement patterns (module tesslod::lod)
+ * tesslod/lod.h -- the level-of-detail scheduler (module tesslod::lod)
  *
  * WHAT IT DOES
- *   Builds the nested refinement patterns of Schwarz, Staginski and
- *   Stamminger ("GPU-based rendering of PN triangle meshes with adaptive
- *   tessellation", 2006): pattern l splits a triangle (or a quad) by l
- *   successive 1-to-4 splits, so it has 2^l - 1 inserted vertices per edge,
- *   4^l triangles (quads: 2 * 4^l triangles on a (2^l + 1)^2 grid).
- *   All levels share one vertex array: the vertices of level l are the
- *   first tlod_pattern_vertex_count(shape, l) entries, and each vertex first
- *   inserted at level l > 0 names its two parents at level l - 1 (the
- *   endpoints of the coarser edge it splits), which geomorphs blend from.
+ *   Plans every frame of an adaptively tessellated surface, for one or more
+ *   cameras: per mesh vertex the silhouette depth d_i (Boubekeur & Alexa),
+ *   per patch the frustum test and the projected error bound e_max at
+ *   level 0 (Schwarz, Staginski & Stamminger 2006), then a refinement level
+ *   per patch by policy, under an optional triangle budget or frame-time
+ *   target, with geomorph state so that level changes blend in over time.
+ *   The result is a draw list: instances bucketed by (shape, level),
+ *   connection strips where neighbouring patches differ, and statistics.
+ *   Includes tesslod/patterns.h (the refinement and connection patterns the
+ *   draw list refers to).
  *
  * DOES NOT
- *   evaluate surfaces (tesslod/core.h) or draw anything (backends).
+ *   - evaluate the surface or build vertex data (tesslod/core.h and the
+ *     backends do, from the draw list);
+ *   - draw anything or talk to a GPU;
+ *   - keep the view arrays of the mesh or surface across frames: each update
+ *     reads them afresh, so tlod_mesh_update() + tlod_surface_refresh()
+ *     between frames are picked up by the next update.
  *
- * ORIENTATION
- *   Triangles are counter-clockwise in (u, v) for the triangle (u=1 at corner
- *   i, v=1 at corner j, w=1 at corner k), and for the quad (0,0) (1,0) (1,1)
- *   (0,1), so they keep the input face's winding.
+ * STEP BY STEP
+ *   1. tlod_patterns_create(ctx, &(tlod_patterns_desc){0}, &pat)
+ *   2. tlod_scheduler_create(ctx, surface, pat, &(tlod_scheduler_desc){0}, &sch)
+ *      (every zero field is a documented default: epsilon 0.5 px, HYBRID
+ *      policy, TIME geomorphs over 200 ms);
+ *   3. every frame: tlod_scheduler_update(sch, &(tlod_frame_desc){.views = ...,
+ *      .view_count = n, .dt_ms = ...}), then tlod_scheduler_draw_list(sch, v)
+ *      per view, valid until the next update;
+ *   4. tlod_scheduler_destroy(sch); tlod_patterns_destroy(pat).
+ *
+ * THREADING AND ALLOCATION
+ *   A scheduler belongs to one thread at a time (its context's). Each stage
+ *   of an update runs over vertices or patches on the context's
+ *   parallel-for; every worker writes only its own entries and the
+ *   reductions run afterwards in a fixed order, so draw lists are bitwise
+ *   the same for any thread count. Allocation goes through the context's
+ *   allocator: per view arrays on the first update with that many views,
+ *   and the strip array when a frame needs more strips than any before;
+ *   otherwise an update does not allocate.
  */
 #ifndef TESSLOD_LOD_H
 #define TESSLOD_LOD_H
 
 #include "tesslod/core.h"
+#include "tesslod/patterns.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-#define TLOD_MAX_LEVEL 10
-#define TLOD_DEFAULT_MAX_LEVEL 6
-
-typedef enum tlod_pattern_shape {
-  TLOD_PATTERN_TRIANGLE = 0,
-  TLOD_PATTERN_QUAD = 1,
-  TLOD_PATTERN_SHAPE_NUM,
-  _TLOD_PATTERN_SHAPE_FORCE_U32 = 0x7FFFFFFF
-} tlod_pattern_shape;
-
-typedef struct tlod_pattern_vertex {
-  /* Grid coordinates over 2^max_level: u = i / 2^max_level, v = j / 2^max_level
-   * (exact in float, so edge points are exactly on the edge). */
-  uint16_t i, j;
-  float u, v;
-  uint8_t level;      /* level that first inserts it (0: a corner) */
-  uint32_t parent[2]; /* vertex indices at level - 1; both UINT32_MAX for corners */
-} tlod_pattern_vertex;
-
-typedef struct tlod_patterns tlod_patterns;
-
-typedef struct tlod_patterns_desc {
-  uint32_t max_level; /* 0 == TLOD_DEFAULT_MAX_LEVEL (6); at most TLOD_MAX_LEVEL */
-} tlod_patterns_desc;
-
-/* Vertices of pattern `level` (pure; no patterns object needed). */
-TLOD_API uint32_t tlod_pattern_vertex_count(tlod_pattern_shape shape, uint32_t level);
-/* Triangles of pattern `level`: 4^l (triangle), 2 * 4^l (quad). */
-TLOD_API uint32_t tlod_pattern_triangle_count(tlod_pattern_shape shape, uint32_t level);
-
-TLOD_API tlod_result tlod_patterns_create(tlod_context* ctx, const tlod_patterns_desc* desc, tlod_patterns** out);
-TLOD_API void tlod_patterns_destroy(tlod_patterns* patterns);
-TLOD_API uint32_t tlod_patterns_max_level(const tlod_patterns* patterns);
-/* The shared vertex array (finest level); *count receives its length. */
-TLOD_API const tlod_pattern_vertex* tlod_patterns_vertices(const tlod_patterns* patterns, tlod_pattern_shape shape,
-                                                           uint32_t* count);
-/* Index triples of pattern `level` into the shared vertex array. */
-TLOD_API const uint32_t* tlod_patterns_indices(const tlod_patterns* patterns, tlod_pattern_shape shape, uint32_t level,
-                                               uint32_t* index_count);
-/* Vertices along edge e of pattern `level`, from corner e to corner (e+1) % n
- * (corners: triangle i, j, k; quad 0..3): 2^level + 1 vertex indices
- * written to out. Returns the count. */
-TLOD_API uint32_t tlod_patterns_edge(const tlod_patterns* patterns, tlod_pattern_shape shape, uint32_t level,
-                                     uint32_t edge, uint32_t* out);
-/* Where pattern vertex (i, j) (grid coordinates over 2^max_level) lies on its
- * patch: 0..3 a corner (triangle i, j, k; quad 0..3), 4 + e on edge e (from
- * corner e to corner (e + 1) % n; *param = the end corner's weight times
- * 2^max_level), 8 inside (*param untouched). Pure. */
-#define TLOD_PATTERN_KIND_EDGE 4u
-#define TLOD_PATTERN_KIND_INTERIOR 8u
-TLOD_API uint32_t tlod_pattern_vertex_kind(tlod_pattern_shape shape, uint32_t max_level, uint32_t i, uint32_t j,
-                                           uint32_t* param);
-/* Bytes held by the nested set, and (out) the bytes separate per-level
- * vertex + index arrays would take for the same levels. */
-TLOD_API size_t tlod_patterns_memory(const tlod_patterns* patterns, size_t* separate_bytes);
-
-/* ------------------------------------------------------------------------ */
-/* Connection patterns                                                      */
-/* ------------------------------------------------------------------------ */
-
-/* A strip joining edge polyline a (level la: points 0..2^la) to polyline b
- * (level lb, given in a's direction), zipped by parameter: triangles as
- * point references, r <= 2^la is a[r], else b[r - 2^la - 1]. Oriented so a
- * is traversed backwards (a bounds the face on the strip's left). The two
- * triangles at the shared corners, degenerate by construction, are left
- * out. Patterns are built once per (la, lb) and shared (Schwarz et al.). */
-TLOD_API const uint32_t* tlod_patterns_connection(const tlod_patterns* patterns, uint32_t la, uint32_t lb,
-                                                  uint32_t* triangle_count);
 
 /* ------------------------------------------------------------------------ */
 /* Scheduler                                                                */
@@ -117,8 +70,14 @@ typedef enum tlod_lod_policy {
    * for ERROR; a patch facing the camera (s = 0) uses relax * eps, where
    * shading hides the flat geometry. */
   TLOD_POLICY_HYBRID,
-  /* Every visible patch at max_level: uniform tessellation, for comparisons. */
+  /* Every visible patch at max_level (lowered only by a triangle budget):
+   * uniform tessellation, for comparisons. Culling still applies. */
   TLOD_POLICY_UNIFORM,
+  /* Every visible patch at level 0 (the input faces on the curved corners),
+   * no refinement, no strips, whatever epsilon, budget or max_level say:
+   * the untessellated baseline. Culling, e_max and d_i are still computed
+   * for the statistics. */
+  TLOD_POLICY_FLAT,
   TLOD_POLICY_NUM,
   _TLOD_POLICY_FORCE_U32 = 0x7FFFFFFF
 } tlod_lod_policy;
@@ -135,18 +94,34 @@ typedef enum tlod_morph_mode {
   _TLOD_MORPH_FORCE_U32 = 0x7FFFFFFF
 } tlod_morph_mode;
 
+/* Every zero field is a default. Where zero would also be a value, the
+ * value it stands for has its own spelling, named here. */
 typedef struct tlod_scheduler_desc {
-  float epsilon_px;   /* screen-space error bound, pixels; 0 == 0.5 */
-  uint32_t max_level; /* 0 == the patterns' max level */
-  tlod_lod_policy policy;
-  float silhouette_depth; /* m of d_i = (1 - |n.v|) m, segments per edge; 0 == 2^max_level */
-  float hybrid_relax;     /* HYBRID epsilon factor away from contours; 0 == 16 (2 levels) */
-  tlod_morph_mode morph;
-  float morph_ms;             /* TIME: duration of one level step; 0 == 200 */
-  uint32_t triangle_budget;   /* 0 == none; else epsilon is raised until the frame fits */
-  float frame_time_target_ms; /* 0 == none; else epsilon follows measured frame times */
-  bool no_frustum_cull;       /* keep patches outside the frustum */
-  const char* label;
+  /* Screen-space error bound, pixels, > 0. 0 == 0.5 (an error of 0 px
+   * cannot be met by any level). */
+  float epsilon_px;
+  /* Finest level drawn. 0 == the patterns' max level; level 0 everywhere
+   * is TLOD_POLICY_FLAT. */
+  uint32_t max_level;
+  tlod_lod_policy policy; /* 0 == HYBRID */
+  /* m of d_i = (1 - |n.v|) m, segments per edge, > 0. 0 == 2^max_level
+   * (no m of 0: the contour measure s = max d_i / m divides by it). */
+  float silhouette_depth;
+  /* HYBRID epsilon factor away from contours, >= 1 (1: HYBRID is ERROR).
+   * 0 == 16 (2 levels); values below 1 are rejected. */
+  float hybrid_relax;
+  tlod_morph_mode morph; /* 0 == TIME */
+  /* TIME: frame time of one level step, > 0. 0 == 200; switching at once
+   * is TLOD_MORPH_NONE. */
+  float morph_ms;
+  /* Most triangles (patterns + strips) per frame; epsilon is raised (the
+   * level cap lowered for SILHOUETTE and UNIFORM) until the frame fits,
+   * level 0 being the floor. 0 == none. */
+  uint32_t triangle_budget;
+  /* Frame-time target; epsilon follows the measured frame times. 0 == none. */
+  float frame_time_target_ms;
+  bool no_frustum_cull; /* keep patches outside the frustum; default false (cull) */
+  const char* label;    /* default "scheduler" */
 } tlod_scheduler_desc;
 
 /* One camera. Matrices are column-major (OpenGL): clip = proj * view * world. */
@@ -197,7 +172,8 @@ typedef enum tlod_stage {
   TLOD_STAGE_LEVELS,         /* levels, budget search */
   TLOD_STAGE_MORPH,          /* geomorph state */
   TLOD_STAGE_STRIPS,         /* buckets and strips */
-  TLOD_STAGE_NUM
+  TLOD_STAGE_NUM,
+  _TLOD_STAGE_FORCE_U32 = 0x7FFFFFFF
 } tlod_stage;
 
 typedef struct tlod_draw_list {
@@ -237,12 +213,42 @@ TLOD_API const tlod_draw_list* tlod_scheduler_draw_list(const tlod_scheduler* sc
 TLOD_API void tlod_scheduler_reset(tlod_scheduler* scheduler);
 
 /* Pure helpers (also used by tests as the reference). */
-/* The level rule: 0 when e_max <= eps, else the smallest l with 4^-l e_max <= eps, at most max_level. */
+/* The level rule of TLOD_POLICY_ERROR: 0 when e_max <= eps, else the
+ * smallest l with 4^-l e_max <= eps, at most max_level (the scheduler's own
+ * rule, not a copy of it). */
 TLOD_API uint32_t tlod_level_for_error(float e_max, float epsilon, uint32_t max_level);
 /* Pixels per world unit at view depth z (perspective) or everywhere (orthographic). */
 TLOD_API float tlod_projection_scale(const float proj[16], uint32_t viewport_height, float depth);
 
+/* ------------------------------------------------------------------------ */
+/* Enum names                                                               */
+/* ------------------------------------------------------------------------ */
+
+/* (value, name), the same shape as core's tables (tesslod/core.h): the
+ * names tools parse and print. DEFAULT has no name of its own; *_name()
+ * gives its resolved value's. */
+#define TLOD_LOD_POLICY_NAMES(X)                                                                                       \
+  X(TLOD_POLICY_ERROR, "error")                                                                                        \
+  X(TLOD_POLICY_SILHOUETTE, "silhouette")                                                                              \
+  X(TLOD_POLICY_HYBRID, "hybrid") X(TLOD_POLICY_UNIFORM, "uniform") X(TLOD_POLICY_FLAT, "flat")
+#define TLOD_MORPH_MODE_NAMES(X)                                                                                       \
+  X(TLOD_MORPH_NONE, "none") X(TLOD_MORPH_TIME, "time") X(TLOD_MORPH_CONTINUOUS, "continuous")
+#define TLOD_STAGE_NAMES(X)                                                                                            \
+  X(TLOD_STAGE_SILHOUETTE, "silhouette")                                                                               \
+  X(TLOD_STAGE_METRIC, "metric")                                                                                       \
+  X(TLOD_STAGE_LEVELS, "levels") X(TLOD_STAGE_MORPH, "morph") X(TLOD_STAGE_STRIPS, "strips")
+
+/* Name of a value ("hybrid"); NULL for a value outside the enum. */
+TLOD_API const char* tlod_lod_policy_name(tlod_lod_policy policy);
+TLOD_API const char* tlod_morph_mode_name(tlod_morph_mode mode);
+TLOD_API const char* tlod_stage_name(tlod_stage stage);
+/* Value of a name (exact, case-sensitive); false (and *out untouched) when
+ * the name is none of the table's. */
+TLOD_API bool tlod_lod_policy_from_name(const char* name, tlod_lod_policy* out);
+TLOD_API bool tlod_morph_mode_from_name(const char* name, tlod_morph_mode* out);
+TLOD_API bool tlod_stage_from_name(const char* name, tlod_stage* out);
+
 #ifdef __cplusplus
 }
 #endif
-#endif
+#endif /* TESSLOD_LOD_H */

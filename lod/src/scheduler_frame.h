@@ -1,0 +1,106 @@
+/*
+ * scheduler_frame.h -- private to tesslod::lod: the scheduler's state and
+ * one frame's stages, one file each, in the order an update runs them:
+ *   scheduler_metric.c    camera, silhouette depth d_i, culling, e_max,
+ *                         contour, and the level rule (every form of it)
+ *   scheduler_levels.c    target level per patch, triangle budget,
+ *                         frame-time control
+ *   scheduler_morph.c     geomorph state (continuous level per patch)
+ *   scheduler_draw_list.c instances, buckets, strips, statistics
+ *   scheduler.c           create / update / destroy: the stages in order
+ * lod reads core through its public views only (tesslod/core.h).
+ */
+#ifndef TESSLOD_SCHEDULER_FRAME_H
+#define TESSLOD_SCHEDULER_FRAME_H
+
+#include "patterns_internal.h"
+#include "tesslod/lod.h"
+
+#define _TLOD_NO_FACE UINT32_MAX /* tlod_edge_link.face of an edge with no neighbour */
+#define _TLOD_BUCKETS (TLOD_PATTERN_SHAPE_NUM * (TLOD_MAX_LEVEL + 1))
+
+typedef struct _tlod_camera {
+  float eye[3], forward[3];
+  float planes[6][4]; /* normalised, inside >= 0 */
+  float near_z;       /* 0 when unknown or orthographic */
+  bool ortho;
+} _tlod_camera;
+
+/* What one view keeps between and within frames. */
+typedef struct _tlod_view_state {
+  tlod_draw_list list;
+  _tlod_camera cam;
+  int8_t* levels;
+  float* e_max;
+  float* depth;   /* per vertex d_i */
+  float* contour; /* per patch s = max d_i / m */
+  float* target;  /* per patch target level (continuous) */
+  float* cont;    /* per patch current continuous level */
+  uint8_t* visible;
+  tlod_draw_instance* instances;
+  tlod_draw_strip* strips;
+  uint32_t strip_cap;
+  tlod_draw_bucket buckets[_TLOD_BUCKETS];
+  bool has_history;
+} _tlod_view_state;
+
+struct tlod_scheduler {
+  tlod_context* ctx;
+  const tlod_surface* surface;
+  const tlod_mesh* mesh;
+  const tlod_patterns* patterns;
+  tlod_scheduler_desc desc; /* resolved */
+  char label[64];
+  uint32_t patch_count, vertex_count;
+  _tlod_view_state* views;
+  uint32_t view_count;
+  float eps_scale;   /* frame-time control */
+  float smoothed_ms; /* EMA of measured frame times */
+};
+
+/* One view's frame: what every stage task reads. The mesh and surface views
+ * are queried once per update (their arrays move on tlod_mesh_update and
+ * tlod_surface_refresh), never kept across frames. */
+typedef struct _tlod_frame {
+  tlod_scheduler* s;
+  _tlod_view_state* vs;
+  const tlod_view_desc* view;
+  tlod_mesh_view mesh;
+  tlod_surface_view surface;
+  float eps;                    /* effective epsilon of this frame */
+  float level_cap;              /* budget cap (SILHOUETTE, UNIFORM) */
+  float step;                   /* TIME morph: level change this frame */
+  const _tlod_view_state* main; /* locked views: view 0 */
+} _tlod_frame;
+
+/* scheduler_metric.c */
+void _tlod_camera_from_view(const float view[16], const float proj[16], _tlod_camera* cam);
+/* Per vertex: d_i into vs->depth. */
+void _tlod_silhouette_task(void* frame, uint32_t begin, uint32_t end, uint32_t worker);
+/* Per patch: visibility, e_max and contour s. */
+void _tlod_metric_task(void* frame, uint32_t begin, uint32_t end, uint32_t worker);
+/* The level rule, every form of it (policy, discrete or continuous): the
+ * target level of a patch with error bound e_max and contour s at epsilon
+ * eps under level cap cap. ceil() of the result is always the discrete
+ * rule's level. */
+float _tlod_level_rule(const tlod_scheduler_desc* d, float e_max, float contour, float eps, float cap);
+
+/* scheduler_levels.c */
+/* Targets of every patch, with epsilon (or the cap) raised until the
+ * triangle budget holds. */
+void _tlod_fit_budget(_tlod_frame* fr);
+void _tlod_control_frame_time(tlod_scheduler* s, float measured_ms);
+
+/* scheduler_morph.c */
+void _tlod_morph_task(void* frame, uint32_t begin, uint32_t end, uint32_t worker);
+uint32_t _tlod_drawn_level(float cont);
+float _tlod_morph_of(float cont, uint32_t level);
+/* Whether edge e of visible patch f gets a strip when patches sit at
+ * continuous levels cont[]: counted once, from the lower patch index, and
+ * only towards a visible neighbour. */
+bool _tlod_strip_needed(const _tlod_frame* fr, const float* cont, uint32_t f, uint32_t e);
+
+/* scheduler_draw_list.c */
+tlod_result _tlod_fill_draw_list(_tlod_frame* fr);
+
+#endif

@@ -1,0 +1,58 @@
+/* tesslod::lod -- geomorph state: each patch's continuous level follows its
+ * target (at once, or 1 level per morph_ms of frame time), and the drawn
+ * level and vertex blends derive from it.
+ *
+ * This work is based on:
+ *   M. Schwarz, M. Staginski, M. Stamminger. GPU-based rendering of PN
+ *   triangle meshes with adaptive tessellation. VMV 2006, sec. 5 (vertices
+ *   new at a level blend from their parents' midpoint). */
+#include <math.h>
+
+#include "scheduler_frame.h"
+
+/* Continuous level c moved towards target t by at most step. */
+static float approach(float c, float t, float step) {
+  if (c < t) return c + step < t ? c + step : t;
+  if (c > t) return c - step > t ? c - step : t;
+  return c;
+}
+
+void _tlod_morph_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
+  (void)worker;
+  _tlod_frame* fr = data;
+  _tlod_view_state* vs = fr->vs;
+  /* Without history (first frame, after a reset) there is nothing to blend from. */
+  bool timed = fr->s->desc.morph == TLOD_MORPH_TIME && vs->has_history;
+  for (uint32_t f = begin; f < end; f++) {
+    float t = vs->target[f];
+    float c = timed && vs->visible[f] ? approach(vs->cont[f], t, fr->step) : t;
+    /* A budget is a hard cap: never draw above the budget's level. */
+    if (fr->s->desc.triangle_budget && c > ceilf(t)) c = ceilf(t);
+    vs->cont[f] = c;
+  }
+}
+
+uint32_t _tlod_drawn_level(float cont) { return cont > 0.0f ? (uint32_t)ceilf(cont) : 0u; }
+
+/* Blend of the vertices new at `level`: 0 at their parents' midpoint, 1 on
+ * the surface; level 0 has no new vertices and is always exact. */
+float _tlod_morph_of(float cont, uint32_t level) {
+  if (level == 0) return 1.0f;
+  float m = cont - (float)(level - 1);
+  return m < 0.0f ? 0.0f : (m > 1.0f ? 1.0f : m);
+}
+
+/* An edge's new vertices blend with their patch: a blend shared with an
+ * equal-level neighbour (the smaller of the two) cannot stay continuous, as
+ * the shared value jumps whenever either side changes level (its coarser
+ * edge vertices then become exact). Equal-level neighbours whose blends
+ * differ get a strip instead (Schwarz et al. 2006, sec. 5), as do creases
+ * and level differences. FLAT draws the input faces: no strip at all. */
+bool _tlod_strip_needed(const _tlod_frame* fr, const float* cont, uint32_t f, uint32_t e) {
+  tlod_edge_link link = fr->mesh.links[f][e];
+  uint32_t g = link.face;
+  if (fr->s->desc.policy == TLOD_POLICY_FLAT) return false;
+  if (g == _TLOD_NO_FACE || g < f || !fr->vs->visible[g]) return false;
+  uint32_t lf = _tlod_drawn_level(cont[f]), lg = _tlod_drawn_level(cont[g]);
+  return !link.smooth || lf != lg || _tlod_morph_of(cont[f], lf) != _tlod_morph_of(cont[g], lg);
+}

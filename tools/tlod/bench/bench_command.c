@@ -1,0 +1,44 @@
+/* tlod bench -- runs the suite of the options, with the CSV file (written
+ * atomically: complete or not at all). */
+#include <string.h>
+
+#include "bench_eval.h"
+#include "bench_gl.h"
+#include "bench_lod.h"
+#include "bench_options.h"
+#include "cli.h"
+#include "commands.h"
+#include "tlod_atomic_file.h"
+
+static int run_lod_suites(const bench_options* o, FILE* csv) {
+  static const char* const default_models[] = {"demo:cow"};
+  bench_lod_options lo = {o->threads, o->thread_count, o->frames, o->table1_count ? o->table1 : default_models,
+                          o->table1_count ? o->table1_count : 1};
+  double bandwidth = bench_memcpy_bandwidth();
+  printf("tlod bench --suite %s: memcpy %.2f GB/s\n", o->suite, bandwidth * 1e-9);
+  bool all = !strcmp(o->suite, "all");
+  int rc = CLI_OK;
+  if (all || !strcmp(o->suite, "scheduler")) rc = bench_scheduler(&lo, bandwidth, csv);
+  if (rc == CLI_OK && (all || !strcmp(o->suite, "table1"))) rc = bench_table1(&lo, csv);
+  if (rc == CLI_OK && (all || !strcmp(o->suite, "gl"))) rc = bench_gl(lo.inputs, lo.input_count, o->frames, csv);
+  return rc;
+}
+
+/* "eval" and "all" run the evaluation suite; the others the scheduler suites. */
+static int run_suite(const bench_options* o, FILE* csv) {
+  if (strcmp(o->suite, "eval") != 0 && strcmp(o->suite, "all") != 0) return run_lod_suites(o, csv);
+  return bench_eval(o, csv);
+}
+
+int cmd_bench(int argc, char** argv) {
+  bench_options o;
+  int rc = bench_parse(argc, argv, &o);
+  if (rc != CLI_OK) return rc;
+  char err[1024];
+  tlod_atomic_file csv = {0};
+  if (o.csv && !tlod_atomic_file_begin(&csv, o.csv, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
+  rc = run_suite(&o, csv.file);
+  if (o.csv && !tlod_atomic_file_end(&csv, rc == CLI_OK, err, sizeof(err)) && rc == CLI_OK)
+    rc = cli_error(CLI_FAILED, "%s", err);
+  return rc;
+}

@@ -1,0 +1,154 @@
+/* tlod bench --suite gl -- GPU frame times on llvmpipe (wall clock around a
+ * finish: its timer queries miss most of the work, docs/platform.md section 1.1): adaptive
+ * against uniform against flat for the Table 1 scenes, Phong against flat
+ * at equal triangle counts, and the pattern path against hardware
+ * tessellation. Ratios within one run are the figures to read. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_gl.h"
+#include "bench_lod.h"
+#include "common/camera.h"
+
+#if TLOD_HAS_GL
+#include "tesslod/backend.h"
+#include "tlod_platform.h"
+
+#include <GL/gl.h>
+
+typedef struct gl_case {
+  const char* label;
+  tlod_scheduler_desc sched;
+  bool hardware;
+} gl_case;
+
+/* Mean and best frame time over the frames of an orbit; triangles drawn per frame. */
+static int run_case(bench_scene* s, const gl_case* c, uint32_t w, uint32_t h, uint32_t frames, double* best,
+                    double* mean, uint64_t* tris) {
+  tlod_scheduler* sch = NULL;
+  tlod_backend* b = NULL;
+  int rc = CLI_OK;
+  if (tlod_scheduler_create(s->ctx, s->setup.surface, s->setup.patterns, &c->sched, &sch) != TLOD_SUCCESS ||
+      tlod_backend_create(s->ctx, &(tlod_backend_desc){.name = "gl", .hardware_tessellation = c->hardware}, &b) !=
+          TLOD_SUCCESS ||
+      tlod_backend_upload(b, s->setup.surface, s->setup.patterns) != TLOD_SUCCESS)
+    rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
+  *best = INFINITY;
+  *mean = 0.0;
+  for (uint32_t k = 0; rc == CLI_OK && k < frames + 1; k++) {
+    tlod_view_desc v;
+    bench_orbit_view(s->setup.mesh, 0.6f + 0.02f * (float)k, 1.0f, w, h, &v);
+    tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &v, .view_count = 1, .dt_ms = 16.7f});
+    tlod_backend_frame fr = {.draw_list = tlod_scheduler_draw_list(sch, 0), .viewport = {0, 0, w, h}, .finish = true};
+    memcpy(fr.view, v.view, sizeof(fr.view));
+    memcpy(fr.proj, v.proj, sizeof(fr.proj));
+    glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (tlod_backend_draw(b, &fr) != TLOD_SUCCESS) rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
+    tlod_backend_timings t = tlod_backend_query_timings(b);
+    if (k == 0) continue; /* warm-up: shader and buffer set-up */
+    *best = t.wall_ms < *best ? t.wall_ms : *best;
+    *mean += t.wall_ms / frames;
+    *tris = t.triangles;
+  }
+  tlod_backend_destroy(b);
+  tlod_scheduler_destroy(sch);
+  return rc;
+}
+
+static void report(FILE* csv, const char* scene, const char* what, double best, double mean, uint64_t tris,
+                   double ref_best) {
+  printf("gl         %-28s %-34s best %8.2f ms mean %8.2f  %9llu tris  %6.2f Mtri/s  x%.2f\n", scene, what, best, mean,
+         (unsigned long long)tris, (double)tris / (best * 1e3), best / ref_best);
+  if (csv) fprintf(csv, "gl,%s,%s,%.4f,%.4f,%llu\n", scene, what, best, mean, (unsigned long long)tris);
+}
+
+/* Uniform level of the worst visible patch under the error rule. */
+static uint32_t worst_level(bench_scene* s, uint32_t w, uint32_t h) {
+  tlod_scheduler* sch = NULL;
+  uint32_t worst = 0;
+  tlod_view_desc v;
+  bench_orbit_view(s->setup.mesh, 0.6f, 1.0f, w, h, &v);
+  tlod_scheduler_desc d = {.policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE};
+  if (tlod_scheduler_create(s->ctx, s->setup.surface, s->setup.patterns, &d, &sch) == TLOD_SUCCESS &&
+      tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &v, .view_count = 1}) == TLOD_SUCCESS) {
+    const tlod_draw_list* dl = tlod_scheduler_draw_list(sch, 0);
+    for (uint32_t l = 0; l <= TLOD_MAX_LEVEL; l++)
+      if (dl->level_histogram[l]) worst = l;
+  }
+  tlod_scheduler_destroy(sch);
+  return worst;
+}
+
+static int scene_cases(const char* in, uint32_t w, uint32_t h, uint32_t frames, FILE* csv) {
+  bench_scene s;
+  int rc = bench_scene_load(in, 0, TLOD_SURFACE_PN, 6, &s);
+  if (rc != CLI_OK) return rc;
+  uint32_t worst = worst_level(&s, w, h);
+  gl_case cases[] = {
+      {"flat (no tessellation)", {.epsilon_px = 1e30f, .morph = TLOD_MORPH_NONE}, false}, /* level 0 everywhere */
+      {"adaptive error 0.5 px", {.policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE}, false},
+      {"adaptive hybrid 0.5 px", {.policy = TLOD_POLICY_HYBRID, .morph = TLOD_MORPH_NONE}, false},
+      {"uniform (worst patch's level)",
+       {.policy = TLOD_POLICY_UNIFORM, .max_level = worst ? worst : 1, .morph = TLOD_MORPH_NONE},
+       false},
+      {"adaptive error, hardware tess.", {.policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE}, true},
+  };
+  double ref = 0.0;
+  for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]) && rc == CLI_OK; k++) {
+    double best, mean;
+    uint64_t tris = 0;
+    rc = run_case(&s, &cases[k], w, h, frames, &best, &mean, &tris);
+    if (k == 0) ref = best;
+    if (rc == CLI_OK) report(csv, in, cases[k].label, best, mean, tris, ref);
+  }
+  printf("gl         %-28s (uniform level %u; x = frame time / flat's)\n", in, worst);
+  bench_scene_free(&s);
+  return rc;
+}
+
+/* Phong against flat tessellation at one uniform level: equal triangles. */
+static int phong_vs_flat(const char* in, uint32_t w, uint32_t h, uint32_t frames, FILE* csv) {
+  int rc = CLI_OK;
+  double flat_best = 0.0;
+  for (int k = 0; k < 2 && rc == CLI_OK; k++) {
+    bench_scene s;
+    tlod_surface_type type = k ? TLOD_SURFACE_PHONG : TLOD_SURFACE_FLAT;
+    if ((rc = bench_scene_load(in, 0, type, 6, &s)) != CLI_OK) break;
+    gl_case c = {k ? "phong, uniform level 4" : "flat, uniform level 4",
+                 {.policy = TLOD_POLICY_UNIFORM, .max_level = 4, .morph = TLOD_MORPH_NONE},
+                 false};
+    double best, mean;
+    uint64_t tris = 0;
+    rc = run_case(&s, &c, w, h, frames, &best, &mean, &tris);
+    if (k == 0) flat_best = best;
+    if (rc == CLI_OK) report(csv, in, c.label, best, mean, tris, flat_best);
+    bench_scene_free(&s);
+  }
+  return rc;
+}
+
+int bench_gl(const char* const* models, uint32_t model_count, uint32_t frames, FILE* csv) {
+  tlod_platform* p = NULL;
+  char err[256];
+  const uint32_t w = 1024, h = 732; /* the paper's 1600x1144 aspect, smaller for a software rasterizer */
+  if (!tlod_platform_create(&(tlod_platform_desc){.width = w, .height = h}, &p, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "bench gl: %s", err);
+  char desc[256];
+  printf("gl bench: %s, %ux%u, wall clock around glFinish, %u frames per case\n",
+         tlod_platform_describe(p, desc, sizeof(desc)), w, h, frames);
+  tlod_platform_bind(p);
+  int rc = CLI_OK;
+  for (uint32_t m = 0; m < model_count && rc == CLI_OK; m++)
+    rc = scene_cases(models[m], w, h, frames, csv);
+  if (rc == CLI_OK) rc = phong_vs_flat(models[0], w, h, frames, csv);
+  tlod_platform_destroy(p);
+  return rc;
+}
+#else
+int bench_gl(const char* const* models, uint32_t model_count, uint32_t frames, FILE* csv) {
+  (void)models, (void)model_count, (void)frames, (void)csv;
+  return cli_error(CLI_FAILED, "bench gl: this build has no GL backend (TLOD_BACKEND_GL=OFF)");
+}
+#endif

@@ -1,0 +1,39 @@
+/* tlod bench suites for the scheduler (bench_scheduler.c, bench_table1.c)
+ * and the model set-up they share with the gl suite (bench_scene.c). */
+#ifndef TLOD_TOOLS_BENCH_LOD_H
+#define TLOD_TOOLS_BENCH_LOD_H
+
+#include <stdio.h>
+
+#include "cli.h"
+#include "common/scene_setup.h"
+#include "tesslod/lod.h"
+
+typedef struct bench_lod_options {
+  const uint32_t* threads;
+  uint32_t thread_count;
+  uint32_t frames;
+  const char* const* inputs; /* table1 models */
+  uint32_t input_count;
+} bench_lod_options;
+
+/* A loaded model with its mesh, surface and patterns, for the suites. */
+typedef struct bench_scene {
+  tlod_context* ctx;
+  scene_setup setup;
+} bench_scene;
+
+/* threads 0 == all CPUs; PN splits quads. */
+int bench_scene_load(const char* in, uint32_t threads, tlod_surface_type type, uint32_t max_level, bench_scene* s);
+void bench_scene_free(bench_scene* s);
+/* A camera on a circle round the mesh at the given angle (radians), framing
+ * it at distance_scale times the framing distance; 45 degrees. */
+void bench_orbit_view(const tlod_mesh* mesh, float angle, float distance_scale, uint32_t w, uint32_t h,
+                      tlod_view_desc* v);
+
+/* Scheduler time per frame on 10k, 100k and 1M patches for each thread count. */
+int bench_scheduler(const bench_lod_options* o, double bandwidth, FILE* csv);
+/* Schwarz et al.'s Table 1: base / adaptive / uniform triangles at 1600x1144, 0.5 px, PN. */
+int bench_table1(const bench_lod_options* o, FILE* csv);
+
+#endif

@@ -1,0 +1,88 @@
+/* tlod bench -- usage and option parsing. */
+#include "bench_options.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "tesslod/lod.h"
+
+void bench_usage(FILE* f) {
+  fprintf(f, "usage: tlod bench [IN] [options]\n"
+             "Measures, on IN (default demo:torus-320x160, 102,400 triangles; quads are split):\n"
+             "  preprocessing: mesh validation + adjacency + normals, and patch setup per surface (patches/s);\n"
+             "  CPU evaluation: tlod_cpu_tessellate per surface, level and thread count (output vertices/s),\n"
+             "  the Phong/flat and PN/flat time ratios, and output bytes/s against memcpy bandwidth.\n"
+             "  --levels L,L       levels to evaluate (default 3,5)\n"
+             "  --threads N,N      thread counts (default 1,2)\n"
+             "  --repeat N         timed runs per case (default 3)\n"
+             "  --warmup N         untimed runs first (default 1)\n"
+             "  --csv FILE         also write one CSV row per case\n"
+             "  --suite S          eval (default) | scheduler | table1 | gl | all\n"
+             "                     scheduler: time per frame on 10k, 100k, 1M patches (torus), orbiting camera\n"
+             "                     table1: Schwarz et al.'s Table 1 (PN, 1600x1144, 0.5 px): base, adaptive per\n"
+             "                     policy, uniform at the worst patch's level, strip overhead\n"
+             "                     gl: frame times (llvmpipe, wall clock): flat, adaptive, uniform, hardware\n"
+             "                     tessellation per model; Phong against flat at equal triangles\n"
+             "  --frames N         scheduler / gl frames per case (default 20)\n"
+             "  --model IN         a table1 model (repeatable; default demo:cow)\n");
+}
+
+static bool parse_list(const char* option, const char* text, uint32_t lo, uint32_t hi, uint32_t* out, uint32_t* count) {
+  char buf[128];
+  snprintf(buf, sizeof(buf), "%s", text);
+  *count = 0;
+  for (char* tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+    if (*count == 8 || !cli_parse_uint(option, tok, lo, hi, &out[*count])) return false;
+    (*count)++;
+  }
+  return *count > 0 || (cli_error(CLI_USAGE, "%s: empty list", option), false);
+}
+
+int bench_parse(int argc, char** argv, bench_options* o) {
+  *o = (bench_options){.in = "demo:torus-320x160",
+                       .levels = {3, 5},
+                       .level_count = 2,
+                       .threads = {1, 2},
+                       .thread_count = 2,
+                       .repeat = 3,
+                       .warmup = 1,
+                       .frames = 20,
+                       .suite = "eval"};
+  for (int i = 0; i < argc; i++) {
+    const char* a = argv[i];
+    const char* v = NULL;
+    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+      bench_usage(stdout);
+      exit(0);
+    } else if (!strcmp(a, "--levels")) {
+      if (!(v = cli_value(argc, argv, &i)) || !parse_list(a, v, 0, TLOD_MAX_LEVEL, o->levels, &o->level_count))
+        return CLI_USAGE;
+    } else if (!strcmp(a, "--threads")) {
+      if (!(v = cli_value(argc, argv, &i)) || !parse_list(a, v, 1, 64, o->threads, &o->thread_count)) return CLI_USAGE;
+    } else if (!strcmp(a, "--repeat")) {
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 1000, &o->repeat)) return CLI_USAGE;
+    } else if (!strcmp(a, "--warmup")) {
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 0, 1000, &o->warmup)) return CLI_USAGE;
+    } else if (!strcmp(a, "--suite")) {
+      static const char* const suites[] = {"eval", "scheduler", "table1", "gl", "all", NULL};
+      if (!(v = cli_value(argc, argv, &i)) || cli_parse_enum(a, v, suites) < 0) return CLI_USAGE;
+      o->suite = v;
+    } else if (!strcmp(a, "--frames")) {
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 100000, &o->frames)) return CLI_USAGE;
+    } else if (!strcmp(a, "--model")) {
+      if (!(v = cli_value(argc, argv, &i))) return CLI_USAGE;
+      if (o->table1_count == 16) return cli_error(CLI_USAGE, "--model: at most 16 models");
+      o->table1[o->table1_count++] = v;
+    } else if (!strcmp(a, "--csv")) {
+      if (!(o->csv = cli_value(argc, argv, &i))) return CLI_USAGE;
+    } else if (a[0] == '-' && a[1]) {
+      return cli_error(CLI_USAGE, "bench: unknown option '%s' (see tlod bench --help)", a);
+    } else {
+      o->in = a;
+    }
+  }
+  return CLI_OK;
+}

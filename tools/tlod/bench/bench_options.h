@@ -1,0 +1,21 @@
+/* tlod bench -- its options. */
+#ifndef TLOD_TOOLS_BENCH_OPTIONS_H
+#define TLOD_TOOLS_BENCH_OPTIONS_H
+
+#include <stdint.h>
+
+typedef struct bench_options {
+  const char* in;
+  const char* csv;
+  uint32_t levels[8], level_count;
+  uint32_t threads[8], thread_count;
+  uint32_t repeat, warmup, frames;
+  const char* suite;
+  const char* table1[16];
+  uint32_t table1_count;
+} bench_options;
+
+/* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */
+int bench_parse(int argc, char** argv, bench_options* o);
+
+#endif

@@ -1,0 +1,38 @@
+/* Plumbing every tlod command shares: exit codes, one-line errors, option
+ * parsing and the clock. */
+#ifndef TLOD_TOOLS_CLI_H
+#define TLOD_TOOLS_CLI_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "tesslod/lod.h"
+
+enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
+
+/* Prints "tlod: error: ..." to stderr; returns code. */
+int cli_error(int code, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Parses a whole string as a number in [lo, hi]; false (with an error
+ * printed naming the option) otherwise. */
+bool cli_parse_float(const char* option, const char* text, double lo, double hi, float* out);
+bool cli_parse_uint(const char* option, const char* text, uint32_t lo, uint32_t hi, uint32_t* out);
+/* Index of text in names (NULL-terminated), or -1 with an error printed. */
+int cli_parse_enum(const char* option, const char* text, const char* const* names);
+/* The value of an option that takes one: argv[*i + 1]; advances *i. */
+const char* cli_value(int argc, char** argv, int* i);
+
+/* Option parsers of one command answer CLI_OK, CLI_USAGE (error printed) or
+ * CLI_NOT_MINE (not one of theirs: the next parser tries). */
+enum { CLI_NOT_MINE = -1 };
+/* CLI_OK when ok, else CLI_USAGE (the parser printed the error). */
+int cli_usage_unless(bool ok);
+/* The scheduler options tessellate and play share: --epsilon PX, --policy P,
+ * --max-level L at argv[*i]. */
+int cli_parse_lod_option(int argc, char** argv, int* i, float* epsilon, tlod_lod_policy* policy, uint32_t* max_level);
+
+/* Monotonic clock in milliseconds (arbitrary origin). */
+double cli_now_ms(void);
+
+#endif

@@ -1,0 +1,226 @@
+/* tlod play -- plays a scene along a camera path with a fixed time step and
+ * records per-frame scheduler and backend timings (docs/play.md). */
+#define _POSIX_C_SOURCE 200809L /* sigaction, isatty */
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "play_run.h"
+#include "play_run_folder.h"
+#include "tool_names.h"
+
+/* Everything one `tlod play` holds from set-up to the end. */
+typedef struct play_session {
+  play_options o;
+  camera_path path;
+  play_scene scene;
+  tlod_platform* platform;
+  const char* backend;
+  uint8_t* pixels;
+  char out_dir[PLAY_PATH_MAX];
+  char renderer[512];
+  char version[32];
+  play_trace traces[PLAY_MAX_MODES];
+  const play_trace* done[PLAY_MAX_MODES];
+  char run_dirs[PLAY_MAX_MODES][PLAY_PATH_MAX + 32];
+  uint32_t run_count;
+} play_session;
+
+static void on_sigint(int sig) {
+  (void)sig;
+  play_interrupted = 1;
+}
+
+/* From here Ctrl-C only sets a flag: the run stops before its next frame
+ * (during set-up: before the first) and writes what it played. */
+static void catch_sigint(struct sigaction* old) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof(sa));
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  play_interrupted = 0;
+  sigaction(SIGINT, &sa, old);
+}
+
+/* --path FILE.json or gltf[:N] (the built-ins need the scene bounds: later). */
+static int load_path(const play_options* o, camera_path* path) {
+  char err[1024], tail;
+  unsigned gltf_camera = 0;
+  bool gltf = !strcmp(o->path, "gltf") || sscanf(o->path, "gltf:%u%c", &gltf_camera, &tail) == 1;
+  if (gltf && (!o->scene || !strncmp(o->scene, "demo:", 5)))
+    return cli_error(CLI_USAGE, "--path %s: the scene must be a .gltf or .glb file with cameras", o->path);
+  if (gltf && !camera_path_load_gltf(o->scene, gltf_camera, path, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "%s", err);
+  if (!gltf && !camera_path_is_builtin(o->path) && !camera_path_load(o->path, path, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "%s", err);
+  return CLI_OK;
+}
+
+/* Everything that can fail on bad input happens before the run folder exists. */
+static int set_up(play_session* p) {
+  const play_options* o = &p->o;
+  int rc = load_path(o, &p->path);
+  if (rc == CLI_OK) rc = play_scene_load(o, &p->scene);
+  if (rc == CLI_OK && camera_path_is_builtin(o->path) &&
+      !camera_path_builtin(o->path, p->scene.bmin, p->scene.bmax, &p->path))
+    rc = cli_error(CLI_FAILED, "cannot build the %s path", o->path);
+  p->backend = o->backend ? o->backend : "gl";
+  if (rc == CLI_OK && !strcmp(p->backend, "gl")) p->platform = play_platform_open(o, &rc, &p->backend);
+  if (rc == CLI_OK) rc = play_scene_create_backends(&p->scene, p->backend);
+  if (rc == CLI_OK && o->screenshot_every && !(p->pixels = malloc((size_t)o->width * o->height * 4)))
+    rc = cli_error(CLI_FAILED, "out of memory for %ux%u screenshots", o->width, o->height);
+  if (rc == CLI_OK) rc = play_make_run_folder(o, p->out_dir, sizeof(p->out_dir));
+  return rc;
+}
+
+static uint32_t frame_count(const play_session* p) {
+  const play_options* o = &p->o;
+  uint32_t frames = o->frames;
+  if (!frames && o->duration > 0.0f) frames = (uint32_t)fmax(1.0, floor((double)o->duration * o->fps + 0.5));
+  if (!frames) frames = camera_path_frames(&p->path, o->fps);
+  return frames > PLAY_MAX_FRAMES ? PLAY_MAX_FRAMES : frames;
+}
+
+static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t frames) {
+  const play_options* o = &p->o;
+  return (play_trace){.tool_version = p->version,
+                      .scene = p->scene.name,
+                      .mode = m->name,
+                      .backend = p->backend,
+                      .renderer = p->renderer,
+                      .surface = tool_surface_name(o->surface),
+                      .path = p->path.name,
+                      .path_duration_s = camera_path_duration(&p->path),
+                      .loop = o->loop,
+                      .fps = o->fps,
+                      .width = o->width,
+                      .height = o->height,
+                      .frames_requested = frames,
+                      .screenshot_every = o->screenshot_every,
+                      .objects = p->scene.infos,
+                      .object_count = p->scene.count,
+                      .dir = o->compare ? m->dir : ".",
+                      .stopped = "completed"};
+}
+
+/* The folder of mode k (a subfolder per mode with --compare) and its screenshots/. */
+static int make_mode_folder(play_session* p, uint32_t k) {
+  const play_options* o = &p->o;
+  char* dir = p->run_dirs[k];
+  if (o->compare) {
+    play_path_join(dir, sizeof(p->run_dirs[k]), p->out_dir, o->modes[k].dir);
+  } else {
+    snprintf(dir, sizeof(p->run_dirs[k]), "%s", p->out_dir);
+  }
+  char shots[PLAY_PATH_MAX + 64];
+  play_path_join(shots, sizeof(shots), dir, "screenshots");
+  if (!play_mkdir_p(dir) || (o->screenshot_every && !play_mkdir_p(shots)))
+    return cli_error(CLI_FAILED, "cannot create folder '%s': %s", o->screenshot_every ? shots : dir, strerror(errno));
+  return CLI_OK;
+}
+
+static int write_traces(const play_trace* t, const char* dir) {
+  char path[PLAY_PATH_MAX + 64], err[PLAY_PATH_MAX + 512];
+  play_path_join(path, sizeof(path), dir, "trace.json");
+  if (!play_write_trace_json(t, path, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
+  play_path_join(path, sizeof(path), dir, "trace.csv");
+  if (!play_write_trace_csv(t, path, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
+  play_path_join(path, sizeof(path), dir, "chrome_trace.json");
+  if (!play_write_chrome_trace(t, path, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
+  return CLI_OK;
+}
+
+/* Mode k into its trace and files. */
+static int play_one_mode(play_session* p, play_run* run, uint32_t k) {
+  const play_mode* m = &p->o.modes[k];
+  int rc = make_mode_folder(p, k);
+  if (rc != CLI_OK) return rc;
+  if (k > 0 && (rc = play_scene_create_backends(&p->scene, p->backend)) != CLI_OK)
+    return rc; /* fresh timer queries per mode */
+  play_trace* t = &p->traces[k];
+  *t = trace_of(p, m, run->frames);
+  run->run_dir = p->run_dirs[k];
+  run->index = k;
+  rc = play_mode_run(run, m, t);
+  p->done[p->run_count++] = t;
+  int wrc = write_traces(t, p->run_dirs[k]);
+  if (wrc != CLI_OK) t->stopped = "error"; /* the summary must not claim a complete run */
+  return rc == CLI_OK ? wrc : rc;
+}
+
+static int play_modes(play_session* p) {
+  const play_options* o = &p->o;
+  play_platform_describe(p->platform, p->renderer, sizeof(p->renderer));
+  snprintf(p->version, sizeof(p->version), "tlod %d.%d.%d", TLOD_VERSION / 1000, TLOD_VERSION / 10 % 100,
+           TLOD_VERSION % 10);
+  play_run run = {.o = o,
+                  .scene = &p->scene,
+                  .path = &p->path,
+                  .platform = p->platform,
+                  .backend = p->backend,
+                  .frames = frame_count(p),
+                  .pixels = p->pixels,
+                  .count = o->mode_count,
+                  .tty = !o->quiet && isatty(STDERR_FILENO)};
+  int rc = CLI_OK;
+  for (uint32_t k = 0; k < o->mode_count && rc == CLI_OK && (k == 0 || !play_interrupted); k++)
+    rc = play_one_mode(p, &run, k);
+  return rc;
+}
+
+/* summary.json and summary.txt; a failed write fails the run. */
+static int write_summary(const play_session* p, int rc) {
+  char path[PLAY_PATH_MAX + 64], err[PLAY_PATH_MAX + 512];
+  play_path_join(path, sizeof(path), p->out_dir, "summary.json");
+  if (!play_write_summary_json(p->done, p->run_count, p->out_dir, path, err, sizeof(err)) && rc == CLI_OK)
+    rc = cli_error(CLI_FAILED, "%s", err);
+  play_path_join(path, sizeof(path), p->out_dir, "summary.txt");
+  if (!play_write_summary_text(p->done, p->run_count, p->out_dir, path, err, sizeof(err)) && rc == CLI_OK)
+    rc = cli_error(CLI_FAILED, "%s", err);
+  return rc;
+}
+
+static void session_free(play_session* p) {
+  for (uint32_t k = 0; k < p->run_count; k++)
+    play_trace_free(&p->traces[k]);
+  play_scene_destroy_backends(&p->scene);
+  play_platform_close(p->platform);
+  free(p->pixels);
+  play_scene_free(&p->scene);
+  camera_path_free(&p->path);
+  free(p);
+}
+
+static int finish(play_session* p, int rc) {
+  if (play_interrupted && !p->o.quiet)
+    fprintf(stderr, "tlod: interrupted: wrote the %u frames played so far\n",
+            p->run_count ? p->done[p->run_count - 1]->frame_count : 0);
+  if (p->run_count) rc = write_summary(p, rc);
+  if (p->run_count && !p->o.quiet) play_print_summary(stdout, p->done, p->run_count, p->out_dir);
+  return rc;
+}
+
+int cmd_play(int argc, char** argv) {
+  play_session* p = calloc(1, sizeof(*p));
+  if (!p) return cli_error(CLI_FAILED, "out of memory");
+  int rc = play_parse(argc, argv, &p->o);
+  if (rc != CLI_OK) {
+    free(p);
+    return rc;
+  }
+  struct sigaction old;
+  catch_sigint(&old);
+  rc = set_up(p);
+  if (rc == CLI_OK) rc = play_modes(p);
+  sigaction(SIGINT, &old, NULL);
+  if (rc == CLI_OK || p->run_count) rc = finish(p, rc);
+  bool interrupted = play_interrupted;
+  session_free(p);
+  return rc == CLI_OK && interrupted ? 130 : rc;
+}

@@ -1,0 +1,187 @@
+/* tlod play -- the frame loop of one mode: a fixed time step along the
+ * camera path, a scheduler update and a backend draw per object, every
+ * figure recorded in the trace. */
+#include <string.h>
+
+#include "cli.h"
+#include "common/camera.h"
+#include "play_run.h"
+#include "tool_names.h"
+
+#if TLOD_HAS_GL
+#include "tlod_platform.h"
+
+#include <GL/gl.h>
+#endif
+
+volatile sig_atomic_t play_interrupted = 0;
+
+/* A fresh scheduler per object for mode m; the trace takes the first one's settings. */
+static int create_schedulers(play_run* r, const play_mode* m, play_trace* t) {
+  play_scene* s = r->scene;
+  char label[96];
+  for (uint32_t i = 0; i < s->count; i++) {
+    play_object* ob = &s->objects[i];
+    snprintf(label, sizeof(label), "%s/%s", ob->info.name, m->name);
+    tlod_scheduler_desc d = play_mode_desc(r->o, m, label);
+    tlod_scheduler_destroy(ob->scheduler);
+    ob->scheduler = NULL;
+    if (tlod_scheduler_create(s->ctx, ob->setup.surface, s->patterns, &d, &ob->scheduler) != TLOD_SUCCESS)
+      return cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
+  }
+  tlod_scheduler_desc q = tlod_scheduler_query_desc(s->objects[0].scheduler);
+  t->policy = tool_policy_name(q.policy);
+  t->epsilon = q.epsilon_px;
+  t->max_level = q.max_level;
+  return CLI_OK;
+}
+
+/* The camera of frame n (path time n / fps, whatever the frame took), recorded in fr. */
+static tlod_view_desc frame_view(const play_run* r, uint32_t n, play_frame* fr) {
+  const play_options* o = r->o;
+  fr->time_s = (double)n / o->fps;
+  tool_camera cam = {0};
+  camera_path_eval(r->path, fr->time_s, o->loop, &cam);
+  camera_fit_planes(cam.eye, r->scene->bmin, r->scene->bmax, &cam.near_z, &cam.far_z);
+  memcpy(fr->eye, cam.eye, sizeof(fr->eye));
+  memcpy(fr->target, cam.target, sizeof(fr->target));
+  memcpy(fr->up, cam.up, sizeof(fr->up));
+  fr->fovy = cam.fovy_deg;
+  fr->near_z = cam.near_z;
+  fr->far_z = cam.far_z;
+  tlod_view_desc v = {.viewport_width = o->width, .viewport_height = o->height};
+  camera_look_at(cam.eye, cam.target, cam.up, v.view);
+  camera_perspective(cam.fovy_deg, (float)o->width / (float)o->height, cam.near_z, cam.far_z, v.proj);
+  return v;
+}
+
+static void record_draw_list(const tlod_draw_list* dl, play_object_stats* st) {
+  memcpy(st->stage_ms, dl->stage_ms, sizeof(st->stage_ms));
+  st->patches = dl->patch_count;
+  st->culled = dl->culled;
+  st->instances = dl->instance_count;
+  st->strips = dl->strip_count;
+  st->pattern_triangles = dl->pattern_triangles;
+  st->strip_triangles = dl->strip_triangles;
+  memcpy(st->level_histogram, dl->level_histogram, sizeof(st->level_histogram));
+  st->effective_epsilon = dl->effective_epsilon;
+}
+
+static int update_objects(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start,
+                          play_object_stats* os) {
+  play_scene* s = r->scene;
+  tlod_frame_desc fd = {.views = view, .view_count = 1, .dt_ms = (float)(1000.0 / r->o->fps)};
+  for (uint32_t i = 0; i < s->count; i++) {
+    double t0 = cli_now_ms();
+    if (tlod_scheduler_update(s->objects[i].scheduler, &fd) != TLOD_SUCCESS)
+      return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
+    os[i].update_at_ms = t0 - run_start;
+    os[i].update_ms = cli_now_ms() - t0;
+    record_draw_list(tlod_scheduler_draw_list(s->objects[i].scheduler, 0), &os[i]);
+  }
+  return CLI_OK;
+}
+
+static void record_backend(const tlod_backend* b, play_object_stats* st) {
+  tlod_backend_timings bt = tlod_backend_query_timings(b);
+  st->backend_cpu_ms = bt.cpu_ms;
+  st->backend_gpu_ms = bt.gpu_ms;
+  st->backend_wall_ms = bt.wall_ms;
+  st->drawn_triangles = bt.triangles;
+  st->draw_calls = bt.draw_calls;
+}
+
+static void clear_frame(const play_run* r) {
+#if TLOD_HAS_GL
+  if (r->platform) {
+    glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
+#else
+  (void)r;
+#endif
+}
+
+static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start, play_object_stats* os) {
+  play_scene* s = r->scene;
+  clear_frame(r);
+  for (uint32_t i = 0; i < s->count; i++) {
+    play_object* ob = &s->objects[i];
+    tlod_backend_frame bf = {.draw_list = tlod_scheduler_draw_list(ob->scheduler, 0),
+                             .viewport = {0, 0, r->o->width, r->o->height},
+                             .finish = true};
+    memcpy(bf.view, view->view, sizeof(bf.view));
+    memcpy(bf.proj, view->proj, sizeof(bf.proj));
+    memcpy(bf.base_color, ob->info.color, sizeof(bf.base_color));
+    double t0 = cli_now_ms();
+    if (tlod_backend_draw(ob->backend, &bf) != TLOD_SUCCESS)
+      return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
+    os[i].draw_at_ms = t0 - run_start;
+    os[i].draw_ms = cli_now_ms() - t0;
+    record_backend(ob->backend, &os[i]);
+  }
+  return CLI_OK;
+}
+
+/* Window mode: shows the frame; true when the window was closed. */
+static bool present(const play_run* r) {
+#if TLOD_HAS_GL
+  if (!r->o->window || !r->platform) return false;
+  tlod_platform_swap(r->platform);
+  return tlod_platform_should_close(r->platform);
+#else
+  (void)r;
+  return false;
+#endif
+}
+
+/* Frame n: CLI_OK, or CLI_FAILED with t->stopped set ("window closed" stops with CLI_OK). */
+static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t, bool* stop) {
+  play_object_stats* os = NULL;
+  play_frame* fr = play_trace_add_frame(t, &os);
+  if (!fr) return cli_error(CLI_FAILED, "out of memory after %u frames", t->frame_count);
+  tlod_view_desc view = frame_view(r, n, fr);
+  const double f0 = cli_now_ms();
+  fr->at_ms = f0 - run_start;
+  int rc = update_objects(r, &view, n, run_start, os);
+  if (rc == CLI_OK) rc = draw_objects(r, &view, n, run_start, os);
+  fr->frame_ms = cli_now_ms() - f0;
+  if (rc != CLI_OK) {
+    t->frame_count--; /* the failed frame is not a record */
+    return rc;
+  }
+  if (r->o->screenshot_every && n % r->o->screenshot_every == 0 && (rc = play_screenshot(r, fr, run_start)) != CLI_OK)
+    return rc;
+  if (present(r)) t->stopped = "window closed", *stop = true;
+  return CLI_OK;
+}
+
+int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
+  int rc = create_schedulers(r, m, t);
+  if (rc != CLI_OK) return rc;
+#if TLOD_HAS_GL
+  if (r->platform) tlod_platform_bind(r->platform);
+#endif
+  const double run_start = cli_now_ms();
+  double last_progress = -1e30;
+  bool stop = false;
+  t->stopped = "completed";
+  for (uint32_t n = 0; n < r->frames && !stop; n++) {
+    if (play_interrupted) {
+      t->stopped = "interrupted";
+      break;
+    }
+    if ((rc = play_frame_n(r, n, run_start, t, &stop)) != CLI_OK) {
+      t->stopped = "error";
+      break;
+    }
+    double now = cli_now_ms();
+    if (!stop && !r->o->quiet && now - last_progress > 100.0) {
+      play_progress(r, m, n + 1, now - run_start, false);
+      last_progress = now;
+    }
+  }
+  t->wall_s = (cli_now_ms() - run_start) * 1e-3;
+  if (!r->o->quiet) play_progress(r, m, t->frame_count, 0.0, true);
+  return rc;
+}

@@ -1,0 +1,200 @@
+/* tlod play -- usage and option parsing. */
+#define _POSIX_C_SOURCE 200809L /* strtok_r */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "commands.h"
+#include "common/mesh_load.h"
+#include "play_options.h"
+#include "tool_names.h"
+
+void play_usage(FILE* f) {
+  fprintf(
+      f,
+      "usage: tlod play [SCENE] [options]\n"
+      "Plays SCENE along a camera path with a fixed time step and records per-frame timings.\n"
+      "  SCENE               .gltf .glb .obj .ply file, a built-in mesh (%s), or nothing /\n"
+      "                      demo:scene for the built-in demo scene (the VTK cow beside a creased cylinder)\n"
+      "  --backend B         gl (default when a GL context can be made, else cpu) | cpu | vulkan\n"
+      "  --mode M            adaptive (default) | uniform:L (every visible patch at level L, 0..%d) | flat (level 0)\n"
+      "  --compare M,M[,..]  play the same path once per mode (output per mode in subfolders)\n"
+      "  --surface S         phong (default) | pn (splits quads into triangles)\n"
+      "  --epsilon PX        adaptive: screen-space error bound in pixels (default 0.5)\n"
+      "  --policy P          adaptive: error | silhouette | hybrid (default hybrid)\n"
+      "  --max-level L       adaptive: finest level, 1..%d (default 6)\n"
+      "  --size WxH          viewport in pixels (default 1280x720)\n"
+      "  --path P            orbit (default) | flyby | zoom | FILE.json (keyframes, see docs/play.md)\n"
+      "                      | gltf[:N] (camera N of the glTF scene, with its animation)\n"
+      "  --frames N          frames to play (default: the path's length at --fps (orbit: 240))\n"
+      "  --duration S        seconds of path time to play (frames = S * fps); not with --frames\n"
+      "  --fps F             fixed time step 1/F s per frame (default 60): runs are repeatable\n"
+      "  --loop              start the path over at its end (default: hold the last keyframe)\n"
+      "  --screenshot-every N  gl: write screenshots/frame_NNNNN.png every N frames (from frame 0)\n"
+      "  --window            draw into a GLFW window (needs DISPLAY) instead of headless EGL\n"
+      "  --out DIR           run folder (default runs/YYYYmmdd-HHMMSS)\n"
+      "  -q, --quiet         no progress bar and no summary\n"
+      "Writes trace.json, trace.csv, chrome_trace.json, summary.json and summary.txt into the run folder.\n"
+      "Ctrl-C stops after the current frame, writes what was played and exits with 130.\n",
+      cli_demo_names(), TLOD_MAX_LEVEL, TLOD_MAX_LEVEL);
+}
+
+static int mode_error(const char* option, const char* text) {
+  return cli_error(CLI_USAGE, "%s: expected adaptive, uniform:L (L = 0..%d) or flat, got '%s'", option, TLOD_MAX_LEVEL,
+                   text);
+}
+
+static int parse_compare(const char* text, play_options* o) {
+  char buf[256];
+  snprintf(buf, sizeof(buf), "%s", text);
+  o->mode_count = 0;
+  for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    if (o->mode_count == PLAY_MAX_MODES) return cli_error(CLI_USAGE, "--compare: at most %d modes", PLAY_MAX_MODES);
+    play_mode* m = &o->modes[o->mode_count];
+    if (!play_mode_parse(tok, m)) return mode_error("--compare", tok);
+    for (uint32_t k = 0; k < o->mode_count; k++)
+      if (!strcmp(o->modes[k].name, m->name)) return cli_error(CLI_USAGE, "--compare: mode '%s' given twice", m->name);
+    o->mode_count++;
+  }
+  if (o->mode_count < 2)
+    return cli_error(CLI_USAGE, "--compare: expected two or more modes separated by commas, got '%s'", text);
+  return CLI_OK;
+}
+
+static bool parse_size(const char* v, uint32_t* w, uint32_t* h) {
+  char tail;
+  if (!v || strspn(v, "0123456789x") != strlen(v) || sscanf(v, "%ux%u%c", w, h, &tail) != 2) return false;
+  return *w >= 1 && *h >= 1 && *w <= 16384 && *h <= 16384;
+}
+
+static int parse_flag(const char* a, play_options* o) {
+  if (!strcmp(a, "--loop")) {
+    o->loop = true;
+  } else if (!strcmp(a, "--window")) {
+    o->window = true;
+  } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
+    o->quiet = true;
+  } else {
+    return CLI_NOT_MINE;
+  }
+  return CLI_OK;
+}
+
+static int parse_modes(int argc, char** argv, int* i, play_options* o) {
+  const char* a = argv[*i];
+  const char* v = NULL;
+  if (!strcmp(a, "--mode")) {
+    if (!(v = cli_value(argc, argv, i))) return CLI_USAGE;
+    if (!play_mode_parse(v, &o->modes[0])) return mode_error(a, v);
+    o->mode_given = true;
+    return CLI_OK;
+  }
+  if (!strcmp(a, "--compare")) {
+    if (!(v = cli_value(argc, argv, i))) return CLI_USAGE;
+    o->compare = true;
+    return parse_compare(v, o);
+  }
+  return CLI_NOT_MINE;
+}
+
+static int parse_lod(int argc, char** argv, int* i, play_options* o) {
+  const char* a = argv[*i];
+  const char* v = NULL;
+  int e;
+  if (!strcmp(a, "--surface")) {
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, tool_surface_options + 1)) < 0) return CLI_USAGE;
+    o->surface = (tlod_surface_type)(TLOD_SURFACE_PHONG + e);
+    return CLI_OK;
+  }
+  int rc = cli_parse_lod_option(argc, argv, i, &o->epsilon, &o->policy, &o->max_level);
+  if (rc != CLI_NOT_MINE) return rc;
+  return parse_modes(argc, argv, i, o);
+}
+
+static int parse_timing(int argc, char** argv, int* i, play_options* o) {
+  const char* a = argv[*i];
+  const char* v = NULL;
+  if (!strcmp(a, "--frames"))
+    return cli_usage_unless((v = cli_value(argc, argv, i)) && cli_parse_uint(a, v, 1, PLAY_MAX_FRAMES, &o->frames));
+  if (!strcmp(a, "--duration"))
+    return cli_usage_unless((v = cli_value(argc, argv, i)) && cli_parse_float(a, v, 1e-3, 1e6, &o->duration));
+  if (!strcmp(a, "--fps"))
+    return cli_usage_unless((v = cli_value(argc, argv, i)) && cli_parse_float(a, v, 1.0, 1000.0, &o->fps));
+  if (!strcmp(a, "--path")) return cli_usage_unless((o->path = cli_value(argc, argv, i)) != NULL);
+  return CLI_NOT_MINE;
+}
+
+static int parse_output(int argc, char** argv, int* i, play_options* o) {
+  const char* a = argv[*i];
+  const char* v = NULL;
+  int e;
+  if (!strcmp(a, "--backend")) {
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, tool_backend_options)) < 0) return CLI_USAGE;
+    o->backend = tool_backend_options[e];
+    return CLI_OK;
+  }
+  if (!strcmp(a, "--size")) {
+    if (!(v = cli_value(argc, argv, i))) return CLI_USAGE;
+    if (!parse_size(v, &o->width, &o->height))
+      return cli_error(CLI_USAGE, "--size: expected WxH with W and H in 1..16384, got '%s'", v);
+    return CLI_OK;
+  }
+  if (!strcmp(a, "--screenshot-every"))
+    return cli_usage_unless((v = cli_value(argc, argv, i)) &&
+                            cli_parse_uint(a, v, 1, PLAY_MAX_FRAMES, &o->screenshot_every));
+  if (!strcmp(a, "--out")) {
+    if (!(o->out = cli_value(argc, argv, i))) return CLI_USAGE;
+    if (!*o->out || strlen(o->out) > PLAY_PATH_MAX - 64)
+      return cli_error(CLI_USAGE, "--out: expected a folder name of 1..%d characters", PLAY_PATH_MAX - 64);
+    return CLI_OK;
+  }
+  return CLI_NOT_MINE;
+}
+
+static int parse_argument(int argc, char** argv, int* i, play_options* o) {
+  const char* a = argv[*i];
+  if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+    play_usage(stdout);
+    exit(0);
+  }
+  int rc = parse_flag(a, o);
+  if (rc == CLI_NOT_MINE) rc = parse_lod(argc, argv, i, o);
+  if (rc == CLI_NOT_MINE) rc = parse_timing(argc, argv, i, o);
+  if (rc == CLI_NOT_MINE) rc = parse_output(argc, argv, i, o);
+  if (rc != CLI_NOT_MINE) return rc;
+  if (a[0] == '-' && a[1]) return cli_error(CLI_USAGE, "play: unknown option '%s' (see tlod play --help)", a);
+  if (o->scene) return cli_error(CLI_USAGE, "play: unexpected argument '%s' (one scene per run)", a);
+  o->scene = a;
+  return CLI_OK;
+}
+
+/* Options that do not go together. */
+static int check(const play_options* o) {
+  if (o->compare && o->mode_given) return cli_error(CLI_USAGE, "play: give --mode or --compare, not both");
+  if (o->frames && o->duration > 0.0f) return cli_error(CLI_USAGE, "play: give --frames or --duration, not both");
+  if (o->backend && strcmp(o->backend, "gl") && o->screenshot_every)
+    return cli_error(CLI_USAGE, "--screenshot-every: the %s backend draws no image (screenshots need --backend gl)",
+                     o->backend);
+  if (o->backend && strcmp(o->backend, "gl") && o->window)
+    return cli_error(CLI_USAGE, "--window: the %s backend draws no image (needs --backend gl)", o->backend);
+  return CLI_OK;
+}
+
+int play_parse(int argc, char** argv, play_options* o) {
+  *o = (play_options){.surface = TLOD_SURFACE_PHONG,
+                      .epsilon = 0.5f,
+                      .policy = TLOD_POLICY_HYBRID,
+                      .max_level = 6,
+                      .width = 1280,
+                      .height = 720,
+                      .fps = 60.0f,
+                      .path = "orbit"};
+  play_mode_parse("adaptive", &o->modes[0]);
+  o->mode_count = 1;
+  for (int i = 0; i < argc; i++) {
+    int rc = parse_argument(argc, argv, &i, o);
+    if (rc != CLI_OK) return rc;
+  }
+  return check(o);
+}

@@ -1,0 +1,55 @@
+/* tlod play -- its options and modes. */
+#ifndef TLOD_TOOLS_PLAY_OPTIONS_H
+#define TLOD_TOOLS_PLAY_OPTIONS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "tesslod/lod.h"
+
+#define PLAY_MAX_MODES 8
+#define PLAY_MAX_FRAMES 1000000u
+#define PLAY_PATH_MAX 1024 /* the run folder's name, and then some */
+
+typedef enum mode_kind { MODE_ADAPTIVE, MODE_UNIFORM, MODE_FLAT } mode_kind;
+
+typedef struct play_mode {
+  mode_kind kind;
+  uint32_t level; /* uniform */
+  char name[24];  /* "adaptive", "uniform:3", "flat" */
+  char dir[24];   /* "adaptive", "uniform-3", "flat" */
+} play_mode;
+
+typedef struct play_options {
+  const char* scene;   /* NULL: the built-in demo scene */
+  const char* backend; /* NULL: gl when a context can be made, else cpu */
+  play_mode modes[PLAY_MAX_MODES];
+  uint32_t mode_count;
+  bool compare, mode_given;
+  tlod_surface_type surface;
+  float epsilon;
+  tlod_lod_policy policy;
+  uint32_t max_level;
+  uint32_t width, height;
+  uint32_t frames; /* 0: from --duration or the path */
+  float duration;  /* 0: not given */
+  float fps;
+  const char* path;
+  bool loop;
+  uint32_t screenshot_every;
+  bool window;
+  const char* out;
+  bool quiet;
+} play_options;
+
+/* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */
+int play_parse(int argc, char** argv, play_options* o);
+
+/* "adaptive", "uniform:L" or "flat" into m; false for anything else. */
+bool play_mode_parse(const char* text, play_mode* m);
+/* Scheduler settings of a mode. */
+tlod_scheduler_desc play_mode_desc(const play_options* o, const play_mode* m, const char* label);
+/* The finest level any mode of o needs (at least 1). */
+uint32_t play_modes_max_level(const play_options* o);
+
+#endif

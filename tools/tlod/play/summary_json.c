@@ -1,0 +1,89 @@
+/* tlod play -- summary.json: every run (mode) summed up (schema
+ * tlod-play-summary/1, docs/play.md). */
+#include "common/lod_json.h"
+#include "play_summary.h"
+#include "tlod_atomic_file.h"
+#include "tool_names.h"
+
+static void json_distribution(json_writer* w, const char* key, const distribution* d) {
+  json_object_begin(w, key);
+  json_number(w, "mean", d->mean);
+  json_number(w, "p50", d->p50);
+  json_number(w, "p95", d->p95);
+  json_number(w, "p99", d->p99);
+  json_number(w, "max", d->max);
+  json_number(w, "min", d->min);
+  json_object_end(w);
+}
+
+static bool summary_json(FILE* f, const void* data) {
+  const summary_job* j = data;
+  const play_trace* t0 = j->runs[0];
+  json_writer w;
+  json_begin(&w, f);
+  json_object_begin(&w, NULL);
+  json_string(&w, "schema", PLAY_SUMMARY_SCHEMA);
+  json_string(&w, "tool", t0->tool_version);
+  json_string(&w, "scene", t0->scene);
+  json_string(&w, "backend", t0->backend);
+  json_string(&w, "renderer", t0->renderer);
+  json_string(&w, "surface", t0->surface);
+  json_string(&w, "path", t0->path);
+  json_number(&w, "fps", t0->fps);
+  json_uint(&w, "width", t0->width);
+  json_uint(&w, "height", t0->height);
+  json_string(&w, "out_dir", j->out_dir);
+  json_array_begin(&w, "runs");
+  run_summary base = {0};
+  for (uint32_t k = 0; k < j->run_count; k++) {
+    const play_trace* t = j->runs[k];
+    run_summary r;
+    play_summarize(t, &r);
+    if (k == 0) base = r;
+    json_object_begin(&w, NULL);
+    json_string(&w, "mode", t->mode);
+    json_string(&w, "dir", t->dir);
+    json_string(&w, "policy", t->policy);
+    json_number(&w, "epsilon_px", t->epsilon);
+    json_uint(&w, "max_level", t->max_level);
+    json_uint(&w, "frames_requested", t->frames_requested);
+    json_uint(&w, "frames", r.frames);
+    json_string(&w, "stopped", t->stopped);
+    json_number(&w, "wall_s", t->wall_s);
+    json_distribution(&w, "frame_ms", &r.frame_ms);
+    json_number(&w, "fps", r.frame_ms.mean > 0.0 ? 1000.0 / r.frame_ms.mean : 0.0);
+    json_number(&w, "first_frame_ms", r.first_frame_ms);
+    json_distribution(&w, "scheduler_ms", &r.scheduler_ms);
+    json_stage_ms(&w, "stage_ms_mean", r.stage_mean);
+    json_distribution(&w, "backend_cpu_ms", &r.backend_cpu_ms);
+    json_distribution(&w, "backend_wall_ms", &r.backend_wall_ms);
+    json_number(&w, "backend_gpu_ms_mean", r.gpu_mean);
+    json_uint(&w, "backend_gpu_frames", r.gpu_frames);
+    json_distribution(&w, "triangles", &r.triangles);
+    json_number(&w, "pattern_triangles_mean", r.pattern_mean);
+    json_number(&w, "strip_triangles_mean", r.strip_mean);
+    json_number(&w, "drawn_triangles_mean", r.drawn_mean);
+    json_number(&w, "culled_mean", r.culled_mean);
+    json_number(&w, "effective_epsilon_mean", r.epsilon_mean);
+    json_array_begin(&w, "level_histogram_mean");
+    for (int l = 0; l < PLAY_LEVELS; l++)
+      json_number(&w, NULL, r.histogram_mean[l]);
+    json_array_end(&w);
+    if (j->run_count > 1) {
+      json_object_begin(&w, "relative_to_first");
+      json_number(&w, "frame_ms_mean", base.frame_ms.mean > 0.0 ? r.frame_ms.mean / base.frame_ms.mean : 0.0);
+      json_number(&w, "triangles_mean", base.triangles.mean > 0.0 ? r.triangles.mean / base.triangles.mean : 0.0);
+      json_object_end(&w);
+    }
+    json_object_end(&w);
+  }
+  json_array_end(&w);
+  json_object_end(&w);
+  return json_end(&w);
+}
+
+bool play_write_summary_json(const play_trace* const* runs, uint32_t run_count, const char* out_dir, const char* path,
+                             char* error, size_t error_size) {
+  summary_job j = {runs, run_count, out_dir};
+  return tlod_atomic_file_write(path, summary_json, &j, error, error_size);
+}

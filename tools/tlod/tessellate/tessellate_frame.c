@@ -1,0 +1,47 @@
+/* tlod tessellate -- adaptive mode: the view of the camera options and one
+ * scheduler frame for it. */
+#include "tessellate_frame.h"
+
+#include <math.h>
+
+#include "cli.h"
+
+/* The camera of the options, aimed at the bounding-box centre when no target was given. */
+static tool_camera camera_of(const tess_options* o, const tlod_mesh* mesh) {
+  tlod_mesh_info info = tlod_mesh_query_info(mesh);
+  tool_camera cam = o->ad.cam;
+  if (isnan(cam.target[0])) {
+    for (int i = 0; i < 3; i++)
+      cam.target[i] = 0.5f * (info.bbox_min[i] + info.bbox_max[i]);
+  }
+  camera_fit_planes(cam.eye, info.bbox_min, info.bbox_max, &cam.near_z, &cam.far_z);
+  return cam;
+}
+
+static tlod_view_desc view_of(const tess_options* o, const tool_camera* cam) {
+  tlod_view_desc view = {.viewport_width = o->ad.width, .viewport_height = o->ad.height};
+  float aspect = (float)o->ad.width / (float)o->ad.height;
+  camera_look_at(cam->eye, cam->target, cam->up, view.view);
+  if (cam->fovy_deg > 0.0f) {
+    camera_perspective(cam->fovy_deg, aspect, cam->near_z, cam->far_z, view.proj);
+  } else {
+    camera_orthographic(cam->ortho_height, aspect, cam->near_z, cam->far_z, view.proj);
+  }
+  return view;
+}
+
+int tessellate_plan_frame(const tess_options* o, tlod_context* ctx, const scene_setup* s, tlod_scheduler** sch,
+                          const tlod_draw_list** out) {
+  tool_camera cam = camera_of(o, s->mesh);
+  tlod_view_desc view = view_of(o, &cam);
+  tlod_scheduler_desc sd = {.epsilon_px = o->ad.epsilon,
+                            .max_level = o->ad.max_level,
+                            .policy = o->ad.policy,
+                            .morph = TLOD_MORPH_NONE,
+                            .label = o->in};
+  if (tlod_scheduler_create(ctx, s->surface, s->patterns, &sd, sch) != TLOD_SUCCESS ||
+      tlod_scheduler_update(*sch, &(tlod_frame_desc){.views = &view, .view_count = 1}) != TLOD_SUCCESS)
+    return cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx));
+  *out = tlod_scheduler_draw_list(*sch, 0);
+  return CLI_OK;
+}

@@ -1,0 +1,29 @@
+/* tlod -- names of the library's enums. */
+#include "tool_names.h"
+
+const char* const tool_surface_options[] = {"flat", "phong", "pn", NULL};
+const char* const tool_normal_options[] = {"keep", "angle", "area", NULL};
+const char* const tool_policy_options[] = {"error", "silhouette", "hybrid", NULL};
+const char* const tool_backend_options[] = {"cpu", "gl", "vulkan", NULL};
+
+static const char* const stage_names[TLOD_STAGE_NUM] = {"silhouette", "metric", "levels", "morph", "strips"};
+
+const char* tool_surface_name(tlod_surface_type type) {
+  if (type == TLOD_SURFACE_FLAT) return "flat";
+  return type == TLOD_SURFACE_PN ? "pn" : "phong";
+}
+
+const char* tool_policy_name(tlod_lod_policy policy) {
+  switch (policy) {
+  case TLOD_POLICY_ERROR:
+    return "error";
+  case TLOD_POLICY_SILHOUETTE:
+    return "silhouette";
+  case TLOD_POLICY_UNIFORM:
+    return "uniform";
+  default:
+    return "hybrid";
+  }
+}
+
+const char* tool_stage_name(int stage) { return stage >= 0 && stage < TLOD_STAGE_NUM ? stage_names[stage] : "?"; }
