@@ -169,7 +169,7 @@ TEST(test_null_counts) {
          (unsigned long long)st.surfaces_created, (unsigned long long)st.surface_updates, (unsigned long long)st.draws,
          (unsigned long long)st.items_drawn, (unsigned long long)st.triangles_drawn, (unsigned long long)st.triangles);
   CHECK(st.surfaces_created == N && st.surfaces_live == N && st.surface_updates == 2);
-  CHECK(st.draws == frames + 1 && st.items_drawn == (uint64_t)frames * N + 2 && st.items == 2);
+  CHECK(st.draws == (uint64_t)frames + 1 && st.items_drawn == (uint64_t)frames * N + 2 && st.items == 2);
   CHECK(st.triangles == two && st.triangles_drawn == frames * want_triangles + two);
   CHECK(st.gl.program_links == 0 && st.gl.pattern_uploads == 0 && st.draw_calls == 0);
   tlod_draw_item_stats is = tlod_device_query_item_stats(dev, 1);
