@@ -1,47 +1,19 @@
-// tesslod shaders -- shared declarations: patch, pattern and frame data in
-// storage buffers (backends/gl/src/gl_internal.h mirrors the layout), and the
-// canonical edge evaluation (docs/design.md invariant 1: both patches of an edge
-// evaluate its points with the same function, inputs and order, marked
-// precise so no FMA contraction can differ).
+// tesslod shaders -- shared declarations after layout.h (the storage
+// buffers, their structs and binding points, shared with C): the uniforms of
+// every program, and the canonical edge evaluation (docs/design.md invariant
+// 1: both patches of an edge evaluate its points with the same function,
+// inputs and order, marked precise so no FMA contraction can differ).
 
-struct Patch {
-  vec4 p[4];   // corner positions, alpha in w
-  vec4 n[4];   // corner normals
-  uvec4 weld;  // welded position id per corner (canonical edge direction)
-  uvec4 info;  // x: corner count
-  vec4 b[10];  // PN control points b300 b030 b003 b210 b120 b021 b012 b102 b201 b111
-  vec4 mn[3];  // PN mid-edge normals n110 n011 n101
-};
+// Uniform locations are looked up once, when the device links the program.
+uniform mat4 u_view_proj;      // proj * view * model of the item drawn
+uniform mat4 u_model;          // the item's model matrix (world position for shading)
+uniform mat3 u_normal_matrix;  // inverse transpose of the model's 3x3
+uniform uint u_grid;           // N = 2^max_level (set at link time)
+uniform uint u_max_level;      // (set at link time)
 
-struct PatternVertex {
-  vec2 uv;
-  uint parent0, parent1;
-  uint code;   // kind (0-3 corner, 4-7 edge, 8 interior) | level << 8
-  uint param;  // edge: numerator of the end corner's weight over N
-  uint pad0, pad1;
-};
-
-struct Instance {
-  uint patch_id, level;
-  uint edge_levels;  // hardware path: outer level exponent per edge, 8 bits each
-  uint pad1;
-  vec4 morph;      // x: interior blend; y, z, w: edges 0-2
-  vec4 morph_e3;   // x: edge 3
-};
-
-struct Strip {
-  uint patch_a, patch_b, edges, levels;  // edges: ea | eb << 8; levels: la | lb << 8
-  vec4 morph;                            // x: a's edge blend, y: b's edge blend
-};
-
-layout(std430, binding = 0) readonly buffer Patches { Patch patches[]; };
-layout(std430, binding = 1) readonly buffer Pattern { PatternVertex pattern[]; };
-layout(std430, binding = 2) readonly buffer Instances { Instance instances[]; };
-layout(std430, binding = 3) readonly buffer Strips { Strip strips[]; };
-
-uniform mat4 u_view_proj;
-uniform uint u_grid;      // N = 2^max_level
-uniform uint u_max_level;
+// World-space outputs of a surface point (identity model: exactly pos and nrm).
+vec3 world_position(vec3 pos) { return (u_model * vec4(pos, 1.0)).xyz; }
+vec3 world_normal(vec3 nrm) { return u_normal_matrix * nrm; }
 
 // The canonical edge point from a to b at t (a has the smaller welded id).
 void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, float t, out vec3 pos, out vec3 nrm);

@@ -24,8 +24,8 @@ void main() {
       morph_point(a, p0, n0, p1, n1, pos, nrm);
     }
   }
-  v_normal = nrm;
-  v_world = pos;
+  v_normal = world_normal(nrm);
+  v_world = world_position(pos);
   v_level = ins.level;
   v_strip = 0u;
   gl_Position = u_view_proj * vec4(pos, 1.0);

@@ -2,7 +2,7 @@
 // (r <= 2^la: point r of a's edge polyline; else point r - 2^la - 1 of b's,
 // given in a's direction). Points are evaluated exactly as the patches' own
 // edge vertices, geomorph included, so strip and patch meet bitwise.
-layout(location = 0) in uvec2 a_ref;  // strip, point
+layout(location = TLOD_ATTRIB_STRIP_REF) in uvec2 a_ref;  // strip, point
 
 out vec3 v_normal;
 out vec3 v_world;
@@ -33,8 +33,8 @@ void main() {
     polyline_point(patches[S.patch_b], eb, lb, nb - (r - na - 1u), S.morph.y, pos, nrm);
     v_level = lb;
   }
-  v_normal = nrm;
-  v_world = pos;
+  v_normal = world_normal(nrm);
+  v_world = world_position(pos);
   v_strip = 1u;
   gl_Position = u_view_proj * vec4(pos, 1.0);
 }

@@ -37,8 +37,8 @@ void main() {
   if (kind < 4u) { pos = P.p[kind].xyz; nrm = P.n[kind].xyz; }
   else if (kind < 8u) patch_edge_point(P, kind - 4u, num, pos, nrm);
   else interior_point(P, uv, pos, nrm);
-  v_normal = nrm;
-  v_world = pos;
+  v_normal = world_normal(nrm);
+  v_world = world_position(pos);
   v_level = ins.level;
   v_strip = 0u;
   gl_Position = u_view_proj * vec4(pos, 1.0);

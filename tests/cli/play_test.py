@@ -448,6 +448,7 @@ bad_cases = [
     ("path JSON syntax error", ["play", "--path", bad_path("p_syntax.json", '{"keyframes": [%s,' % k0)], 1),
     ("path file missing", ["play", "--path", os.path.join(WORK, "nope.json")], 1),
     ("unknown backend", ["play", "--backend", "metal"], 2),
+    ("vulkan (not a backend of this build)", ["play", "--backend", "vulkan"], 2),
     ("--mode uniform:x", ["play", "--mode", "uniform:x"], 2),
     ("--mode uniform:11", ["play", "--mode", "uniform:11"], 2),
     ("--size 0x10", ["play", "--size", "0x10"], 2),
@@ -462,6 +463,17 @@ for i, (what, args, code) in enumerate(bad_cases):
     rc, out, err = run(*args, "--out", out_dir)
     check("bad input: %s -> exit %d, one error line, no output" % (what, code),
           rc == code and one_error_line(err) and not os.path.exists(out_dir), (rc, err, final_files(out_dir)))
+
+# ---- the registry: --backend lists only what this build has; null validates and counts ----
+rc, out, err = run("play", "--backend", "vulkan", "--out", os.path.join(WORK, "vk"))
+check("--backend vulkan: the error names the backends this build has, none of them vulkan",
+      rc == 2 and "cpu" in err and "null" in err and "vulkan" not in err.split("expected")[-1].split(",")[0], (rc, err))
+null_dir = os.path.join(WORK, "null_run")
+rc, out, err = run("play", "--backend", "null", "--frames", "5", "--size", SIZE_ARG, "-q", "--out", null_dir)
+t = load_json(os.path.join(null_dir, "trace.json")) if rc == 0 else None
+check("--backend null: plays with the same draw-list counts, drawn_triangles = planned triangles",
+      rc == 0 and isinstance(t, dict) and t["backend"] == "null" and len(t["frames"]) == 5
+      and all(f["drawn_triangles"] == f["triangles"] > 0 for f in t["frames"]), (rc, err))
 
 # ---- no GL context: the default falls back to cpu, an explicit gl fails -------------------
 no_egl = {"__EGL_VENDOR_LIBRARY_FILENAMES": os.path.join(WORK, "no_such_vendor.json")}  # glvnd finds no driver

@@ -7,7 +7,7 @@
  * cameras each (near, far and grazing, fields of view 30-75 degrees), one
  * scheduler per case with its defaults (adaptive levels, TIME geomorphs;
  * frames 16 ms apart, so patches are caught mid-morph), rendered by
- * tlod_backend_draw at 128 x 128 in front of pure blue.
+ * tlod_device_draw at 128 x 128 in front of pure blue.
  *
  * A HOLE is a pixel where the backend shows something a closed surface
  * cannot show from outside:
@@ -107,7 +107,7 @@ static double linear_depth(const camera* c, float d) {
 
 /* Draws dl with the backend (stencil records facing) and counts holes;
  * reference_dl is the complete draw list for the reference. */
-static hole_count find_holes(gl_env* env, tlod_backend* backend, const fixture* fx, const tlod_draw_list* dl,
+static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, const tlod_draw_list* dl,
                              const tlod_draw_list* reference_dl, const camera* cam, bool* ok) {
   tlod_view_desc view = camera_view(cam);
   const tlod_view_desc* v = &view;
@@ -118,11 +118,12 @@ static hole_count find_holes(gl_env* env, tlod_backend* backend, const fixture* 
   tlod_platform_bind(env->platform);
   clear_frame(W, H);
   gl_stencil_facing_begin();
-  tlod_backend_frame frame = backend_frame(dl, v);
-  tlod_result r = tlod_backend_draw(backend, &frame);
+  one_draw d;
+  one_draw_make(&d, fx->ds, dl, v);
+  tlod_result r = tlod_device_draw(dev, &d.desc);
   gl_stencil_facing_end();
   if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "tlod_backend_draw: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    fprintf(stderr, "tlod_device_draw: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
     return hc;
   }
   gl_read_rgba(W, H, env->rgba);
@@ -228,24 +229,16 @@ static void env_free(gl_env* env) {
   memset(env, 0, sizeof *env);
 }
 
-static tlod_backend* make_backend(tlod_context* ctx, bool hardware) {
-  tlod_backend* b = NULL;
-  tlod_result r = tlod_backend_create(
-      ctx, &(tlod_backend_desc){.name = "gl", .label = "gl_cracks", .hardware_tessellation = hardware}, &b);
-  if (r != TLOD_SUCCESS)
-    fprintf(stderr, "tlod_backend_create(\"gl\"): %s: %s (compiled in: %s)\n", tlod_result_string(r),
-            tlod_context_last_error(ctx), tlod_backend_names());
-  return b;
-}
-
 TEST(test_no_holes) {
   char err[512] = "";
   gl_env env;
   CHECK_MSG(env_init(&env, err, sizeof err), "cannot create a GL context: %s", err);
   tlod_context* ctx = NULL;
   CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_backend* backend = make_backend(ctx, false);
-  CHECK(backend);
+  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
+  CHECK(pat);
+  tlod_device* dev = new_gl_device(ctx, pat, "gl_cracks", (tlod_device_gl_desc){0});
+  CHECK(dev);
   shape shapes[3] = {shape_icosphere(2), shape_torus(16, 10), shape_cube_soft()};
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   uint32_t frames = 0, failures = 0, mixed = 0, references = 0;
@@ -253,8 +246,7 @@ TEST(test_no_holes) {
   for (int si = 0; si < 3; ++si)
     for (int ti = 0; ti < 2; ++ti) {
       fixture fx;
-      CHECK(fixture_make(&fx, ctx, &shapes[si], types[ti], MAX_LEVEL));
-      CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+      CHECK(fixture_make(&fx, ctx, &shapes[si], types[ti], pat, dev));
       tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
       CHECK(sch);
       shape_rng rng = {0x5EED0000u + 10u * (uint64_t)si + (uint64_t)ti};
@@ -270,7 +262,7 @@ TEST(test_no_holes) {
         mixed += levels_used > 1;
         strips += dl->strip_count;
         bool ok;
-        hole_count hc = find_holes(&env, backend, &fx, dl, dl, &cam, &ok);
+        hole_count hc = find_holes(&env, dev, &fx, dl, dl, &cam, &ok);
         CHECK_MSG(ok, "%s %s camera %d: draw failed", shapes[si].name, type_name(types[ti]), k);
         frames++;
         candidates += hc.enclosed_candidates + hc.back_candidates;
@@ -298,7 +290,8 @@ TEST(test_no_holes) {
          (unsigned long long)contour_back, failures);
   for (int k = 0; k < 3; ++k)
     shape_free(&shapes[k]);
-  tlod_backend_destroy(backend);
+  tlod_device_destroy(dev);
+  tlod_patterns_destroy(pat);
   tlod_context_destroy(ctx);
   env_free(&env);
   CHECK_MSG(mixed >= frames / 2, "only %u of %u frames had mixed levels: the test does not exercise strips", mixed,
@@ -313,12 +306,13 @@ TEST(test_detector_sees_missing_strips) {
   CHECK_MSG(env_init(&env, err, sizeof err), "cannot create a GL context: %s", err);
   tlod_context* ctx = NULL;
   CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_backend* backend = make_backend(ctx, false);
-  CHECK(backend);
+  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
+  CHECK(pat);
+  tlod_device* dev = new_gl_device(ctx, pat, "gl_cracks", (tlod_device_gl_desc){0});
+  CHECK(dev);
   shape cube = shape_cube_soft();
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, &cube, TLOD_SURFACE_PN, MAX_LEVEL));
-  CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+  CHECK(fixture_make(&fx, ctx, &cube, TLOD_SURFACE_PN, pat, dev));
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
   CHECK(sch);
   /* close cameras on the diagonals and faces */
@@ -333,7 +327,7 @@ TEST(test_detector_sees_missing_strips) {
     CHECK(dl);
     /* the full list is hole-free ... */
     bool ok;
-    hole_count full = find_holes(&env, backend, &fx, dl, dl, &cam, &ok);
+    hole_count full = find_holes(&env, dev, &fx, dl, dl, &cam, &ok);
     CHECK(ok);
     CHECK_MSG(full.enclosed + full.back == 0, "camera %d: %u holes with strips", k, full.enclosed + full.back);
     /* ... the copy without strips is not */
@@ -341,7 +335,7 @@ TEST(test_detector_sees_missing_strips) {
     open.strip_count = 0;
     open.strip_triangles = 0;
     removed += dl->strip_count;
-    hole_count hc = find_holes(&env, backend, &fx, &open, dl, &cam, &ok);
+    hole_count hc = find_holes(&env, dev, &fx, &open, dl, &cam, &ok);
     CHECK(ok);
     printf("  camera %d: %3u strips removed -> %4u hole pixels (%u enclosed background, %u back faces; "
            "candidates %u + %u)\n",
@@ -358,14 +352,15 @@ TEST(test_detector_sees_missing_strips) {
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
   shape_free(&cube);
-  tlod_backend_destroy(backend);
+  tlod_device_destroy(dev);
+  tlod_patterns_destroy(pat);
   tlod_context_destroy(ctx);
   env_free(&env);
   CHECK_MSG(removed > 0, "the draw lists had no strips to remove");
   CHECK_MSG(frames_with_holes >= 1, "no holes found with the strips removed: the detector is blind");
 }
 
-/* The hardware-tessellation path (GL_PATCHES; backend.h: each edge at the
+/* The hardware-tessellation path (GL_PATCHES; tesslod/backend.h: each edge at the
  * finer side's level, no strips, no geomorphs, split-normal edges crack by
  * design) on the smooth shapes: no holes either. Close cameras make draws
  * that need batching under Mesa's 65,536 tessellated vertices per draw. */
@@ -375,8 +370,10 @@ TEST(test_hardware_path_no_holes) {
   CHECK_MSG(env_init(&env, err, sizeof err), "cannot create a GL context: %s", err);
   tlod_context* ctx = NULL;
   CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_backend* backend = make_backend(ctx, true);
-  CHECK(backend);
+  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
+  CHECK(pat);
+  tlod_device* dev = new_gl_device(ctx, pat, "gl_cracks", (tlod_device_gl_desc){.hardware_tessellation = true});
+  CHECK(dev);
   shape shapes[2] = {shape_icosphere(2), shape_torus(16, 10)};
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   uint32_t frames = 0, failures = 0, most_calls = 0;
@@ -384,8 +381,7 @@ TEST(test_hardware_path_no_holes) {
   for (int si = 0; si < 2; ++si)
     for (int ti = 0; ti < 2; ++ti) {
       fixture fx;
-      CHECK(fixture_make(&fx, ctx, &shapes[si], types[ti], MAX_LEVEL));
-      CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+      CHECK(fixture_make(&fx, ctx, &shapes[si], types[ti], pat, dev));
       tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL, .morph = TLOD_MORPH_NONE});
       CHECK(sch);
       shape_rng rng = {0xA4D00000u + 10u * (uint64_t)si + (uint64_t)ti};
@@ -395,9 +391,9 @@ TEST(test_hardware_path_no_holes) {
         const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
         CHECK(dl);
         bool ok;
-        hole_count hc = find_holes(&env, backend, &fx, dl, dl, &cam, &ok);
+        hole_count hc = find_holes(&env, dev, &fx, dl, dl, &cam, &ok);
         CHECK_MSG(ok, "%s %s camera %d: draw failed", shapes[si].name, type_name(types[ti]), k);
-        tlod_backend_timings t = tlod_backend_query_timings(backend);
+        tlod_device_stats t = tlod_device_query_stats(dev);
         if (t.draw_calls > most_calls) most_calls = t.draw_calls;
         if (t.vertices > most_vertices) most_vertices = t.vertices;
         frames++;
@@ -418,8 +414,7 @@ TEST(test_hardware_path_no_holes) {
    * one bucket), so the draws must be split; lost patches show as holes */
   {
     fixture fx;
-    CHECK(fixture_make(&fx, ctx, &shapes[0], TLOD_SURFACE_PN, MAX_LEVEL));
-    CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+    CHECK(fixture_make(&fx, ctx, &shapes[0], TLOD_SURFACE_PN, pat, dev));
     tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.policy = TLOD_POLICY_ERROR,
                                                                    .epsilon_px = 1e-6f,
                                                                    .max_level = MAX_LEVEL,
@@ -431,9 +426,9 @@ TEST(test_hardware_path_no_holes) {
     const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
     CHECK(dl);
     bool ok;
-    hole_count hc = find_holes(&env, backend, &fx, dl, dl, &cam, &ok);
+    hole_count hc = find_holes(&env, dev, &fx, dl, dl, &cam, &ok);
     CHECK(ok);
-    tlod_backend_timings t = tlod_backend_query_timings(backend);
+    tlod_device_stats t = tlod_device_query_stats(dev);
     uint32_t covered = 0;
     for (uint32_t i = 0; i < W * H; ++i)
       covered += !is_background(env.rgba + 4 * i);
@@ -452,7 +447,8 @@ TEST(test_hardware_path_no_holes) {
          frames, failures, (unsigned long long)most_vertices, most_calls);
   for (int k = 0; k < 2; ++k)
     shape_free(&shapes[k]);
-  tlod_backend_destroy(backend);
+  tlod_device_destroy(dev);
+  tlod_patterns_destroy(pat);
   tlod_context_destroy(ctx);
   env_free(&env);
   CHECK_MSG(failures == 0, "hardware path: %u frames with holes (see above)", failures);

@@ -1,5 +1,5 @@
 /*
- * gl_engine_state_test.c -- tlod_backend_draw leaves an engine's GL state
+ * gl_engine_state_test.c -- tlod_device_draw leaves an engine's GL state
  * as it found it and draws into the engine's framebuffer (owned by the GL
  * tests). Public API only.
  *
@@ -10,8 +10,8 @@
  * depth test GREATER with the mask off, polygon mode LINE, culling of FRONT
  * faces, polygon offset fill (1.5, 2.5), an odd viewport, a scissor box, a
  * stencil setup. It draws a triangle of its own, then calls
- * tlod_backend_draw (shaded, then LEVELS + wireframe) and checks:
- *   - every state in backend.h's GL STATE list is exactly as it was
+ * tlod_device_draw (shaded, then LEVELS + wireframe) and checks:
+ *   - every state in tesslod/gl.h's GL STATE list is exactly as it was
  *     (glGetIntegerv & co.), and the states the backend must not touch
  *     (framebuffer bindings, blend function, scissor, stencil, colour mask,
  *     front face, active texture) too;
@@ -180,19 +180,13 @@ static const char* const tri_fs = "#version 450 core\n"
                                   "void main() { o_color = color; }\n";
 
 TEST(test_engine_state) {
-  char err[512] = "";
-  tlod_platform* platform = gl_test_platform(W, H, err, sizeof err);
-  CHECK_MSG(platform, "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  gl_session gs;
+  CHECK_MSG(gl_session_open(&gs, W, H, 5, "engine_state", (tlod_device_gl_desc){0}),
+            "no GL context or device (see above)");
   shape sph = shape_icosphere(2);
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PN, 5));
-  tlod_backend* backend = NULL;
-  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl", .label = "engine_state"}, &backend);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_create(\"gl\"): %s: %s (compiled in: %s)", tlod_result_string(r),
-            tlod_context_last_error(ctx), tlod_backend_names());
-  CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PN, gs.pat, gs.dev));
+  tlod_result r;
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
   CHECK(sch);
   /* the sphere sits right of centre; the engine's triangle covers the left */
@@ -200,16 +194,17 @@ TEST(test_engine_state) {
   tlod_view_desc v = camera_view(&cam);
   const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
   CHECK(dl);
-  tlod_backend_frame frame = backend_frame(dl, &v);
+  one_draw frame;
+  one_draw_make(&frame, fx.ds, dl, &v);
 
-  /* tesslod's coverage alone, in the platform's FBO */
+  /* tesslod's coverage alone, in the gs.platform's FBO */
   uint8_t* alone = malloc(4 * W * H);
   uint8_t* before = malloc(4 * W * H);
   uint8_t* after = malloc(4 * W * H);
   CHECK(alone && before && after);
-  tlod_platform_bind(platform);
+  tlod_platform_bind(gs.platform);
   clear_frame(W, H);
-  CHECK(tlod_backend_draw(backend, &frame) == TLOD_SUCCESS);
+  CHECK(tlod_device_draw(gs.dev, &frame.desc) == TLOD_SUCCESS);
   gl_read_rgba(W, H, alone);
 
   /* ---- the engine ---- */
@@ -284,27 +279,26 @@ TEST(test_engine_state) {
 
   /* tesslod draws into the engine's framebuffer, twice: shaded, then
    * LEVELS with the wireframe overlay */
-  r = tlod_backend_draw(backend, &frame);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_draw: %s: %s", tlod_result_string(r), tlod_context_last_error(ctx));
+  r = tlod_device_draw(gs.dev, &frame.desc);
+  CHECK_MSG(r == TLOD_SUCCESS, "tlod_device_draw: %s: %s", tlod_result_string(r), tlod_context_last_error(gs.ctx));
   GLenum gl_err = glGetError();
   gl_state got = capture();
   int diffs = compare_state(&want, &got, "after draw");
-  CHECK_MSG(gl_err == GL_NO_ERROR, "tlod_backend_draw left a GL error: %s (0x%04X)", gl_error_name(gl_err), gl_err);
+  CHECK_MSG(gl_err == GL_NO_ERROR, "tlod_device_draw left a GL error: %s (0x%04X)", gl_error_name(gl_err), gl_err);
   gl_read_rgba(W, H, after);
-  tlod_backend_frame wire = frame;
-  wire.debug = TLOD_DEBUG_LEVELS;
-  wire.wireframe = true;
-  r = tlod_backend_draw(backend, &wire);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_draw (wireframe): %s: %s", tlod_result_string(r),
-            tlod_context_last_error(ctx));
+  frame.desc.debug = TLOD_DEBUG_LEVELS;
+  frame.desc.wireframe = true;
+  r = tlod_device_draw(gs.dev, &frame.desc);
+  CHECK_MSG(r == TLOD_SUCCESS, "tlod_device_draw (wireframe): %s: %s", tlod_result_string(r),
+            tlod_context_last_error(gs.ctx));
   gl_err = glGetError();
   got = capture();
   diffs += compare_state(&want, &got, "after wireframe draw");
-  CHECK_MSG(gl_err == GL_NO_ERROR, "tlod_backend_draw (wireframe) left a GL error: %s (0x%04X)", gl_error_name(gl_err),
+  CHECK_MSG(gl_err == GL_NO_ERROR, "tlod_device_draw (wireframe) left a GL error: %s (0x%04X)", gl_error_name(gl_err),
             gl_err);
   printf("  %d state differences after 2 draws (%u triangles each)\n", diffs,
          (unsigned)(dl->pattern_triangles + dl->strip_triangles));
-  CHECK_MSG(diffs == 0, "%d GL states changed by tlod_backend_draw (see above)", diffs);
+  CHECK_MSG(diffs == 0, "%d GL states changed by tlod_device_draw (see above)", diffs);
 
   /* pixels: the shaded draw's image ('after') against the coverage alone */
   uint32_t covered = 0, changed_inside = 0, triangle_px = 0, triangle_kept = 0, touched_outside = 0;
@@ -353,41 +347,34 @@ TEST(test_engine_state) {
   free(before);
   free(after);
   tlod_scheduler_destroy(sch);
-  tlod_backend_destroy(backend);
   fixture_free(&fx);
   shape_free(&sph);
-  tlod_context_destroy(ctx);
-  tlod_platform_destroy(platform);
+  gl_session_close(&gs);
 }
 
 /* An engine that times its passes has its own GL_TIME_ELAPSED (and
  * GL_PRIMITIVES_GENERATED) query active around the middleware's draw
  * (docs/style.md item 12: per-pass timestamps). GL allows one active query per target:
- * tlod_backend_draw must not begin another on the same target (that is
+ * tlod_device_draw must not begin another on the same target (that is
  * GL_INVALID_OPERATION), and the engine's queries must still end and
  * report. */
 TEST(test_engine_queries_active) {
-  char err[512] = "";
-  tlod_platform* platform = gl_test_platform(W, H, err, sizeof err);
-  CHECK_MSG(platform, "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  gl_session gs;
+  CHECK_MSG(gl_session_open(&gs, W, H, 5, "engine_queries", (tlod_device_gl_desc){0}),
+            "no GL context or device (see above)");
   shape sph = shape_icosphere(2);
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PHONG, 5));
-  tlod_backend* backend = NULL;
-  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl", .label = "engine_queries"}, &backend);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_create(\"gl\"): %s: %s", tlod_result_string(r),
-            tlod_context_last_error(ctx));
-  CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PHONG, gs.pat, gs.dev));
+  tlod_result r;
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
   CHECK(sch);
   camera cam = camera_look(0.9, -3.2, 0.6, 0, 0, 0, 50, W, H);
   tlod_view_desc v = camera_view(&cam);
   const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
   CHECK(dl);
-  tlod_backend_frame frame = backend_frame(dl, &v);
-  tlod_platform_bind(platform);
+  one_draw frame;
+  one_draw_make(&frame, fx.ds, dl, &v);
+  tlod_platform_bind(gs.platform);
   clear_frame(W, H);
   while (glGetError() != GL_NO_ERROR) {
   }
@@ -398,7 +385,7 @@ TEST(test_engine_queries_active) {
   for (int f = 0; f < 6; ++f) { /* the backend reads its queries a few frames late */
     glBeginQuery(GL_TIME_ELAPSED, q[0]);
     glBeginQuery(GL_PRIMITIVES_GENERATED, q[1]);
-    r = tlod_backend_draw(backend, &frame);
+    r = tlod_device_draw(gs.dev, &frame.desc);
     GLenum e = glGetError();
     if (e != GL_NO_ERROR && errors++ == 0) first_error = e;
     GLint active_time = 0, active_prims = 0;
@@ -426,13 +413,11 @@ TEST(test_engine_queries_active) {
   glDeleteQueries(2, q);
   uint64_t pattern_triangles = dl->pattern_triangles; /* dl dies with the scheduler */
   tlod_scheduler_destroy(sch);
-  tlod_backend_destroy(backend);
   fixture_free(&fx);
   shape_free(&sph);
-  tlod_context_destroy(ctx);
-  tlod_platform_destroy(platform);
+  gl_session_close(&gs);
   CHECK_MSG(errors == 0,
-            "tlod_backend_draw inside an engine's GL_TIME_ELAPSED / GL_PRIMITIVES_GENERATED queries: %d "
+            "tlod_device_draw inside an engine's GL_TIME_ELAPSED / GL_PRIMITIVES_GENERATED queries: %d "
             "errors, first %s (0x%04X)",
             errors, gl_error_name(first_error), first_error);
   CHECK_MSG(prims >= pattern_triangles, "the engine's GL_PRIMITIVES_GENERATED saw %llu primitives",

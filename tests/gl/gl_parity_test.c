@@ -10,7 +10,7 @@
  *             draw list carries fractional geomorph blends;
  *   uniform:  policy ERROR, epsilon 1e-6 px, max level 3, no geomorphs:
  *             every patch with any curvature at level 3;
- * image A = tlod_backend_draw ("gl", debug NONE, default light and colour)
+ * image A = tlod_device_draw ("gl", debug NONE, default light and colour)
  * into the headless FBO; image B = tlod_cpu_tessellate(draw_list) (welded,
  * with normals) drawn by the independent mesh renderer of gl_test.h, which
  * shades exactly as backend.h documents. Both 256 x 256, cleared to pure
@@ -27,7 +27,7 @@
  *   colour: on pixels covered by both, the largest RGB channel difference
  *     is <= 8/255 on >= 99% of them (normals evaluated on the GPU vs CPU,
  *     and pixels where a front and a back face swap at a silhouette);
- *   triangle count: exact. tlod_backend_query_timings().triangles ==
+ *   triangle count: exact. tlod_device_query_stats().triangles ==
  *     draw_list pattern_triangles + strip_triangles == the CPU mesh's
  *     triangle_count + folds_skipped (the degenerate strip triangles the
  *     CPU leaves out, which a GPU draws as zero-area).
@@ -104,19 +104,20 @@ typedef struct gl_env {
 } gl_env;
 
 /* Renders one draw list both ways and compares. */
-static void compare_one(gl_env* env, tlod_backend* backend, const fixture* fx, const tlod_draw_list* dl,
+static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const tlod_draw_list* dl,
                         const tlod_view_desc* v, const char* what) {
-  /* A: the GL backend */
+  /* A: the GL device */
   tlod_platform_bind(env->platform);
   clear_frame(W, H);
-  tlod_backend_frame frame = backend_frame(dl, v);
-  tlod_result r = tlod_backend_draw(backend, &frame);
-  CHECK_MSG(r == TLOD_SUCCESS, "%s: tlod_backend_draw: %s: %s", what, tlod_result_string(r),
+  one_draw d;
+  one_draw_make(&d, fx->ds, dl, v);
+  tlod_result r = tlod_device_draw(dev, &d.desc);
+  CHECK_MSG(r == TLOD_SUCCESS, "%s: tlod_device_draw: %s: %s", what, tlod_result_string(r),
             tlod_context_last_error(fx->ctx));
   GLenum err = glGetError();
-  CHECK_MSG(err == GL_NO_ERROR, "%s: GL error after tlod_backend_draw: %s (0x%04X)", what, gl_error_name(err), err);
+  CHECK_MSG(err == GL_NO_ERROR, "%s: GL error after tlod_device_draw: %s (0x%04X)", what, gl_error_name(err), err);
   gl_read_rgba(W, H, env->img_a);
-  tlod_backend_timings t = tlod_backend_query_timings(backend);
+  tlod_device_stats t = tlod_device_query_stats(dev);
 
   /* B: the CPU reference through the independent renderer */
   tlod_cpu_mesh* m = realise(fx, dl);
@@ -152,7 +153,7 @@ static void compare_one(gl_env* env, tlod_backend* backend, const fixture* fx, c
   if (colour_fraction < s_totals.worst_colour_fraction) s_totals.worst_colour_fraction = colour_fraction;
 
   CHECK_MSG(t.triangles == draw_list_triangles,
-            "%s: backend drew %llu triangles, the draw list has %llu (pattern %llu + strip %llu)", what,
+            "%s: device drew %llu triangles, the draw list has %llu (pattern %llu + strip %llu)", what,
             (unsigned long long)t.triangles, (unsigned long long)draw_list_triangles,
             (unsigned long long)dl->pattern_triangles, (unsigned long long)dl->strip_triangles);
   CHECK_MSG(cpu_triangles == draw_list_triangles, "%s: CPU mesh has %llu triangles + folds skipped, the draw list %llu",
@@ -180,22 +181,20 @@ TEST(test_parity) {
 
   tlod_context* ctx = NULL;
   CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_backend* backend = NULL;
-  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl", .label = "gl_parity"}, &backend);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_create(\"gl\"): %s: %s (compiled in: %s)", tlod_result_string(r),
-            tlod_context_last_error(ctx), tlod_backend_names());
-  CHECK_MSG(strcmp(tlod_backend_name(backend), "gl") == 0, "backend name %s", tlod_backend_name(backend));
+  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
+  CHECK(pat);
+  tlod_device* dev = new_gl_device(ctx, pat, "gl_parity", (tlod_device_gl_desc){0});
+  CHECK(dev);
+  CHECK_MSG(strcmp(tlod_device_backend(dev), "gl") == 0, "backend name %s", tlod_device_backend(dev));
 
   shape shapes[3] = {shape_icosphere(2), shape_torus(16, 10), shape_cube_soft()};
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   for (int si = 0; si < 3; ++si)
     for (int ti = 0; ti < 2; ++ti) {
       fixture fx;
-      CHECK(fixture_make(&fx, ctx, &shapes[si], types[ti], MAX_LEVEL));
-      /* a new surface for the same backend: upload again */
-      r = tlod_backend_upload(backend, fx.surf, fx.pat);
-      CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_upload %s %s: %s: %s", shapes[si].name, type_name(types[ti]),
-                tlod_result_string(r), tlod_context_last_error(ctx));
+      /* a new device surface on the same device */
+      CHECK_MSG(fixture_make(&fx, ctx, &shapes[si], types[ti], pat, dev), "fixture %s %s", shapes[si].name,
+                type_name(types[ti]));
       for (int mode = 0; mode < 2; ++mode) {
         tlod_scheduler_desc sd = {.max_level = MAX_LEVEL};
         if (mode == 1)
@@ -220,7 +219,7 @@ TEST(test_parity) {
                       visible);
           }
           int failed_before = _test_checks_failed;
-          compare_one(&env, backend, &fx, dl, &v, what);
+          compare_one(&env, dev, &fx, dl, &v, what);
           if (_test_checks_failed != failed_before) {
             char buf[256];
             camera_print(&cams[ci], buf, sizeof buf);
@@ -241,7 +240,8 @@ TEST(test_parity) {
          (unsigned long long)s_totals.off_band, s_totals.worst_colour, 100.0 * s_totals.worst_colour_fraction);
   for (int k = 0; k < 3; ++k)
     shape_free(&shapes[k]);
-  tlod_backend_destroy(backend);
+  tlod_device_destroy(dev);
+  tlod_patterns_destroy(pat);
   tlod_context_destroy(ctx);
   ref_free(&env.ref);
   free(env.img_a);

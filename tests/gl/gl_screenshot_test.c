@@ -4,7 +4,7 @@
  *
  *   - a GL-backend frame (160 x 120, not square, so width / height swaps
  *     show) read with tlod_platform_read_rgba (top row first) equals
- *     tlod_backend_read_image (bottom row first) flipped, exactly;
+ *     tlod_device_read_image (bottom row first) flipped, exactly;
  *   - tlod_png_write produces a valid PNG: the 8-byte signature, an IHDR
  *     chunk first with the width, height, bit depth 8 and colour type 6
  *     (RGBA), and stb_image decodes it back to the same bytes;
@@ -76,50 +76,46 @@ static void check_png(const char* path, uint32_t w, uint32_t h, const uint8_t* r
 }
 
 TEST(test_screenshot) {
-  char err[512] = "";
-  tlod_platform* platform = gl_test_platform(W, H, err, sizeof err);
-  CHECK_MSG(platform, "cannot create a GL context: %s", err);
+  gl_session gs;
+  CHECK_MSG(gl_session_open(&gs, W, H, 5, "gl_screenshot", (tlod_device_gl_desc){0}),
+            "no GL context or device (see above)");
   uint32_t pw = 0, ph = 0;
-  tlod_platform_size(platform, &pw, &ph);
-  CHECK(pw == W && ph == H && tlod_platform_framebuffer(platform) != 0);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
+  tlod_platform_size(gs.platform, &pw, &ph);
+  CHECK(pw == W && ph == H && tlod_platform_framebuffer(gs.platform) != 0);
   shape sph = shape_icosphere(2);
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PN, 5));
-  tlod_backend* backend = NULL;
-  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl"}, &backend);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_create(\"gl\"): %s: %s (compiled in: %s)", tlod_result_string(r),
-            tlod_context_last_error(ctx), tlod_backend_names());
-  CHECK(tlod_backend_upload(backend, fx.surf, fx.pat) == TLOD_SUCCESS);
+  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PN, gs.pat, gs.dev));
+  tlod_result r;
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
   CHECK(sch);
   camera cam = camera_look(1.2, -2.6, 1.4, 0, 0, 0.2, 45, W, H);
   tlod_view_desc v = camera_view(&cam);
   const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
   CHECK(dl);
-  tlod_platform_bind(platform);
+  tlod_platform_bind(gs.platform);
   clear_frame(W, H);
-  tlod_backend_frame frame = backend_frame(dl, &v);
-  frame.wireframe = true;
-  CHECK(tlod_backend_draw(backend, &frame) == TLOD_SUCCESS);
+  one_draw frame;
+  one_draw_make(&frame, fx.ds, dl, &v);
+  frame.desc.wireframe = true;
+  CHECK(tlod_device_draw(gs.dev, &frame.desc) == TLOD_SUCCESS);
 
   uint8_t* top_first = malloc(4 * W * H);
   uint8_t* bottom_first = malloc(4 * W * H);
   CHECK(top_first && bottom_first);
-  CHECK(tlod_platform_read_rgba(platform, top_first));
-  r = tlod_backend_read_image(backend, W, H, bottom_first);
-  CHECK_MSG(r == TLOD_SUCCESS, "tlod_backend_read_image: %s: %s", tlod_result_string(r), tlod_context_last_error(ctx));
+  CHECK(tlod_platform_read_rgba(gs.platform, top_first));
+  r = tlod_device_read_image(gs.dev, W, H, bottom_first);
+  CHECK_MSG(r == TLOD_SUCCESS, "tlod_device_read_image: %s: %s", tlod_result_string(r),
+            tlod_context_last_error(gs.ctx));
   uint32_t covered = 0, rows_differ = 0;
   for (uint32_t y = 0; y < H; ++y) {
     rows_differ += memcmp(top_first + (size_t)y * W * 4, bottom_first + (size_t)(H - 1 - y) * W * 4, W * 4) != 0;
     for (uint32_t x = 0; x < W; ++x)
       covered += !is_background(top_first + 4 * ((size_t)y * W + x));
   }
-  printf("  frame %ux%u: %u pixels covered; platform vs backend read-back: %u rows differ\n", W, H, covered,
+  printf("  frame %ux%u: %u pixels covered; gs.platform vs device read-back: %u rows differ\n", W, H, covered,
          rows_differ);
   CHECK_MSG(covered > 2000, "the frame has only %u covered pixels", covered);
-  CHECK_MSG(rows_differ == 0, "%u rows differ between tlod_platform_read_rgba (flipped) and tlod_backend_read_image",
+  CHECK_MSG(rows_differ == 0, "%u rows differ between tlod_platform_read_rgba (flipped) and tlod_device_read_image",
             rows_differ);
 
   /* a scratch directory */
@@ -129,7 +125,7 @@ TEST(test_screenshot) {
   CHECK_MSG(mkdtemp(dir), "mkdtemp %s failed", dir);
   char path[640], list[1024];
   snprintf(path, sizeof path, "%s/frame.png", dir);
-  err[0] = '\0';
+  char err[512] = "";
   bool ok = tlod_png_write(path, W, H, top_first, err, sizeof err);
   CHECK_MSG(ok, "tlod_png_write %s: %s", path, err);
   CALL(check_png(path, W, H, top_first));
@@ -175,11 +171,9 @@ TEST(test_screenshot) {
   free(top_first);
   free(bottom_first);
   tlod_scheduler_destroy(sch);
-  tlod_backend_destroy(backend);
   fixture_free(&fx);
   shape_free(&sph);
-  tlod_context_destroy(ctx);
-  tlod_platform_destroy(platform);
+  gl_session_close(&gs);
 }
 
 TEST(test_platform_errors) {

@@ -5,7 +5,7 @@
  * Owned by the GL tests; header-only (every function static).
  *
  * The reference renderer draws exactly the shading documented for the GL
- * backend (tesslod/backend.h, tlod_backend_frame):
+ * device (tesslod/backend.h, tlod_draw_desc / tlod_draw_item):
  *   colour = base * (0.15 + 0.85 * max(dot(normalize(n), l), 0)),
  *   l = normalize(0.3, 0.8, 0.5) by default, base = (0.8, 0.8, 0.8, 1),
  *   world-space normals, no culling, no two-sided lighting.
@@ -122,7 +122,7 @@ static inline void gl_read_depth(uint32_t w, uint32_t h, float* depth) {
 
 /* Stencil records the facing of the visible fragment: 1 front, 2 back, 0
  * nothing drawn. Stencil state is not in the backend's save list (it must
- * leave it as the engine set it), so this works around tlod_backend_draw
+ * leave it as the engine set it), so this works around tlod_device_draw
  * too. Needs the stencil cleared to 0 and the depth test on. */
 static inline void gl_stencil_facing_begin(void) {
   glEnable(GL_STENCIL_TEST);
@@ -211,28 +211,37 @@ static inline void camera_print(const camera* c, char* buf, size_t size) {
 /* tesslod fixtures                                                         */
 /* ------------------------------------------------------------------------ */
 
+/* A shape's mesh and surface on patterns of the test's (a device is made
+ * for one pattern set, so the fixtures of a test share it), and, with a
+ * device, the surface's device surface. */
 typedef struct fixture {
   tlod_context* ctx;
   tlod_mesh* mesh;
   tlod_surface* surf;
-  tlod_patterns* pat;
+  const tlod_patterns* pat; /* borrowed */
+  tlod_device* dev;
+  tlod_device_surface* ds;
 } fixture;
 
 static inline void fixture_free(fixture* fx) {
+  tlod_device_destroy_surface(fx->dev, fx->ds);
   tlod_surface_destroy(fx->surf);
   tlod_mesh_destroy(fx->mesh);
-  tlod_patterns_destroy(fx->pat);
-  fx->surf = NULL, fx->mesh = NULL, fx->pat = NULL;
+  fx->surf = NULL, fx->mesh = NULL, fx->pat = NULL, fx->ds = NULL, fx->dev = NULL;
 }
 
+/* dev may be NULL (no device surface). */
 static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type,
-                                uint32_t max_level) {
+                                const tlod_patterns* patterns, tlod_device* dev) {
   memset(fx, 0, sizeof *fx);
   fx->ctx = ctx;
+  fx->pat = patterns;
+  fx->dev = dev;
   tlod_mesh_desc md = shape_mesh_desc(s);
   tlod_result r = tlod_mesh_create(ctx, &md, &fx->mesh);
-  if (r == TLOD_SUCCESS) r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type}, &fx->surf);
-  if (r == TLOD_SUCCESS) r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = max_level}, &fx->pat);
+  if (r == TLOD_SUCCESS)
+    r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type, .label = s->name}, &fx->surf);
+  if (r == TLOD_SUCCESS && dev) r = tlod_device_create_surface(dev, fx->surf, &fx->ds);
   if (r != TLOD_SUCCESS) {
     fprintf(stderr, "fixture %s: %s: %s\n", s->name, tlod_result_string(r), tlod_context_last_error(ctx));
     fixture_free(fx);
@@ -279,16 +288,78 @@ static inline tlod_cpu_mesh* realise(const fixture* fx, const tlod_draw_list* dl
   return out;
 }
 
-static inline tlod_backend_frame backend_frame(const tlod_draw_list* dl, const tlod_view_desc* v) {
-  tlod_backend_frame f;
-  memset(&f, 0, sizeof f);
-  f.draw_list = dl;
-  memcpy(f.view, v->view, sizeof f.view);
-  memcpy(f.proj, v->proj, sizeof f.proj);
-  f.viewport[2] = v->viewport_width;
-  f.viewport[3] = v->viewport_height;
-  f.debug = TLOD_DEBUG_NONE;
-  return f;
+static inline tlod_patterns* new_patterns(tlod_context* ctx, uint32_t max_level) {
+  tlod_patterns* p = NULL;
+  tlod_result r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = max_level}, &p);
+  if (r != TLOD_SUCCESS)
+    fprintf(stderr, "tlod_patterns_create: %s: %s\n", tlod_result_string(r), tlod_context_last_error(ctx));
+  return p;
+}
+
+/* A "gl" device on the current context, or NULL with the reason printed. */
+static inline tlod_device* new_gl_device(tlod_context* ctx, const tlod_patterns* patterns, const char* label,
+                                         tlod_device_gl_desc gl) {
+  tlod_device* dev = NULL;
+  tlod_result r = tlod_device_create(
+      ctx, &(tlod_device_desc){.backend = "gl", .patterns = patterns, .gl = gl, .label = label}, &dev);
+  if (r != TLOD_SUCCESS)
+    fprintf(stderr, "tlod_device_create(\"gl\"): %s: %s (this build has: %s)\n", tlod_result_string(r),
+            tlod_context_last_error(ctx), tlod_backend_names());
+  return dev;
+}
+
+/* What a device test starts with: a headless platform (its context
+ * current), a tesslod context, patterns and a "gl" device on them. */
+typedef struct gl_session {
+  tlod_platform* platform;
+  tlod_context* ctx;
+  tlod_patterns* pat;
+  tlod_device* dev;
+} gl_session;
+
+static inline void gl_session_close(gl_session* s) {
+  tlod_device_destroy(s->dev);
+  tlod_patterns_destroy(s->pat);
+  tlod_context_destroy(s->ctx);
+  if (s->platform) tlod_platform_destroy(s->platform);
+  memset(s, 0, sizeof *s);
+}
+
+/* false with the reason printed (GL tests then FAIL, never skip). */
+static inline bool gl_session_open(gl_session* s, uint32_t w, uint32_t h, uint32_t max_level, const char* label,
+                                   tlod_device_gl_desc gl) {
+  char err[512] = "";
+  memset(s, 0, sizeof *s);
+  s->platform = gl_test_platform(w, h, err, sizeof err);
+  if (!s->platform) return false;
+  tlod_platform_bind(s->platform);
+  if (tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &s->ctx) != TLOD_SUCCESS ||
+      !(s->pat = new_patterns(s->ctx, max_level)) || !(s->dev = new_gl_device(s->ctx, s->pat, label, gl))) {
+    gl_session_close(s);
+    return false;
+  }
+  return true;
+}
+
+/* One item (identity model, default colour) for one view: desc.items points
+ * at item, so keep the struct where it is (do not copy it). */
+typedef struct one_draw {
+  tlod_draw_item item;
+  tlod_draw_desc desc;
+} one_draw;
+
+static inline void one_draw_make(one_draw* o, const tlod_device_surface* ds, const tlod_draw_list* dl,
+                                 const tlod_view_desc* v) {
+  memset(o, 0, sizeof *o);
+  o->item.surface = ds;
+  o->item.draw_list = dl;
+  o->desc.items = &o->item;
+  o->desc.item_count = 1;
+  memcpy(o->desc.view, v->view, sizeof o->desc.view);
+  memcpy(o->desc.proj, v->proj, sizeof o->desc.proj);
+  o->desc.viewport[2] = v->viewport_width;
+  o->desc.viewport[3] = v->viewport_height;
+  o->desc.debug = TLOD_DEBUG_NONE;
 }
 
 /* ------------------------------------------------------------------------ */

@@ -13,8 +13,8 @@ extern const char* const tool_surface_options[];
 extern const char* const tool_normal_options[];
 /* "error", "silhouette", "hybrid", "uniform", "flat": TLOD_POLICY_ERROR + index. */
 extern const char* const tool_policy_options[];
-/* "cpu", "gl", "vulkan": backend names. */
-extern const char* const tool_backend_options[];
+/* The backends this build has (tlod_backend_names(): "cpu", "gl", "null"). */
+const char* const* tool_backend_options(void);
 
 /* The library's names ("phong" also for the default). */
 const char* tool_surface_name(tlod_surface_type type);

@@ -15,11 +15,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
-#include "surface_eval.h"
+#include <math.h>
+
 #include "tesslod/cpu.h"
 
-enum { KIND_EDGE = TLOD_PATTERN_KIND_EDGE, KIND_INTERIOR = TLOD_PATTERN_KIND_INTERIOR };
+enum { KIND_EDGE = TLOD_GRID_EDGE, KIND_INTERIOR = TLOD_GRID_INTERIOR };
 
 /* Per pattern vertex: what it is on the patch (corner c, edge e, interior)
  * and its parameter (edge: numerator of t_end over N; interior: ordinal). */
@@ -39,7 +39,8 @@ typedef struct scratch {
 typedef struct tess {
   tlod_context* ctx;
   const tlod_surface* s;
-  const tlod_mesh* m;
+  tlod_mesh_view m;     /* read-only arrays of the surface's mesh */
+  tlod_surface_view sv; /* ... and of the surface (per-vertex alpha) */
   const tlod_patterns* pat;
   tlod_cpu_tessellate_desc d;
   uint32_t lmax, n_grid;
@@ -63,7 +64,7 @@ typedef struct tess {
 } tess;
 
 static tlod_pattern_shape shape_of(const tess* t, uint32_t f) {
-  return t->m->face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
+  return t->m.face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
 }
 
 static int level_of(const tess* t, uint32_t f) { return t->level[f]; }
@@ -76,12 +77,13 @@ static tlod_result build_table(tess* t, tlod_pattern_shape shape, uint32_t level
   uint32_t count;
   const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape, &count);
   lt->nv = tlod_pattern_vertex_count(shape, level);
-  lt->kind = _tlod_alloc(t->ctx, lt->nv);
-  lt->param = _tlod_alloc(t->ctx, sizeof(uint32_t) * lt->nv);
+  lt->kind = tlod_context_alloc(t->ctx, lt->nv);
+  lt->param = tlod_context_alloc(t->ctx, sizeof(uint32_t) * lt->nv);
   if (!lt->kind || !lt->param) return TLOD_ERROR_OUT_OF_MEMORY;
   lt->interior = 0;
   for (uint32_t x = 0; x < lt->nv; x++) {
-    lt->kind[x] = (uint8_t)tlod_pattern_vertex_kind(shape, t->lmax, pv[x].i, pv[x].j, &lt->param[x]);
+    lt->kind[x] =
+        (uint8_t)tlod_grid_point_kind(shape == TLOD_PATTERN_QUAD ? 4u : 3u, t->lmax, pv[x].i, pv[x].j, &lt->param[x]);
     if (lt->kind[x] == KIND_INTERIOR) lt->param[x] = lt->interior++;
   }
   return TLOD_SUCCESS;
@@ -104,18 +106,18 @@ static int cmp_corner(const void* pa, const void* pb) {
 }
 
 static tlod_result number_corners(tess* t) {
-  const tlod_mesh* m = t->m;
-  corner_key* keys = _tlod_alloc(t->ctx, sizeof(corner_key) * (m->vertex_count ? m->vertex_count : 1));
-  t->corner_id = _tlod_alloc(t->ctx, sizeof(uint32_t) * (m->vertex_count + 1));
-  t->corner_src = _tlod_alloc(t->ctx, sizeof(uint32_t) * (m->vertex_count + 1));
+  const tlod_mesh_view* m = &t->m;
+  corner_key* keys = tlod_context_alloc(t->ctx, sizeof(corner_key) * (m->vertex_count ? m->vertex_count : 1));
+  t->corner_id = tlod_context_alloc(t->ctx, sizeof(uint32_t) * (m->vertex_count + 1));
+  t->corner_src = tlod_context_alloc(t->ctx, sizeof(uint32_t) * (m->vertex_count + 1));
   if (!keys || !t->corner_id || !t->corner_src) {
-    _tlod_free(t->ctx, keys);
+    tlod_context_free(t->ctx, keys);
     return TLOD_ERROR_OUT_OF_MEMORY;
   }
   for (uint32_t v = 0; v < m->vertex_count; v++) {
     keys[v].key[0] = m->weld_id[v];
     memcpy(&keys[v].key[1], m->normals[v], sizeof(float) * 3);
-    memcpy(&keys[v].key[4], &t->s->alpha[v], sizeof(float));
+    memcpy(&keys[v].key[4], &t->sv.vertex_alpha[v], sizeof(float));
     keys[v].vertex = v;
   }
   qsort(keys, m->vertex_count, sizeof(corner_key), cmp_corner);
@@ -125,13 +127,13 @@ static tlod_result number_corners(tess* t) {
     t->corner_id[keys[x].vertex] = id - 1;
   }
   t->corner_count = id;
-  _tlod_free(t->ctx, keys);
+  tlod_context_free(t->ctx, keys);
   return TLOD_SUCCESS;
 }
 
 static bool linked(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link) {
-  *link = t->m->links[f][e];
-  return link->face != _TLOD_NONE && level_of(t, link->face) >= 0;
+  *link = t->m.links[f][e];
+  return link->face != UINT32_MAX && level_of(t, link->face) >= 0;
 }
 
 static float edge_blend(const tess* t, uint32_t f, uint32_t e) { return t->morph ? t->morph[f][1 + e] : 1.0f; }
@@ -154,7 +156,7 @@ static bool owns_edge(const tess* t, uint32_t f, tlod_edge_link link) {
 }
 
 static void assign_slots(tess* t) {
-  const tlod_mesh* m = t->m;
+  const tlod_mesh_view* m = &t->m;
   uint32_t base = t->corner_count;
   for (uint32_t f = 0; f < m->face_count; f++) {
     if (level_of(t, f) < 0) continue;
@@ -181,7 +183,7 @@ static void assign_slots(tess* t) {
 
 static void assign_unwelded(tess* t) {
   uint32_t base = 0;
-  for (uint32_t f = 0; f < t->m->face_count; f++) {
+  for (uint32_t f = 0; f < t->m.face_count; f++) {
     if (level_of(t, f) < 0) continue;
     t->interior_base[f] = base;
     base += table_of(t, f)->nv;
@@ -201,9 +203,9 @@ static void patch_map(const tess* t, uint32_t f, uint32_t* map) {
   }
   uint32_t corner[4] = {0}, ebase[4] = {0}, shift[4] = {0};
   bool erev[4] = {false};
-  for (uint32_t e = 0; e < t->m->face_corners[f]; e++) {
+  for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
     uint32_t slot = f * 4 + e, owner = t->slot_owner[slot];
-    corner[e] = t->corner_id[t->m->faces[f][e]];
+    corner[e] = t->corner_id[t->m.faces[f][e]];
     ebase[e] = t->slot_base[owner] - 1;
     shift[e] = t->lmax - t->slot_level[owner];
     erev[e] = owner != slot;
@@ -288,7 +290,7 @@ static void eval_corners(tess* t) {
   if (t->d.no_weld) return;
   for (uint32_t c = 0; c < t->corner_count; c++) {
     uint32_t v = t->corner_src[c];
-    put(t, c, t->m->positions[v], t->m->normals[v]);
+    put(t, c, t->m.positions[v], t->m.normals[v]);
   }
 }
 
@@ -318,10 +320,10 @@ static bool same_position(const tess* t, uint32_t a, uint32_t b) {
 static tlod_result push_strip_tri(tess* t, const uint32_t tri[3]) {
   if (t->strip_count == t->strip_cap) {
     uint32_t cap = t->strip_cap ? t->strip_cap * 2 : 1024;
-    uint32_t(*grown)[3] = _tlod_alloc(t->ctx, sizeof(*grown) * cap);
+    uint32_t(*grown)[3] = tlod_context_alloc(t->ctx, sizeof(*grown) * cap);
     if (!grown) return TLOD_ERROR_OUT_OF_MEMORY;
     if (t->strip_count) memcpy(grown, t->strip_tris, sizeof(*grown) * t->strip_count);
-    _tlod_free(t->ctx, t->strip_tris);
+    tlod_context_free(t->ctx, t->strip_tris);
     t->strip_tris = grown;
     t->strip_cap = cap;
   }
@@ -371,9 +373,9 @@ static tlod_result stitch(tess* t) {
     }
     return TLOD_SUCCESS;
   }
-  for (uint32_t f = 0; f < t->m->face_count; f++) {
+  for (uint32_t f = 0; f < t->m.face_count; f++) {
     if (level_of(t, f) < 0) continue;
-    for (uint32_t e = 0; e < t->m->face_corners[f]; e++) {
+    for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
       tlod_edge_link link;
       if (!linked(t, f, e, &link) || link.face < f) continue;
       /* Equal levels on one curve with one blend: the polylines coincide. */
@@ -390,46 +392,46 @@ static tlod_result stitch(tess* t) {
 static void tess_free(tess* t) {
   for (int sh = 0; sh < 2; sh++) {
     for (int l = 0; l <= TLOD_MAX_LEVEL; l++) {
-      _tlod_free(t->ctx, t->tables[sh][l].kind);
-      _tlod_free(t->ctx, t->tables[sh][l].param);
+      tlod_context_free(t->ctx, t->tables[sh][l].kind);
+      tlod_context_free(t->ctx, t->tables[sh][l].param);
     }
   }
   for (uint32_t w = 0; t->work && w < t->work_count; w++) {
-    _tlod_free(t->ctx, t->work[w].map);
-    _tlod_free(t->ctx, t->work[w].pos);
-    _tlod_free(t->ctx, t->work[w].nrm);
+    tlod_context_free(t->ctx, t->work[w].map);
+    tlod_context_free(t->ctx, t->work[w].pos);
+    tlod_context_free(t->ctx, t->work[w].nrm);
   }
   void* arrays[] = {t->level,     t->morph,         t->corner_id, t->corner_src, t->slot_owner, t->slot_level,
                     t->slot_base, t->interior_base, t->tri_base,  t->strip_tris, t->work};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
-    _tlod_free(t->ctx, arrays[i]);
+    tlod_context_free(t->ctx, arrays[i]);
 }
 
 void tlod_cpu_mesh_destroy(tlod_context* ctx, tlod_cpu_mesh* mesh) {
   if (!ctx || !mesh) return;
-  _tlod_free(ctx, mesh->positions);
-  _tlod_free(ctx, mesh->normals);
-  _tlod_free(ctx, mesh->indices);
-  _tlod_free(ctx, mesh->triangle_patch);
-  _tlod_free(ctx, mesh);
+  tlod_context_free(ctx, mesh->positions);
+  tlod_context_free(ctx, mesh->normals);
+  tlod_context_free(ctx, mesh->indices);
+  tlod_context_free(ctx, mesh->triangle_patch);
+  tlod_context_free(ctx, mesh);
 }
 
 static tlod_result take_draw_list(tess* t) {
   const tlod_draw_list* dl = t->d.draw_list;
-  if (dl->patch_count != t->m->face_count)
-    return _tlod_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
-                      "tlod_cpu_tessellate: draw list of %u patches for a surface of %u", dl->patch_count,
-                      t->m->face_count);
-  t->morph = _tlod_alloc(t->ctx, sizeof(*t->morph) * (t->m->face_count + 1u));
-  if (!t->morph) return _tlod_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
-  for (uint32_t f = 0; f < t->m->face_count; f++)
+  if (dl->patch_count != t->m.face_count)
+    return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "tlod_cpu_tessellate: draw list of %u patches for a surface of %u", dl->patch_count,
+                             t->m.face_count);
+  t->morph = tlod_context_alloc(t->ctx, sizeof(*t->morph) * (t->m.face_count + 1u));
+  if (!t->morph) return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
+  for (uint32_t f = 0; f < t->m.face_count; f++)
     for (int k = 0; k < 5; k++)
       t->morph[f][k] = 1.0f;
   for (uint32_t k = 0; k < dl->instance_count; k++) {
     const tlod_draw_instance* in = &dl->instances[k];
-    if (in->patch >= t->m->face_count)
-      return _tlod_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: draw list instance %u: patch %u", k,
-                        in->patch);
+    if (in->patch >= t->m.face_count)
+      return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                               "tlod_cpu_tessellate: draw list instance %u: patch %u", k, in->patch);
     t->morph[in->patch][0] = in->morph;
     memcpy(&t->morph[in->patch][1], in->edge_morph, sizeof(float) * 4);
   }
@@ -437,27 +439,27 @@ static tlod_result take_draw_list(tess* t) {
 }
 
 static tlod_result resolve_levels(tess* t) {
-  uint32_t faces = t->m->face_count;
-  t->level = _tlod_alloc(t->ctx, faces ? faces : 1);
-  if (!t->level) return _tlod_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
+  uint32_t faces = t->m.face_count;
+  t->level = tlod_context_alloc(t->ctx, faces ? faces : 1);
+  if (!t->level) return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
   const int8_t* levels = t->d.draw_list ? t->d.draw_list->levels : t->d.levels;
   for (uint32_t f = 0; f < faces; f++) {
     int lv = levels ? levels[f] : (int)t->d.level;
     if (lv > (int)t->lmax || lv < -1)
-      return _tlod_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
-                        "tlod_cpu_tessellate: patch %u: level %d outside [-1, %u] (patterns max level)", f, lv,
-                        t->lmax);
+      return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                               "tlod_cpu_tessellate: patch %u: level %d outside [-1, %u] (patterns max level)", f, lv,
+                               t->lmax);
     t->level[f] = (int8_t)lv;
     if (lv >= 0 && build_table(t, shape_of(t, f), (uint32_t)lv) != TLOD_SUCCESS)
-      return _tlod_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
+      return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
   }
   return t->d.draw_list ? take_draw_list(t) : TLOD_SUCCESS;
 }
 
 static tlod_result number_vertices(tess* t) {
-  uint32_t faces = t->m->face_count;
-  t->interior_base = _tlod_calloc(t->ctx, faces + 1u, sizeof(uint32_t));
-  t->tri_base = _tlod_calloc(t->ctx, faces + 1u, sizeof(uint32_t));
+  uint32_t faces = t->m.face_count;
+  t->interior_base = tlod_context_calloc(t->ctx, faces + 1u, sizeof(uint32_t));
+  t->tri_base = tlod_context_calloc(t->ctx, faces + 1u, sizeof(uint32_t));
   if (!t->interior_base || !t->tri_base) return TLOD_ERROR_OUT_OF_MEMORY;
   uint64_t tris = 0;
   for (uint32_t f = 0; f < faces; f++) {
@@ -470,9 +472,9 @@ static tlod_result number_vertices(tess* t) {
     assign_unwelded(t);
     return TLOD_SUCCESS;
   }
-  t->slot_owner = _tlod_calloc(t->ctx, (size_t)faces * 4 + 1, sizeof(uint32_t));
-  t->slot_level = _tlod_calloc(t->ctx, (size_t)faces * 4 + 1, 1);
-  t->slot_base = _tlod_calloc(t->ctx, (size_t)faces * 4 + 1, sizeof(uint32_t));
+  t->slot_owner = tlod_context_calloc(t->ctx, (size_t)faces * 4 + 1, sizeof(uint32_t));
+  t->slot_level = tlod_context_calloc(t->ctx, (size_t)faces * 4 + 1, 1);
+  t->slot_base = tlod_context_calloc(t->ctx, (size_t)faces * 4 + 1, sizeof(uint32_t));
   if (!t->slot_owner || !t->slot_level || !t->slot_base) return TLOD_ERROR_OUT_OF_MEMORY;
   tlod_result r = number_corners(t);
   if (r != TLOD_SUCCESS) return r;
@@ -484,15 +486,15 @@ static tlod_result alloc_work(tess* t) {
   for (int sh = 0; sh < 2; sh++)
     for (int l = 0; l <= TLOD_MAX_LEVEL; l++)
       t->work_stride = t->tables[sh][l].nv > t->work_stride ? t->tables[sh][l].nv : t->work_stride;
-  t->work_count = _tlod_worker_count(t->ctx);
-  t->work = _tlod_calloc(t->ctx, t->work_count, sizeof(scratch));
+  t->work_count = tlod_context_worker_count(t->ctx);
+  t->work = tlod_context_calloc(t->ctx, t->work_count, sizeof(scratch));
   if (!t->work) return TLOD_ERROR_OUT_OF_MEMORY;
   /* Strips read polylines through the map: it must hold the longest edge. */
   size_t n = (size_t)t->work_stride + (1u << TLOD_MAX_LEVEL) + 1;
   for (uint32_t w = 0; w < t->work_count; w++) {
-    t->work[w].map = _tlod_alloc(t->ctx, sizeof(uint32_t) * n);
-    t->work[w].pos = _tlod_alloc(t->ctx, sizeof(float[3]) * n);
-    t->work[w].nrm = _tlod_alloc(t->ctx, sizeof(float[3]) * n);
+    t->work[w].map = tlod_context_alloc(t->ctx, sizeof(uint32_t) * n);
+    t->work[w].pos = tlod_context_alloc(t->ctx, sizeof(float[3]) * n);
+    t->work[w].nrm = tlod_context_alloc(t->ctx, sizeof(float[3]) * n);
     if (!t->work[w].map || !t->work[w].pos || !t->work[w].nrm) return TLOD_ERROR_OUT_OF_MEMORY;
   }
   return TLOD_SUCCESS;
@@ -502,8 +504,8 @@ static tlod_result alloc_work(tess* t) {
  * reused frame after frame keeps its pages: no first-touch faults). */
 static bool ensure(const tlod_context* ctx, void** p, size_t elem, uint32_t count, uint32_t capacity) {
   if (*p && count <= capacity) return true;
-  _tlod_free(ctx, *p);
-  *p = _tlod_alloc(ctx, elem * ((size_t)count + 1));
+  tlod_context_free(ctx, *p);
+  *p = tlod_context_alloc(ctx, elem * ((size_t)count + 1));
   return *p != NULL;
 }
 
@@ -513,7 +515,7 @@ static tlod_result alloc_output(tess* t, bool indices) {
     uint32_t cap = o->vertex_capacity, n = t->vertex_count;
     bool ok = ensure(t->ctx, (void**)&o->positions, sizeof(float) * 3, n, cap);
     if (t->d.no_normals) {
-      _tlod_free(t->ctx, o->normals);
+      tlod_context_free(t->ctx, o->normals);
       o->normals = NULL;
     } else {
       ok = ensure(t->ctx, (void**)&o->normals, sizeof(float) * 3, n, o->normals ? cap : 0) && ok;
@@ -538,13 +540,13 @@ static tlod_result run(tess* t) {
   if ((r = number_vertices(t)) != TLOD_SUCCESS || (r = alloc_output(t, false)) != TLOD_SUCCESS ||
       (r = alloc_work(t)) != TLOD_SUCCESS)
     return r == TLOD_ERROR_UNSUPPORTED
-               ? _tlod_fail(t->ctx, r, "tlod_cpu_tessellate: output would exceed 2^30 triangles")
-               : _tlod_fail(t->ctx, r, "tlod_cpu_tessellate: out of memory for %u vertices", t->vertex_count);
+               ? tlod_context_fail(t->ctx, r, "tlod_cpu_tessellate: output would exceed 2^30 triangles")
+               : tlod_context_fail(t->ctx, r, "tlod_cpu_tessellate: out of memory for %u vertices", t->vertex_count);
   eval_corners(t);
-  _tlod_parallel_for(t->ctx, eval_patches, t, t->m->face_count);
+  tlod_context_parallel_for(t->ctx, eval_patches, t, t->m.face_count);
   if (stitch(t) != TLOD_SUCCESS || alloc_output(t, true) != TLOD_SUCCESS)
-    return _tlod_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for triangles");
-  _tlod_parallel_for(t->ctx, emit_patches, t, t->m->face_count);
+    return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for triangles");
+  tlod_context_parallel_for(t->ctx, emit_patches, t, t->m.face_count);
   if (t->strip_count) {
     memcpy(t->out->indices + 3 * (size_t)t->pattern_tris, t->strip_tris, sizeof(uint32_t) * 3 * t->strip_count);
     for (uint32_t k = 0; k < t->strip_count; k++)
@@ -557,8 +559,14 @@ tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surf
                                      const tlod_cpu_tessellate_desc* desc, tlod_cpu_mesh* mesh) {
   if (!ctx) return TLOD_ERROR_INVALID_ARGUMENT;
   if (!mesh || !surface || !patterns || !desc)
-    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: NULL argument");
-  tess t = {.ctx = ctx, .s = surface, .m = surface->mesh, .pat = patterns, .d = *desc, .out = mesh};
+    return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: NULL argument");
+  tess t = {.ctx = ctx,
+            .s = surface,
+            .m = tlod_mesh_query_view(tlod_surface_mesh(surface)),
+            .sv = tlod_surface_query_view(surface),
+            .pat = patterns,
+            .d = *desc,
+            .out = mesh};
   t.lmax = tlod_patterns_max_level(patterns);
   t.n_grid = 1u << t.lmax;
   mesh->vertex_count = mesh->triangle_count = 0;
@@ -572,10 +580,10 @@ tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surf
 tlod_result tlod_cpu_tessellate(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
                                 const tlod_cpu_tessellate_desc* desc, tlod_cpu_mesh** out) {
   if (!ctx) return TLOD_ERROR_INVALID_ARGUMENT;
-  if (!out) return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: NULL argument");
+  if (!out) return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: NULL argument");
   *out = NULL;
-  tlod_cpu_mesh* mesh = _tlod_calloc(ctx, 1, sizeof(tlod_cpu_mesh));
-  if (!mesh) return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
+  tlod_cpu_mesh* mesh = tlod_context_calloc(ctx, 1, sizeof(tlod_cpu_mesh));
+  if (!mesh) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
   tlod_result r = tlod_cpu_tessellate_into(ctx, surface, patterns, desc, mesh);
   if (r != TLOD_SUCCESS) {
     tlod_cpu_mesh_destroy(ctx, mesh);

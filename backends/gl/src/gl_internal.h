@@ -6,49 +6,22 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
-#include "internal.h"
-#include "tesslod/backend.h"
+#include "device_internal.h"
+#include "layout.h" /* backends/shaders: binding points and buffer structs, shared with GLSL */
+#include "tesslod/gl.h"
 
-/* std430 mirrors of backends/shaders/common.glsl. */
-typedef struct gl_patch {
-  float p[4][4]; /* xyz + alpha */
-  float n[4][4];
-  uint32_t weld[4];
-  uint32_t info[4];
-  float b[10][4];
-  float mn[3][4];
-} gl_patch;
+#if TLOD_GL_BINDING_PATCHES != TLOD_BINDING_PATCHES || TLOD_GL_BINDING_PATTERNS != TLOD_BINDING_PATTERN ||             \
+    TLOD_GL_BINDING_INSTANCES != TLOD_BINDING_INSTANCES || TLOD_GL_BINDING_STRIPS != TLOD_BINDING_STRIPS
+#error "tesslod/gl.h and backends/shaders/layout.h disagree on the binding points"
+#endif
 
-typedef struct gl_pattern_vertex {
-  float uv[2];
-  uint32_t parent0, parent1;
-  uint32_t code, param;
-  uint32_t pad[2];
-} gl_pattern_vertex;
-
-typedef struct gl_instance {
-  uint32_t patch, level;
-  uint32_t edge_levels; /* hardware path: outer level exponent per edge, 8 bits each */
-  uint32_t pad;
-  float morph[4];
-  float morph_e3[4];
-} gl_instance;
-
-typedef struct gl_strip {
-  uint32_t patch_a, patch_b, edges, levels;
-  float morph[4];
-} gl_strip;
-
-_Static_assert(sizeof(gl_patch) == 23 * 16, "gl_patch must match the std430 Patch");
-_Static_assert(sizeof(gl_pattern_vertex) == 32, "gl_pattern_vertex must match PatternVertex");
-_Static_assert(sizeof(gl_instance) == 48, "gl_instance must match Instance");
-_Static_assert(sizeof(gl_strip) == 32, "gl_strip must match Strip");
-
-/* The GL state the backend touches, saved before a draw and restored after. */
+/* The GL state the device touches, saved before a draw and restored after
+ * (the list in tesslod/gl.h). */
 typedef struct gl_saved_state {
   GLint program, vao, array_buffer, element_buffer, ssbo, ubo, indirect;
-  GLint ssbo_binding[4];
-  GLint64 ssbo_start[4], ssbo_size[4]; /* glBindBufferRange ranges; size 0 == whole buffer */
+  GLint ssbo_binding[TLOD_BINDING_COUNT];
+  GLint64 ssbo_start[TLOD_BINDING_COUNT],
+      ssbo_size[TLOD_BINDING_COUNT]; /* glBindBufferRange ranges; size 0 == whole buffer */
   GLint polygon_mode[2], cull_mode, depth_func, viewport[4];
   GLboolean cull, depth_test, depth_mask, blend, offset_fill;
   GLfloat offset_factor, offset_units;
@@ -66,6 +39,7 @@ GLuint _tlod_gl_program(const char* const* vert, int vert_count, const char* con
 GLuint _tlod_gl_program_tess(const char* const* stages[4], const int counts[4], char* error, size_t error_size);
 
 /* Embedded shader sources (generated from backends/shaders at configure time). */
+extern const char* const _tlod_shader_layout;
 extern const char* const _tlod_shader_common;
 extern const char* const _tlod_shader_phong;
 extern const char* const _tlod_shader_pn;
@@ -76,7 +50,5 @@ extern const char* const _tlod_shader_shade_frag;
 extern const char* const _tlod_shader_tess_vert;
 extern const char* const _tlod_shader_tess_tesc;
 extern const char* const _tlod_shader_tess_tese;
-
-extern const tlod_backend_vtbl _tlod_gl_vtbl;
 
 #endif

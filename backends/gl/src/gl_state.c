@@ -1,5 +1,5 @@
 /* tesslod::gl -- saving and restoring the engine's GL state around a draw
- * (the documented list in tesslod/backend.h). */
+ * (the documented list in tesslod/gl.h). */
 #include "gl_internal.h"
 
 void _tlod_gl_save_state(gl_saved_state* s) {
@@ -9,7 +9,7 @@ void _tlod_gl_save_state(gl_saved_state* s) {
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s->ssbo);
   glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s->ubo);
   glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &s->indirect);
-  for (GLuint i = 0; i < 4; i++) {
+  for (GLuint i = 0; i < TLOD_BINDING_COUNT; i++) {
     glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &s->ssbo_binding[i]);
     glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &s->ssbo_start[i]);
     glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, i, &s->ssbo_size[i]);
@@ -43,7 +43,7 @@ void _tlod_gl_restore_state(const gl_saved_state* s) {
   glBindBuffer(GL_ARRAY_BUFFER, (GLuint)s->array_buffer);
   /* An engine may have bound a range (glBindBufferRange): BindBufferBase
    * would widen it to the whole buffer. */
-  for (GLuint i = 0; i < 4; i++) {
+  for (GLuint i = 0; i < TLOD_BINDING_COUNT; i++) {
     if (s->ssbo_binding[i] && s->ssbo_size[i] > 0)
       glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, (GLuint)s->ssbo_binding[i], (GLintptr)s->ssbo_start[i],
                         (GLsizeiptr)s->ssbo_size[i]);

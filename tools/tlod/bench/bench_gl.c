@@ -23,16 +23,47 @@ typedef struct gl_case {
   bool hardware;
 } gl_case;
 
+/* The devices of one scene, made once (programs linked, patterns uploaded)
+ * and shared by its cases: the pattern path and, when a case asks for it,
+ * the hardware-tessellation path; the scene's surface on each. */
+typedef struct gl_devices {
+  tlod_device* dev[2];
+  tlod_device_surface* surface[2];
+} gl_devices;
+
+static void gl_devices_free(gl_devices* g) {
+  for (int k = 0; k < 2; k++)
+    tlod_device_destroy(g->dev[k]); /* and its surface */
+  memset(g, 0, sizeof(*g));
+}
+
+static int gl_device_for(bench_scene* s, gl_devices* g, bool hardware, tlod_device** dev,
+                         tlod_device_surface** surface) {
+  int k = hardware ? 1 : 0;
+  if (!g->dev[k]) {
+    tlod_surface_type type = tlod_surface_query_view(s->setup.surface).type;
+    tlod_device_desc d = {.backend = "gl",
+                          .patterns = s->setup.patterns,
+                          .gl = {.hardware_tessellation = hardware, .surface_types = 1u << type},
+                          .label = hardware ? "bench gl (hardware tessellation)" : "bench gl"};
+    if (tlod_device_create(s->ctx, &d, &g->dev[k]) != TLOD_SUCCESS ||
+        tlod_device_create_surface(g->dev[k], s->setup.surface, &g->surface[k]) != TLOD_SUCCESS)
+      return cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
+  }
+  *dev = g->dev[k];
+  *surface = g->surface[k];
+  return CLI_OK;
+}
+
 /* Mean and best frame time over the frames of an orbit; triangles drawn per frame. */
-static int run_case(bench_scene* s, const gl_case* c, uint32_t w, uint32_t h, uint32_t frames, double* best,
-                    double* mean, uint64_t* tris) {
+static int run_case(bench_scene* s, gl_devices* g, const gl_case* c, uint32_t w, uint32_t h, uint32_t frames,
+                    double* best, double* mean, uint64_t* tris) {
   tlod_scheduler* sch = NULL;
-  tlod_backend* b = NULL;
-  int rc = CLI_OK;
-  if (tlod_scheduler_create(s->ctx, s->setup.surface, s->setup.patterns, &c->sched, &sch) != TLOD_SUCCESS ||
-      tlod_backend_create(s->ctx, &(tlod_backend_desc){.name = "gl", .hardware_tessellation = c->hardware}, &b) !=
-          TLOD_SUCCESS ||
-      tlod_backend_upload(b, s->setup.surface, s->setup.patterns) != TLOD_SUCCESS)
+  tlod_device* dev = NULL;
+  tlod_device_surface* ds = NULL;
+  int rc = gl_device_for(s, g, c->hardware, &dev, &ds);
+  if (rc == CLI_OK &&
+      tlod_scheduler_create(s->ctx, s->setup.surface, s->setup.patterns, &c->sched, &sch) != TLOD_SUCCESS)
     rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
   *best = INFINITY;
   *mean = 0.0;
@@ -40,19 +71,19 @@ static int run_case(bench_scene* s, const gl_case* c, uint32_t w, uint32_t h, ui
     tlod_view_desc v;
     bench_orbit_view(s->setup.mesh, 0.6f + 0.02f * (float)k, 1.0f, w, h, &v);
     tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &v, .view_count = 1, .dt_ms = 16.7f});
-    tlod_backend_frame fr = {.draw_list = tlod_scheduler_draw_list(sch, 0), .viewport = {0, 0, w, h}, .finish = true};
+    tlod_draw_item item = {.surface = ds, .draw_list = tlod_scheduler_draw_list(sch, 0)};
+    tlod_draw_desc fr = {.items = &item, .item_count = 1, .viewport = {0, 0, w, h}, .finish = true};
     memcpy(fr.view, v.view, sizeof(fr.view));
     memcpy(fr.proj, v.proj, sizeof(fr.proj));
     glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (tlod_backend_draw(b, &fr) != TLOD_SUCCESS) rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
-    tlod_backend_timings t = tlod_backend_query_timings(b);
-    if (k == 0) continue; /* warm-up: shader and buffer set-up */
+    if (tlod_device_draw(dev, &fr) != TLOD_SUCCESS) rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
+    tlod_device_stats t = tlod_device_query_stats(dev);
+    if (k == 0) continue; /* warm-up: the first draw's buffer set-up */
     *best = t.wall_ms < *best ? t.wall_ms : *best;
     *mean += t.wall_ms / frames;
     *tris = t.triangles;
   }
-  tlod_backend_destroy(b);
   tlod_scheduler_destroy(sch);
   return rc;
 }
@@ -96,14 +127,16 @@ static int scene_cases(const char* in, uint32_t w, uint32_t h, uint32_t frames, 
       {"adaptive error, hardware tess.", {.policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE}, true},
   };
   double ref = 0.0;
+  gl_devices g = {0};
   for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]) && rc == CLI_OK; k++) {
     double best, mean;
     uint64_t tris = 0;
-    rc = run_case(&s, &cases[k], w, h, frames, &best, &mean, &tris);
+    rc = run_case(&s, &g, &cases[k], w, h, frames, &best, &mean, &tris);
     if (k == 0) ref = best;
     if (rc == CLI_OK) report(csv, in, cases[k].label, best, mean, tris, ref);
   }
   printf("gl         %-28s (uniform level %u; x = frame time / flat's)\n", in, worst);
+  gl_devices_free(&g);
   bench_scene_free(&s);
   return rc;
 }
@@ -121,9 +154,11 @@ static int phong_vs_flat(const char* in, uint32_t w, uint32_t h, uint32_t frames
                  false};
     double best, mean;
     uint64_t tris = 0;
-    rc = run_case(&s, &c, w, h, frames, &best, &mean, &tris);
+    gl_devices g = {0};
+    rc = run_case(&s, &g, &c, w, h, frames, &best, &mean, &tris);
     if (k == 0) flat_best = best;
     if (rc == CLI_OK) report(csv, in, c.label, best, mean, tris, flat_best);
+    gl_devices_free(&g);
     bench_scene_free(&s);
   }
   return rc;

@@ -72,7 +72,7 @@ static int set_up(play_session* p) {
     rc = cli_error(CLI_FAILED, "cannot build the %s path", o->path);
   p->backend = o->backend ? o->backend : "gl";
   if (rc == CLI_OK && !strcmp(p->backend, "gl")) p->platform = play_platform_open(o, &rc, &p->backend);
-  if (rc == CLI_OK) rc = play_scene_create_backends(&p->scene, p->backend);
+  if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, o->surface);
   if (rc == CLI_OK && o->screenshot_every && !(p->pixels = malloc((size_t)o->width * o->height * 4)))
     rc = cli_error(CLI_FAILED, "out of memory for %ux%u screenshots", o->width, o->height);
   if (rc == CLI_OK) rc = play_make_run_folder(o, p->out_dir, sizeof(p->out_dir));
@@ -141,8 +141,6 @@ static int play_one_mode(play_session* p, play_run* run, uint32_t k) {
   const play_mode* m = &p->o.modes[k];
   int rc = make_mode_folder(p, k);
   if (rc != CLI_OK) return rc;
-  if (k > 0 && (rc = play_scene_create_backends(&p->scene, p->backend)) != CLI_OK)
-    return rc; /* fresh timer queries per mode */
   play_trace* t = &p->traces[k];
   *t = trace_of(p, m, run->frames);
   run->run_dir = p->run_dirs[k];
@@ -156,7 +154,7 @@ static int play_one_mode(play_session* p, play_run* run, uint32_t k) {
 
 static int play_modes(play_session* p) {
   const play_options* o = &p->o;
-  play_platform_describe(p->platform, p->renderer, sizeof(p->renderer));
+  play_platform_describe(p->platform, p->backend, p->renderer, sizeof(p->renderer));
   snprintf(p->version, sizeof(p->version), "tlod %d.%d.%d", TLOD_VERSION / 1000, TLOD_VERSION / 10 % 100,
            TLOD_VERSION % 10);
   play_run run = {.o = o,
@@ -189,7 +187,7 @@ static int write_summary(const play_session* p, int rc) {
 static void session_free(play_session* p) {
   for (uint32_t k = 0; k < p->run_count; k++)
     play_trace_free(&p->traces[k]);
-  play_scene_destroy_backends(&p->scene);
+  play_scene_destroy_device(&p->scene);
   play_platform_close(p->platform);
   free(p->pixels);
   play_scene_free(&p->scene);

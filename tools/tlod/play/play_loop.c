@@ -1,6 +1,6 @@
 /* tlod play -- the frame loop of one mode: a fixed time step along the
- * camera path, a scheduler update and a backend draw per object, every
- * figure recorded in the trace. */
+ * camera path, a scheduler update per object and one device draw of every
+ * object, every figure recorded in the trace. */
 #include <string.h>
 
 #include "cli.h"
@@ -82,15 +82,6 @@ static int update_objects(play_run* r, const tlod_view_desc* view, uint32_t n, d
   return CLI_OK;
 }
 
-static void record_backend(const tlod_backend* b, play_object_stats* st) {
-  tlod_backend_timings bt = tlod_backend_query_timings(b);
-  st->backend_cpu_ms = bt.cpu_ms;
-  st->backend_gpu_ms = bt.gpu_ms;
-  st->backend_wall_ms = bt.wall_ms;
-  st->drawn_triangles = bt.triangles;
-  st->draw_calls = bt.draw_calls;
-}
-
 static void clear_frame(const play_run* r) {
 #if TLOD_HAS_GL
   if (r->platform) {
@@ -102,23 +93,45 @@ static void clear_frame(const play_run* r) {
 #endif
 }
 
+/* One draw of every object. Per object: its item's CPU time, triangles and
+ * draw calls; the draw's wall time past the items' CPU times (the finish: GPU
+ * work) and its GPU time are shared out by drawn triangles, so the objects
+ * add up to the draw. Laid out back to back from the draw's start. */
 static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start, play_object_stats* os) {
   play_scene* s = r->scene;
-  clear_frame(r);
+  tlod_draw_item items[PLAY_MAX_OBJECTS];
   for (uint32_t i = 0; i < s->count; i++) {
-    play_object* ob = &s->objects[i];
-    tlod_backend_frame bf = {.draw_list = tlod_scheduler_draw_list(ob->scheduler, 0),
-                             .viewport = {0, 0, r->o->width, r->o->height},
-                             .finish = true};
-    memcpy(bf.view, view->view, sizeof(bf.view));
-    memcpy(bf.proj, view->proj, sizeof(bf.proj));
-    memcpy(bf.base_color, ob->info.color, sizeof(bf.base_color));
-    double t0 = cli_now_ms();
-    if (tlod_backend_draw(ob->backend, &bf) != TLOD_SUCCESS)
-      return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
-    os[i].draw_at_ms = t0 - run_start;
-    os[i].draw_ms = cli_now_ms() - t0;
-    record_backend(ob->backend, &os[i]);
+    items[i] = (tlod_draw_item){.surface = s->objects[i].surface,
+                                .draw_list = tlod_scheduler_draw_list(s->objects[i].scheduler, 0),
+                                .has_color = true};
+    memcpy(items[i].color, s->objects[i].info.color, sizeof(items[i].color));
+  }
+  tlod_draw_desc d = {
+      .items = items, .item_count = s->count, .viewport = {0, 0, r->o->width, r->o->height}, .finish = true};
+  memcpy(d.view, view->view, sizeof(d.view));
+  memcpy(d.proj, view->proj, sizeof(d.proj));
+  clear_frame(r);
+  double t0 = cli_now_ms();
+  if (tlod_device_draw(s->device, &d) != TLOD_SUCCESS)
+    return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
+  double t1 = cli_now_ms();
+  tlod_device_stats st = tlod_device_query_stats(s->device);
+  bool gpu = st.gpu_ms >= 0.0 && st.gpu_draw >= r->first_draw;
+  double items_cpu = 0.0;
+  for (uint32_t i = 0; i < s->count; i++)
+    items_cpu += tlod_device_query_item_stats(s->device, i).cpu_ms;
+  double rest = st.wall_ms > items_cpu ? st.wall_ms - items_cpu : 0.0, at = t0 - run_start;
+  for (uint32_t i = 0; i < s->count; i++) {
+    tlod_draw_item_stats is = tlod_device_query_item_stats(s->device, i);
+    double share = st.triangles ? (double)is.triangles / (double)st.triangles : 1.0 / s->count;
+    os[i].backend_cpu_ms = is.cpu_ms;
+    os[i].backend_wall_ms = is.cpu_ms + rest * share;
+    os[i].backend_gpu_ms = gpu ? st.gpu_ms * share : -1.0;
+    os[i].drawn_triangles = is.triangles;
+    os[i].draw_calls = is.draw_calls;
+    os[i].draw_at_ms = at;
+    os[i].draw_ms = (t1 - t0) * (st.wall_ms > 0.0 ? os[i].backend_wall_ms / st.wall_ms : share);
+    at += os[i].draw_ms;
   }
   return CLI_OK;
 }
@@ -159,6 +172,7 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
 int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
   int rc = create_schedulers(r, m, t);
   if (rc != CLI_OK) return rc;
+  r->first_draw = tlod_device_query_stats(r->scene->device).draws + 1;
 #if TLOD_HAS_GL
   if (r->platform) tlod_platform_bind(r->platform);
 #endif

@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "common/mesh_load.h"
 #include "play_options.h"
+#include "tesslod/backend.h"
 #include "tool_names.h"
 
 void play_usage(FILE* f) {
@@ -17,7 +18,8 @@ void play_usage(FILE* f) {
       "Plays SCENE along a camera path with a fixed time step and records per-frame timings.\n"
       "  SCENE               .gltf .glb .obj .ply file, a built-in mesh (%s), or nothing /\n"
       "                      demo:scene for the built-in demo scene (the VTK cow beside a creased cylinder)\n"
-      "  --backend B         gl (default when a GL context can be made, else cpu) | cpu | vulkan\n"
+      "  --backend B         gl (default when a GL context can be made, else cpu) | cpu | null (draws nothing)\n"
+      "                      (this build has: %s)\n"
       "  --mode M            adaptive (default) | uniform:L (every visible patch at level L, 0..%d) | flat (level 0)\n"
       "  --compare M,M[,..]  play the same path once per mode (output per mode in subfolders)\n"
       "  --surface S         phong (default) | pn (splits quads into triangles)\n"
@@ -37,7 +39,7 @@ void play_usage(FILE* f) {
       "  -q, --quiet         no progress bar and no summary\n"
       "Writes trace.json, trace.csv, chrome_trace.json, summary.json and summary.txt into the run folder.\n"
       "Ctrl-C stops after the current frame, writes what was played and exits with 130.\n",
-      cli_demo_names(), TLOD_MAX_LEVEL, TLOD_MAX_LEVEL);
+      cli_demo_names(), tlod_backend_names(), TLOD_MAX_LEVEL, TLOD_MAX_LEVEL);
 }
 
 static int mode_error(const char* option, const char* text) {
@@ -130,8 +132,8 @@ static int parse_output(int argc, char** argv, int* i, play_options* o) {
   const char* v = NULL;
   int e;
   if (!strcmp(a, "--backend")) {
-    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, tool_backend_options)) < 0) return CLI_USAGE;
-    o->backend = tool_backend_options[e];
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, tool_backend_options())) < 0) return CLI_USAGE;
+    o->backend = tool_backend_options()[e];
     return CLI_OK;
   }
   if (!strcmp(a, "--size")) {

@@ -45,8 +45,11 @@ void play_platform_close(tlod_platform* p) {
 #endif
 }
 
-void play_platform_describe(tlod_platform* p, char* out, size_t size) {
-  snprintf(out, size, "cpu reference tessellator (realises each draw list as a mesh; no image)");
+void play_platform_describe(tlod_platform* p, const char* backend, char* out, size_t size) {
+  if (!strcmp(backend, "null"))
+    snprintf(out, size, "null device (validates and counts every call; draws nothing, no image)");
+  else
+    snprintf(out, size, "cpu reference tessellator (realises each draw list as a mesh; no image)");
 #if TLOD_HAS_GL
   if (p) tlod_platform_describe(p, out, size);
 #else

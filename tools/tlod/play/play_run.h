@@ -20,6 +20,7 @@ typedef struct play_run {
   const char* run_dir;
   uint8_t* pixels;       /* screenshots */
   uint32_t index, count; /* of the modes, for the progress bar */
+  uint64_t first_draw;   /* the device's number of this mode's first draw (gpu times of earlier draws are not its) */
   bool tty;
 } play_run;
 
@@ -40,7 +41,7 @@ int play_screenshot(play_run* r, play_frame* fr, double run_start);
  * CLI_OK and *backend "cpu" when the default falls back. */
 tlod_platform* play_platform_open(const play_options* o, int* rc, const char** backend);
 void play_platform_close(tlod_platform* p);
-/* The renderer's description ("cpu reference tessellator ..." without GL). */
-void play_platform_describe(tlod_platform* p, char* out, size_t size);
+/* The renderer's description (without GL: the cpu or null device's). */
+void play_platform_describe(tlod_platform* p, const char* backend, char* out, size_t size);
 
 #endif

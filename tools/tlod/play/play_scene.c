@@ -10,10 +10,10 @@
 void play_scene_free(play_scene* s) {
   for (uint32_t i = 0; i < s->count; i++) {
     play_object* ob = &s->objects[i];
-    tlod_backend_destroy(ob->backend);
     tlod_scheduler_destroy(ob->scheduler);
     scene_setup_destroy(&ob->setup);
   }
+  play_scene_destroy_device(s);
   tlod_patterns_destroy(s->patterns);
   tlod_context_destroy(s->ctx);
   memset(s, 0, sizeof(*s));
@@ -115,22 +115,26 @@ int play_scene_load(const play_options* o, play_scene* s) {
   return CLI_OK;
 }
 
-int play_scene_create_backends(play_scene* s, const char* backend) {
+int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_type type) {
+  play_scene_destroy_device(s);
+  /* One surface type per run: the gl device links its two programs only. */
+  tlod_device_desc d = {.backend = backend,
+                        .patterns = s->patterns,
+                        .gl = {.surface_types = 1u << (type == TLOD_SURFACE_DEFAULT ? TLOD_SURFACE_PHONG : type)},
+                        .label = "tlod play"};
+  if (tlod_device_create(s->ctx, &d, &s->device) != TLOD_SUCCESS)
+    return cli_error(CLI_FAILED, "backend %s: %s", backend, tlod_context_last_error(s->ctx));
   for (uint32_t i = 0; i < s->count; i++) {
     play_object* ob = &s->objects[i];
-    tlod_backend_destroy(ob->backend);
-    ob->backend = NULL;
-    if (tlod_backend_create(s->ctx, &(tlod_backend_desc){.name = backend, .label = ob->info.name}, &ob->backend) !=
-            TLOD_SUCCESS ||
-        tlod_backend_upload(ob->backend, ob->setup.surface, s->patterns) != TLOD_SUCCESS)
-      return cli_error(CLI_FAILED, "backend %s: %s", backend, tlod_context_last_error(s->ctx));
+    if (tlod_device_create_surface(s->device, ob->setup.surface, &ob->surface) != TLOD_SUCCESS)
+      return cli_error(CLI_FAILED, "backend %s: %s: %s", backend, ob->info.name, tlod_context_last_error(s->ctx));
   }
   return CLI_OK;
 }
 
-void play_scene_destroy_backends(play_scene* s) {
-  for (uint32_t i = 0; i < s->count; i++) {
-    tlod_backend_destroy(s->objects[i].backend);
-    s->objects[i].backend = NULL;
-  }
+void play_scene_destroy_device(play_scene* s) {
+  for (uint32_t i = 0; i < s->count; i++)
+    s->objects[i].surface = NULL; /* destroyed with the device */
+  tlod_device_destroy(s->device);
+  s->device = NULL;
 }

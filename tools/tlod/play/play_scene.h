@@ -1,5 +1,6 @@
 /* tlod play -- the scene: one object per mesh (the demo scene has two),
- * each with its surface, scheduler and backend, and one pattern set. */
+ * each with its surface, scheduler and device surface, one pattern set, and
+ * one device for the whole run (every mode). */
 #ifndef TLOD_TOOLS_PLAY_SCENE_H
 #define TLOD_TOOLS_PLAY_SCENE_H
 
@@ -14,7 +15,7 @@ typedef struct play_object {
   play_object_info info;
   scene_setup setup; /* mesh and surface (the patterns are the scene's) */
   tlod_scheduler* scheduler;
-  tlod_backend* backend;
+  tlod_device_surface* surface; /* on the scene's device */
 } play_object;
 
 typedef struct play_scene {
@@ -24,6 +25,7 @@ typedef struct play_scene {
   play_object_info infos[PLAY_MAX_OBJECTS];
   uint32_t count;
   tlod_patterns* patterns;
+  tlod_device* device; /* one per run, reused by every mode */
   float bmin[3], bmax[3];
 } play_scene;
 
@@ -31,9 +33,10 @@ typedef struct play_scene {
 int play_scene_load(const play_options* o, play_scene* s);
 void play_scene_free(play_scene* s);
 
-/* One backend per object (each uploads one surface); destroys old ones first. */
-int play_scene_create_backends(play_scene* s, const char* backend);
-/* Backends draw with the platform's context: destroy them while it exists. */
-void play_scene_destroy_backends(play_scene* s);
+/* The run's device (programs and patterns made once) and one device surface
+ * per object. */
+int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_type type);
+/* The device draws with the platform's context: destroy it while it exists. */
+void play_scene_destroy_device(play_scene* s);
 
 #endif

@@ -22,7 +22,7 @@
 typedef struct play_object_stats {
   double update_at_ms, update_ms; /* tlod_scheduler_update, wall clock */
   double stage_ms[TLOD_STAGE_NUM];
-  double draw_at_ms, draw_ms; /* tlod_backend_draw, wall clock */
+  double draw_at_ms, draw_ms; /* its share of the frame's tlod_device_draw, wall clock (play_loop.c) */
   double backend_cpu_ms, backend_gpu_ms, backend_wall_ms;
   uint32_t patches, culled, instances, strips, draw_calls;
   uint64_t pattern_triangles, strip_triangles, drawn_triangles;

@@ -1,44 +1,71 @@
 /*
- * tesslod/backend.h -- the backend interface (module tesslod::backend)
+ * tesslod/backend.h -- render devices (module tesslod::backend)
  *
  * WHAT IT DOES
- *   One interface every renderer implements: create, upload a surface (its
- *   patches) and the refinement patterns, draw a scheduler's draw list for a
- *   camera, read back the image, report timings, destroy. Backends are chosen
- *   by name at run time: "cpu" (the reference: realises the draw list as a
- *   mesh, draws nothing), "gl" (OpenGL 4.5 core, when compiled in).
+ *   A device is one renderer, created once (sokol_gfx / bgfx shape): at
+ *   creation it takes the refinement patterns and makes everything that is
+ *   shared by all objects (GL: programs linked, pattern buffers uploaded,
+ *   vertex arrays and queries made). Per object the caller creates a device
+ *   surface (GL: the patch records in a storage buffer), updates it after
+ *   tlod_surface_refresh(), and destroys it. One tlod_device_draw() draws a
+ *   list of items (device surface, model matrix, colour, the scheduler's draw
+ *   list) for one view; then the image can be read back and statistics
+ *   queried. Backends are chosen by name at run time; tlod_backend_names()
+ *   lists the ones this build has:
+ *     "cpu"  the reference: realises each item's draw list as a mesh
+ *            (tlod_cpu_device_mesh() below), draws no image;
+ *     "gl"   OpenGL 4.5 core (when built with TLOD_BACKEND_GL; tesslod/gl.h);
+ *     "null" draws nothing, validates every call exactly like the others and
+ *            counts them (tests of code that drives a device, without a GPU).
  *
  * DOES NOT
- *   - create windows or GL contexts: the GL backend draws into the context
+ *   - create windows or GL contexts: the GL device draws into the context
  *     current on the calling thread and into the framebuffer bound there (the
  *     engine's own). samples/common has a small EGL/GLFW platform module;
- *   - decide levels: the scheduler (tesslod/lod.h) does.
+ *   - decide levels: the scheduler (tesslod/lod.h) does, one per object;
+ *   - apply the model matrix to the level decisions: plan an item's draw list
+ *     with view * model as the scheduler's view (the scheduler works in the
+ *     surface's own space); the device uses the matrix to place the object;
+ *   - clear the framebuffer or present it.
  *
  * STEP BY STEP
  *   1. make a context current (engine, or samples/common platform);
- *   2. tlod_backend_create(ctx, &(tlod_backend_desc){ .name = "gl" }, &b)
- *      -> on failure tlod_context_last_error() says why (not compiled in, no
- *      current context, GL version too low, ...);
- *   3. tlod_backend_upload(b, surface, patterns) once, and again after
- *      tlod_surface_refresh();
- *   4. every frame: tlod_scheduler_update(), then
- *      tlod_backend_draw(b, &(tlod_backend_frame){ .draw_list = ..., ... });
- *   5. tlod_backend_destroy(b) with the same context current.
+ *   2. tlod_device_create(ctx, &(tlod_device_desc){ .backend = "gl",
+ *      .patterns = patterns }, &dev) once
+ *      -> on failure tlod_context_last_error() says why (not in this build,
+ *      no current context, GL version too low, shader build failed);
+ *   3. per object: tlod_device_create_surface(dev, surface, &ds); after
+ *      tlod_mesh_update() + tlod_surface_refresh():
+ *      tlod_device_update_surface(dev, ds);
+ *   4. every frame: tlod_scheduler_update() per object, then one
+ *      tlod_device_draw(dev, &(tlod_draw_desc){ .items = items,
+ *      .item_count = n, .view = ..., .proj = ..., .viewport = ... });
+ *   5. optionally tlod_device_read_image(), tlod_device_query_stats();
+ *   6. tlod_device_destroy_surface() per object, tlod_device_destroy(dev),
+ *      with the same GL context current.
+ *   Wrong use (NULL desc, items NULL with a count, item_count 0, a surface
+ *   of another device, a draw list that does not fit its surface or the
+ *   device's patterns, a draw before any surface exists, an empty viewport)
+ *   returns TLOD_ERROR_INVALID_ARGUMENT and the context's last error names
+ *   the item: "tlod_device_draw: item 3: surface 'cow' belongs to another
+ *   device". Nothing is drawn then.
  *
- * GL STATE
- *   The GL backend saves and restores what it touches: current program,
- *   vertex array, array / element / shader-storage / uniform / draw-indirect
- *   buffer bindings, shader-storage binding points 0-3, polygon mode, cull
- *   face enable and mode, depth test enable and function, depth mask, blend
- *   enable, polygon offset fill enable and values, viewport. Everything else
- *   is left as the engine set it (the framebuffer it draws into included).
- *   While the engine has a GL_TIME_ELAPSED or GL_PRIMITIVES_GENERATED query
- *   active, the backend issues none of its own (gpu_ms then stays as it was).
+ * THREADING AND ALLOCATION
+ *   A device and its surfaces belong to the thread of its context (and, for
+ *   "gl", to the thread the GL context is current on). Every allocation goes
+ *   through the context's allocator; staging arrays are grown, never shrunk,
+ *   so a steady frame allocates nothing. The cpu device tessellates through
+ *   the context's parallel-for.
+ *
+ * GL OBJECTS AND STATE
+ *   The objects the "gl" device makes, and the state it saves and restores
+ *   around a draw, are listed in tesslod/gl.h.
  *
  * PORTABILITY
  *   The pattern path needs only instancing and storage buffers (no
  *   tessellation stage), so the same shaders port to WebGPU, SDL GPU, sokol or
- *   bgfx.
+ *   bgfx. Buffer layouts and binding points are in one header shared by C and
+ *   GLSL (backends/shaders/layout.h).
  */
 #ifndef TESSLOD_BACKEND_H
 #define TESSLOD_BACKEND_H
@@ -50,7 +77,8 @@
 extern "C" {
 #endif
 
-typedef struct tlod_backend tlod_backend;
+typedef struct tlod_device tlod_device;
+typedef struct tlod_device_surface tlod_device_surface;
 
 typedef enum tlod_debug_view {
   TLOD_DEBUG_NONE = 0,   /* shaded */
@@ -61,64 +89,157 @@ typedef enum tlod_debug_view {
   _TLOD_DEBUG_FORCE_U32 = 0x7FFFFFFF
 } tlod_debug_view;
 
-typedef struct tlod_backend_desc {
-  const char* name; /* "cpu" or "gl"; NULL == "cpu" */
-  /* gl: draw with GL_PATCHES and tessellation shaders instead of refinement
+/* ------------------------------------------------------------------------ */
+/* Device                                                                   */
+/* ------------------------------------------------------------------------ */
+
+/* Options of the "gl" device (ignored by the others). */
+typedef struct tlod_device_gl_desc {
+  /* Draw with GL_PATCHES and tessellation shaders instead of refinement
    * patterns, for comparison: outer levels per edge from both sides (no
    * strips), no geomorphs, and split-normal edges crack. Draws are batched
-   * below 65,536 tessellated vertices (a Mesa limit, docs/platform.md section 1.2). */
+   * below 65,536 tessellated vertices (a Mesa limit, docs/platform.md section 1.2).
+   * Links two more programs per surface type. */
   bool hardware_tessellation;
-  const char* label;
-} tlod_backend_desc;
+  /* Surface types the device links programs for, as a mask of
+   * 1u << tlod_surface_type (FLAT, PHONG, PN; DEFAULT counts as PHONG).
+   * 0 == all three. A device surface of a type outside the mask is
+   * TLOD_ERROR_UNSUPPORTED. Each type costs two program links (four with
+   * hardware_tessellation) at creation, none later. */
+  uint32_t surface_types;
+} tlod_device_gl_desc;
 
-typedef struct tlod_backend_frame {
-  const tlod_draw_list* draw_list; /* from tlod_scheduler_draw_list() */
-  float view[16], proj[16];        /* column-major, as given to the scheduler */
-  uint32_t viewport[4];            /* x, y, width, height in the bound framebuffer */
-  float light_dir[3];              /* view-independent world direction towards the light; 0 == (0.3, 0.8, 0.5) */
-  float base_color[4];             /* 0 == light grey */
+typedef struct tlod_device_desc {
+  const char* backend;           /* a name of tlod_backend_names(); NULL == "cpu" */
+  const tlod_patterns* patterns; /* required; must outlive the device. Draw lists must come
+                                    from schedulers on these patterns (or on ones with the same
+                                    or a lower max level). */
+  tlod_device_gl_desc gl;
+  const char* label; /* names the device in messages; default: the backend name */
+} tlod_device_desc;
+
+/* The backends in this build, comma separated, in a fixed order
+ * ("cpu,gl,null"). Asking tlod_device_create() for any other name is
+ * TLOD_ERROR_UNSUPPORTED with a message listing these. */
+TLOD_API const char* tlod_backend_names(void);
+/* Creates a device: shared state made once (see WHAT IT DOES). */
+TLOD_API tlod_result tlod_device_create(tlod_context* ctx, const tlod_device_desc* desc, tlod_device** out);
+/* Destroys a device and any device surface still made from it; NULL is a no-op. */
+TLOD_API void tlod_device_destroy(tlod_device* dev);
+/* The backend's name ("gl"); "" for NULL. */
+TLOD_API const char* tlod_device_backend(const tlod_device* dev);
+
+/* ------------------------------------------------------------------------ */
+/* Device surfaces                                                          */
+/* ------------------------------------------------------------------------ */
+
+/* Makes the device's copy of a surface (GL: its patch records in a storage
+ * buffer). The surface must outlive the device surface. */
+TLOD_API tlod_result tlod_device_create_surface(tlod_device* dev, const tlod_surface* surface,
+                                                tlod_device_surface** out);
+/* Uploads the surface again, after tlod_mesh_update() + tlod_surface_refresh()
+ * (same patch count: topology never changes). */
+TLOD_API tlod_result tlod_device_update_surface(tlod_device* dev, tlod_device_surface* ds);
+/* NULL is a no-op. A device surface of another device is not destroyed (the
+ * context's last error says so). */
+TLOD_API void tlod_device_destroy_surface(tlod_device* dev, tlod_device_surface* ds);
+
+/* ------------------------------------------------------------------------ */
+/* Drawing                                                                  */
+/* ------------------------------------------------------------------------ */
+
+/* One object of a draw. */
+typedef struct tlod_draw_item {
+  const tlod_device_surface* surface; /* required, made on the device drawn with */
+  const tlod_draw_list* draw_list;    /* required: a scheduler's list for this surface */
+  /* Object to world, column-major 4x4; read only when has_model is true,
+   * otherwise the identity (a zeroed item is drawn where its surface is,
+   * never collapsed by an all-zero matrix). */
+  float model[16];
+  bool has_model;
+  /* Base colour (RGBA, linear); read only when has_color is true, otherwise
+   * light grey (0.8, 0.8, 0.8, 1). */
+  float color[4];
+  bool has_color;
+} tlod_draw_item;
+
+typedef struct tlod_draw_desc {
+  const tlod_draw_item* items; /* required, item_count > 0; drawn in order */
+  uint32_t item_count;
+  float view[16], proj[16]; /* column-major world -> eye -> clip (the scheduler's view of the world) */
+  uint32_t viewport[4];     /* x, y, width, height in the bound framebuffer; width, height > 0 */
+  /* World direction towards the light; (0, 0, 0) (no direction) == (0.3, 0.8, 0.5).
+   * Normalised by the device. Shading: colour * (0.15 + 0.85 * max(dot(n, l), 0)). */
+  float light_dir[3];
   tlod_debug_view debug;
   bool wireframe; /* overlay edges */
   bool finish;    /* wait for the GPU and measure wall time (llvmpipe's timer queries miss most work) */
-} tlod_backend_frame;
+} tlod_draw_desc;
 
-typedef struct tlod_backend_timings {
-  double cpu_ms;      /* CPU time of the last draw call (upload + commands) */
-  double gpu_ms;      /* timer query of a frame a few frames back; < 0 when none is ready */
-  double wall_ms;     /* wall clock of the last draw including a finish: llvmpipe's queries miss most work */
-  uint64_t triangles; /* drawn by the last draw (from the draw list) */
-  uint64_t vertices;  /* shaded by the last draw (pattern and strip vertices) */
-  uint32_t draw_calls;
-  /* GL_PRIMITIVES_GENERATED of the frame gpu_ms belongs to (read late, like
+/* Draws every item for one view, in item order (GL: per item its patterns,
+ * then its strips, then, with wireframe, its edges). */
+TLOD_API tlod_result tlod_device_draw(tlod_device* dev, const tlod_draw_desc* desc);
+/* Reads width x height RGBA8 pixels at (0, 0) of the bound read framebuffer,
+ * bottom row first. Devices without an image ("cpu", "null"):
+ * TLOD_ERROR_UNSUPPORTED. */
+TLOD_API tlod_result tlod_device_read_image(tlod_device* dev, uint32_t width, uint32_t height, uint8_t* rgba);
+
+/* ------------------------------------------------------------------------ */
+/* Statistics                                                               */
+/* ------------------------------------------------------------------------ */
+
+/* "gl" only (zero elsewhere). */
+typedef struct tlod_device_gl_stats {
+  /* GL_PRIMITIVES_GENERATED of the draw gpu_ms belongs to (read late, like
    * it); 0 when none is ready. */
   uint64_t primitives_generated;
-} tlod_backend_timings;
+  uint32_t program_links;   /* since creation: a constant of the device's desc */
+  uint32_t pattern_uploads; /* pattern vertex + index buffer uploads since creation (1) */
+  uint64_t pattern_bytes;   /* bytes of those uploads */
+  uint64_t patch_bytes;     /* patch record bytes uploaded since creation (surface create + update) */
+  double create_ms;         /* device creation: programs linked, patterns uploaded */
+  double surface_upload_ms; /* since creation: time in surface create + update */
+  uint32_t buffer_streams;  /* per-draw buffer uploads of the last draw (instances, strips, strip refs) */
+} tlod_device_gl_stats;
 
-/* Names compiled into this build, comma separated ("cpu,gl"). */
-TLOD_API const char* tlod_backend_names(void);
-TLOD_API tlod_result tlod_backend_create(tlod_context* ctx, const tlod_backend_desc* desc, tlod_backend** out);
-TLOD_API void tlod_backend_destroy(tlod_backend* backend);
-TLOD_API const char* tlod_backend_name(const tlod_backend* backend);
-/* Uploads the patches of a surface and the patterns (both must outlive the backend's use of them). */
-TLOD_API tlod_result tlod_backend_upload(tlod_backend* backend, const tlod_surface* surface,
-                                         const tlod_patterns* patterns);
-TLOD_API tlod_result tlod_backend_draw(tlod_backend* backend, const tlod_backend_frame* frame);
-/* Reads width x height RGBA8 pixels from the bound framebuffer, bottom row first.
- * The cpu backend has no image: TLOD_ERROR_UNSUPPORTED. */
-TLOD_API tlod_result tlod_backend_read_image(tlod_backend* backend, uint32_t width, uint32_t height, uint8_t* rgba);
-TLOD_API tlod_backend_timings tlod_backend_query_timings(const tlod_backend* backend);
-/* The cpu backend's realised mesh of the last draw (NULL for other backends). */
-TLOD_API const struct tlod_cpu_mesh* tlod_backend_cpu_mesh(const tlod_backend* backend);
+typedef struct tlod_device_stats {
+  /* The last draw. */
+  double cpu_ms;      /* CPU time of the call (staging + commands) */
+  double gpu_ms;      /* timer query of a draw a few draws back; < 0 when none is ready */
+  uint64_t gpu_draw;  /* the draw gpu_ms measured, numbered as .draws (1 = the first); 0: none */
+  double wall_ms;     /* wall clock of the call, including the finish when asked */
+  uint64_t triangles; /* drawn (from the draw lists; cpu: realised) */
+  uint64_t vertices;  /* shaded (pattern and strip vertices; cpu: realised) */
+  uint32_t draw_calls;
+  uint32_t items;
+  /* Since creation (every backend, "null" included). */
+  uint32_t surfaces_live;
+  uint64_t surfaces_created, surfaces_destroyed, surface_updates;
+  uint64_t draws, items_drawn, triangles_drawn;
+  tlod_device_gl_stats gl;
+} tlod_device_stats;
 
-/* For backend authors: the vtable a backend fills in. */
-typedef struct tlod_backend_vtbl {
-  tlod_result (*create)(tlod_context* ctx, const tlod_backend_desc* desc, void** state);
-  void (*destroy)(void* state);
-  tlod_result (*upload)(void* state, const tlod_surface* surface, const tlod_patterns* patterns);
-  tlod_result (*draw)(void* state, const tlod_backend_frame* frame);
-  tlod_result (*read_image)(void* state, uint32_t width, uint32_t height, uint8_t* rgba);
-  tlod_backend_timings (*timings)(const void* state);
-} tlod_backend_vtbl;
+/* Item k of the last draw. */
+typedef struct tlod_draw_item_stats {
+  uint64_t triangles; /* pattern + strip triangles drawn (gl hardware path: pattern only) */
+  uint64_t vertices;
+  uint32_t draw_calls;
+  double cpu_ms; /* CPU time spent on this item (cpu: its tessellation) */
+} tlod_draw_item_stats;
+
+TLOD_API tlod_device_stats tlod_device_query_stats(const tlod_device* dev);
+/* Zero for k >= the last draw's item count. */
+TLOD_API tlod_draw_item_stats tlod_device_query_item_stats(const tlod_device* dev, uint32_t item);
+
+/* ------------------------------------------------------------------------ */
+/* "cpu" device only                                                        */
+/* ------------------------------------------------------------------------ */
+
+struct tlod_cpu_mesh; /* tesslod/cpu.h */
+
+/* The mesh the "cpu" device realised for item k of its last draw (valid
+ * until the next draw or destroy); NULL for other devices or k out of range. */
+TLOD_API const struct tlod_cpu_mesh* tlod_cpu_device_mesh(const tlod_device* dev, uint32_t item);
 
 #ifdef __cplusplus
 }

@@ -7,16 +7,40 @@
  *   the patch each triangle came from. Each patch may have its own level;
  *   where the two sides of an edge differ (levels, or split normals at a
  *   crease) a connection strip zips the two edge polylines together, so a
- *   closed input gives a closed output. Work is spread over the context's
- *   workers; the result does not depend on the thread count.
+ *   closed input gives a closed output. Points are evaluated with
+ *   tlod_surface_eval_grid() (corners exact, edge points through the
+ *   canonical edge function), so the mesh is what a GPU backend draws. The
+ *   "cpu" device of tesslod/backend.h is this tessellator behind the device
+ *   API (its meshes: tlod_cpu_device_mesh()).
+ *
+ * DOES NOT
+ *   - draw, or know about GPUs;
+ *   - decide levels (give a level, levels per patch, or a scheduler's draw
+ *     list);
+ *   - read core's private data: it uses the public views of tesslod/core.h
+ *     only, like any module built on core.
+ *
+ * STEP BY STEP
+ *   1. tlod_patterns_create() reaching the largest level asked for;
+ *   2. tlod_cpu_tessellate(ctx, surface, patterns, &(tlod_cpu_tessellate_desc){
+ *      .level = 3 }, &mesh), or .draw_list = tlod_scheduler_draw_list(...);
+ *   3. per frame: tlod_cpu_tessellate_into(ctx, ..., mesh) reuses the arrays;
+ *   4. tlod_cpu_mesh_destroy(ctx, mesh).
+ *
+ * THREADING AND ALLOCATION
+ *   One call at a time per context. Work is spread over the context's
+ *   parallel-for (tlod_context_parallel_for()); the result does not depend
+ *   on the thread count. Every allocation, the result's arrays included,
+ *   goes through the context's allocator; _into grows the arrays only when
+ *   they are too small.
  *
  * OUTPUT VERTICES
  *   welded (default): a vertex shared by several patches is emitted once when
  *     its position, normal and alpha are the same on every side (at a crease
  *     each side keeps its own vertex; their positions are bitwise equal).
  *   no_weld: every patch emits its own pattern vertices, as a GPU draws them;
- *     invariant 1 makes shared positions bitwise equal, so welding the output
- *     by exact position gives back a closed mesh.
+ *     invariant 1 (docs/design.md) makes shared positions bitwise equal, so
+ *     welding the output by exact position gives back a closed mesh.
  */
 #ifndef TESSLOD_CPU_H
 #define TESSLOD_CPU_H

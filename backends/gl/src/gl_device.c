@@ -1,0 +1,653 @@
+/* tesslod::gl -- OpenGL 4.5 core device: refinement patterns drawn
+ * instanced, each vertex evaluating its patch in the vertex shader; strips
+ * from the connection patterns; geomorphs; timer queries. Programs and
+ * pattern buffers are made once per device; a device surface is one storage
+ * buffer of patch records.
+ *
+ * This work is based on:
+ *   T. Boubekeur, C. Schlick. Generic mesh refinement on GPU. Graphics
+ *   Hardware 2005 (refinement patterns evaluated in the vertex shader);
+ *   M. Schwarz, M. Staginski, M. Stamminger. GPU-based rendering of PN
+ *   triangle meshes with adaptive tessellation. VMV 2006. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "gl_internal.h"
+
+enum { QUERY_RING = 4, TYPE_COUNT = TLOD_SURFACE_NUM };
+
+/* The uniforms the device sets, by index; locations looked up once, at link
+ * (backends/shaders/common.glsl, shade.frag and the vertex stages). */
+enum {
+  U_VIEW_PROJ,
+  U_MODEL,
+  U_NORMAL_MATRIX,
+  U_LIGHT_DIR,
+  U_BASE_COLOR,
+  U_DEBUG,
+  U_EYE,
+  U_FORWARD,
+  U_ORTHO,
+  U_FIRST_INSTANCE,
+  U_SHAPE_BASE,
+  U_CORNERS,
+  U_GRID,
+  U_MAX_LEVEL,
+  U_COUNT
+};
+static const char* const uniform_names[U_COUNT] = {
+    "u_view_proj", "u_model", "u_normal_matrix",  "u_light_dir",  "u_base_color", "u_debug", "u_eye",
+    "u_forward",   "u_ortho", "u_first_instance", "u_shape_base", "u_corners",    "u_grid",  "u_max_level"};
+
+typedef struct gl_program {
+  GLuint id;
+  GLint loc[U_COUNT]; /* -1: not in this program (GL ignores the call) */
+} gl_program;
+
+/* The programs of one surface type. */
+typedef struct gl_programs {
+  bool linked;
+  gl_program pattern, strip;
+  gl_program tess[2]; /* hardware path: triangles, quads */
+} gl_programs;
+
+typedef struct gl_device {
+  tlod_context* ctx;
+  char label[64];
+  const tlod_patterns* patterns;
+  tlod_device_stats* stats;
+  uint32_t lmax;
+  bool hardware;
+  gl_programs programs[TYPE_COUNT]; /* by resolved surface type */
+  GLuint vao_pattern, vao_strip;
+  GLuint buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs;
+  uint32_t index_first[2][TLOD_MAX_LEVEL + 1], index_count[2][TLOD_MAX_LEVEL + 1], shape_base[2];
+  GLuint queries[QUERY_RING];
+  GLuint prim_queries[QUERY_RING];
+  uint64_t query_draw[QUERY_RING]; /* the draw (stats numbering) each query measured */
+  uint64_t frame;
+  /* Staging, grown as needed, for all items of a draw. */
+  tlod_gl_instance* instances;
+  uint32_t instance_cap;
+  tlod_gl_strip* strips;
+  uint32_t strip_cap;
+  uint32_t (*refs)[2];
+  uint32_t ref_cap;
+  uint32_t* instance_of; /* patch -> instance of the item being staged */
+  uint32_t instance_of_cap;
+  tlod_patch_record* records; /* surface upload */
+  uint32_t record_cap;
+  /* Per item of the draw: where its data starts in the staging arrays. */
+  struct gl_item_range {
+    uint32_t instance_first, ref_first, ref_count;
+  } * ranges;
+  uint32_t range_cap;
+} gl_device;
+
+typedef struct gl_surface {
+  GLuint buf_patches;
+  tlod_surface_type type;
+  uint32_t patch_count;
+  const tlod_surface* surface;
+} gl_surface;
+
+static tlod_result check_context(tlod_context* ctx) {
+  const char* version = (const char*)glGetString(GL_VERSION);
+  if (!version)
+    return tlod_context_fail(ctx, TLOD_ERROR_BACKEND,
+                             "gl device: no current OpenGL context on this thread (make one current first)");
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major < 4 || (major == 4 && minor < 5))
+    return tlod_context_fail(ctx, TLOD_ERROR_BACKEND, "gl device: OpenGL %d.%d is too old (needs 4.5 core): %s", major,
+                             minor, version);
+  return TLOD_SUCCESS;
+}
+
+static void gl_destroy(void* state) {
+  gl_device* d = state;
+  GLuint bufs[5] = {d->buf_pattern, d->buf_indices, d->buf_instances, d->buf_strips, d->buf_refs};
+  glDeleteBuffers(5, bufs);
+  glDeleteVertexArrays(1, &d->vao_pattern);
+  glDeleteVertexArrays(1, &d->vao_strip);
+  glDeleteQueries(QUERY_RING, d->queries);
+  glDeleteQueries(QUERY_RING, d->prim_queries);
+  for (int t = 0; t < TYPE_COUNT; t++) {
+    glDeleteProgram(d->programs[t].pattern.id);
+    glDeleteProgram(d->programs[t].strip.id);
+    glDeleteProgram(d->programs[t].tess[0].id);
+    glDeleteProgram(d->programs[t].tess[1].id);
+  }
+  void* arrays[] = {d->instances, d->strips, d->refs, d->instance_of, d->records, d->ranges};
+  for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
+    tlod_context_free(d->ctx, arrays[i]);
+  tlod_context_free(d->ctx, d);
+}
+
+/* ---- programs and patterns (once per device) ----------------------------- */
+
+static void locate(gl_device* d, gl_program* p) {
+  for (int u = 0; u < U_COUNT; u++)
+    p->loc[u] = glGetUniformLocation(p->id, uniform_names[u]);
+  /* Constant for the device's patterns. */
+  glProgramUniform1ui(p->id, p->loc[U_GRID], 1u << d->lmax);
+  glProgramUniform1ui(p->id, p->loc[U_MAX_LEVEL], d->lmax);
+  d->stats->gl.program_links++;
+}
+
+static tlod_result build_programs(gl_device* d, tlod_surface_type type) {
+  const char* surface = type == TLOD_SURFACE_PN      ? _tlod_shader_pn
+                        : type == TLOD_SURFACE_PHONG ? _tlod_shader_phong
+                                                     : _tlod_shader_flat;
+  const char* version = "#version 450 core\n#define TLOD_GLSL 1\n";
+  const char* pattern[] = {version, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_pattern_vert};
+  const char* strip[] = {version, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_strip_vert};
+  const char* frag[] = {version, _tlod_shader_shade_frag};
+  char error[1200] = "";
+  gl_programs* ps = &d->programs[type];
+  ps->pattern.id = _tlod_gl_program(pattern, 5, frag, 2, error, sizeof(error));
+  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, 5, frag, 2, error, sizeof(error));
+  bool ok = ps->pattern.id && ps->strip.id;
+  for (int sh = 0; sh < 2 && d->hardware && ok; sh++) {
+    const char* corners = sh ? "#define TLOD_CORNERS 4\n" : "#define TLOD_CORNERS 3\n";
+    const char* vs[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_tess_vert};
+    const char* tcs[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_tess_tesc};
+    const char* tes[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_tess_tese};
+    const char* const* stages[4] = {vs, tcs, tes, frag};
+    const int counts[4] = {6, 6, 6, 2};
+    ps->tess[sh].id = _tlod_gl_program_tess(stages, counts, error, sizeof(error));
+    ok = ps->tess[sh].id != 0;
+  }
+  if (!ok)
+    return tlod_context_fail(d->ctx, TLOD_ERROR_BACKEND, "gl device '%s': %s shader build failed: %s", d->label,
+                             tlod_surface_type_name(type), error);
+  locate(d, &ps->pattern);
+  locate(d, &ps->strip);
+  for (int sh = 0; sh < 2 && d->hardware; sh++)
+    locate(d, &ps->tess[sh]);
+  ps->linked = true;
+  return TLOD_SUCCESS;
+}
+
+static tlod_result upload_patterns(gl_device* d) {
+  const tlod_patterns* p = d->patterns;
+  uint32_t counts[2], total = 0, indices = 0;
+  const tlod_pattern_vertex* pv[2];
+  for (int sh = 0; sh < 2; sh++) {
+    pv[sh] = tlod_patterns_vertices(p, (tlod_pattern_shape)sh, &counts[sh]);
+    d->shape_base[sh] = total;
+    total += counts[sh];
+    for (uint32_t l = 0; l <= d->lmax; l++) {
+      tlod_patterns_indices(p, (tlod_pattern_shape)sh, l, &d->index_count[sh][l]);
+      d->index_first[sh][l] = indices;
+      indices += d->index_count[sh][l];
+    }
+  }
+  tlod_gl_pattern_vertex* verts = tlod_context_calloc(d->ctx, total, sizeof(tlod_gl_pattern_vertex));
+  uint32_t* idx = tlod_context_alloc(d->ctx, sizeof(uint32_t) * indices);
+  if (!verts || !idx) {
+    tlod_context_free(d->ctx, verts);
+    tlod_context_free(d->ctx, idx);
+    return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory for patterns");
+  }
+  for (int sh = 0; sh < 2; sh++) {
+    uint32_t corners = sh == TLOD_PATTERN_QUAD ? 4u : 3u;
+    for (uint32_t x = 0; x < counts[sh]; x++) {
+      const tlod_pattern_vertex* v = &pv[sh][x];
+      tlod_gl_pattern_vertex* o = &verts[d->shape_base[sh] + x];
+      o->uv[0] = v->u, o->uv[1] = v->v;
+      o->parent0 = v->parent[0], o->parent1 = v->parent[1];
+      uint32_t param = 0, kind = tlod_grid_point_kind(corners, d->lmax, v->i, v->j, &param);
+      o->code = kind | (uint32_t)v->level << TLOD_CODE_LEVEL_SHIFT;
+      o->param = param;
+    }
+    for (uint32_t l = 0; l <= d->lmax; l++) {
+      uint32_t count;
+      const uint32_t* src = tlod_patterns_indices(p, (tlod_pattern_shape)sh, l, &count);
+      memcpy(idx + d->index_first[sh][l], src, sizeof(uint32_t) * count);
+    }
+  }
+  size_t vbytes = sizeof(tlod_gl_pattern_vertex) * total, ibytes = sizeof(uint32_t) * indices;
+  glNamedBufferData(d->buf_pattern, (GLsizeiptr)vbytes, verts, GL_STATIC_DRAW);
+  glNamedBufferData(d->buf_indices, (GLsizeiptr)ibytes, idx, GL_STATIC_DRAW);
+  d->stats->gl.pattern_uploads++;
+  d->stats->gl.pattern_bytes += vbytes + ibytes;
+  tlod_context_free(d->ctx, verts);
+  tlod_context_free(d->ctx, idx);
+  return TLOD_SUCCESS;
+}
+
+static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tlod_device_stats* stats, void** state) {
+  tlod_result r = check_context(ctx);
+  if (r != TLOD_SUCCESS) return r;
+  double t0 = tlod_now_ms();
+  gl_device* d = tlod_context_calloc(ctx, 1, sizeof(*d));
+  if (!d) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory");
+  d->ctx = ctx;
+  d->stats = stats;
+  d->patterns = desc->patterns;
+  d->lmax = tlod_patterns_max_level(desc->patterns);
+  d->hardware = desc->gl.hardware_tessellation;
+  snprintf(d->label, sizeof(d->label), "%s", desc->label);
+  /* Named objects only (DSA): creating them binds nothing of the engine's. */
+  GLuint bufs[5];
+  glCreateBuffers(5, bufs);
+  d->buf_pattern = bufs[0], d->buf_indices = bufs[1], d->buf_instances = bufs[2];
+  d->buf_strips = bufs[3], d->buf_refs = bufs[4];
+  glCreateVertexArrays(1, &d->vao_pattern);
+  glCreateVertexArrays(1, &d->vao_strip);
+  glVertexArrayElementBuffer(d->vao_pattern, d->buf_indices);
+  glEnableVertexArrayAttrib(d->vao_strip, TLOD_ATTRIB_STRIP_REF);
+  glVertexArrayAttribIFormat(d->vao_strip, TLOD_ATTRIB_STRIP_REF, 2, GL_UNSIGNED_INT, 0);
+  glVertexArrayAttribBinding(d->vao_strip, TLOD_ATTRIB_STRIP_REF, 0);
+  glVertexArrayVertexBuffer(d->vao_strip, 0, d->buf_refs, 0, sizeof(uint32_t[2]));
+  glCreateQueries(GL_TIME_ELAPSED, QUERY_RING, d->queries);
+  glCreateQueries(GL_PRIMITIVES_GENERATED, QUERY_RING, d->prim_queries);
+  uint32_t mask = desc->gl.surface_types ? desc->gl.surface_types : (1u << TLOD_SURFACE_NUM) - 1u;
+  if (mask & (1u << TLOD_SURFACE_DEFAULT)) mask |= 1u << TLOD_SURFACE_PHONG;
+  for (int t = 1; t < TYPE_COUNT && r == TLOD_SUCCESS; t++) {
+    if (mask & (1u << t)) r = build_programs(d, (tlod_surface_type)t);
+  }
+  if (r == TLOD_SUCCESS) r = upload_patterns(d);
+  if (r != TLOD_SUCCESS) {
+    gl_destroy(d);
+    return r;
+  }
+  stats->gl.create_ms = tlod_now_ms() - t0;
+  *state = d;
+  return TLOD_SUCCESS;
+}
+
+/* ---- surfaces -------------------------------------------------------------- */
+
+static tlod_result upload_surface(gl_device* d, gl_surface* gs, const tlod_surface* s) {
+  double t0 = tlod_now_ms();
+  uint32_t n = gs->patch_count;
+  if (!_tlod_device_grow(d->ctx, (void**)&d->records, &d->record_cap, n + 1, sizeof(tlod_patch_record)))
+    return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory for %u patch records", n);
+  tlod_result r = tlod_surface_patch_records(s, 0, n, d->records);
+  if (r != TLOD_SUCCESS) return r;
+  size_t bytes = sizeof(tlod_patch_record) * (n ? n : 1);
+  if (!n) memset(d->records, 0, sizeof(tlod_patch_record));
+  glNamedBufferData(gs->buf_patches, (GLsizeiptr)bytes, d->records, GL_STATIC_DRAW);
+  d->stats->gl.patch_bytes += bytes;
+  d->stats->gl.surface_upload_ms += tlod_now_ms() - t0;
+  return TLOD_SUCCESS;
+}
+
+static tlod_result gl_create_surface(void* state, const tlod_surface* s, void** surface_state) {
+  gl_device* d = state;
+  tlod_surface_view view = tlod_surface_query_view(s);
+  if ((uint32_t)view.type >= TYPE_COUNT || !d->programs[view.type].linked)
+    return tlod_context_fail(d->ctx, TLOD_ERROR_UNSUPPORTED,
+                             "gl device '%s': surface '%s' is %s, and the device has no programs for it "
+                             "(desc.gl.surface_types)",
+                             d->label, tlod_surface_query_desc(s).label ? tlod_surface_query_desc(s).label : "surface",
+                             tlod_surface_type_name(view.type));
+  gl_surface* gs = tlod_context_calloc(d->ctx, 1, sizeof(*gs));
+  if (!gs) return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory");
+  gs->type = view.type;
+  gs->patch_count = view.patch_count;
+  gs->surface = s;
+  glCreateBuffers(1, &gs->buf_patches);
+  tlod_result r = upload_surface(d, gs, s);
+  if (r != TLOD_SUCCESS) {
+    glDeleteBuffers(1, &gs->buf_patches);
+    tlod_context_free(d->ctx, gs);
+    return r;
+  }
+  *surface_state = gs;
+  return TLOD_SUCCESS;
+}
+
+static tlod_result gl_update_surface(void* state, void* surface_state, const tlod_surface* s) {
+  return upload_surface(state, surface_state, s);
+}
+
+static void gl_destroy_surface(void* state, void* surface_state) {
+  gl_device* d = state;
+  gl_surface* gs = surface_state;
+  glDeleteBuffers(1, &gs->buf_patches);
+  tlod_context_free(d->ctx, gs);
+}
+
+/* ---- staging ----------------------------------------------------------------- */
+
+/* Hardware path: an edge is tessellated at the finer of its two sides'
+ * levels, so both sides generate the same points. */
+static uint32_t edge_levels(const tlod_mesh_view* m, const tlod_draw_list* dl, const tlod_draw_instance* in) {
+  uint32_t packed = 0;
+  for (uint32_t e = 0; e < m->face_corners[in->patch]; e++) {
+    uint32_t l = in->level, g = m->links[in->patch][e].face;
+    if (g != UINT32_MAX && dl->levels[g] > (int8_t)l) l = (uint32_t)dl->levels[g];
+    packed |= l << (8 * e);
+  }
+  return packed;
+}
+
+static uint32_t strip_refs(const gl_device* d, const tlod_draw_list* dl) {
+  uint32_t refs = 0;
+  for (uint32_t k = 0; k < dl->strip_count; k++) {
+    uint32_t count;
+    tlod_patterns_connection(d->patterns, dl->strips[k].level_a, dl->strips[k].level_b, &count);
+    refs += 3 * count;
+  }
+  return refs;
+}
+
+/* Every item's instances, strips and strip references into one array each
+ * (one upload per array per draw); item k's start in ranges[k]. */
+static tlod_result stage(gl_device* d, const tlod_draw_desc* desc, const _tlod_draw_ref* items,
+                         tlod_draw_item_stats* item_stats) {
+  uint32_t instances = 0, strips = 0, refs = 0, patches = 0;
+  for (uint32_t k = 0; k < desc->item_count; k++) {
+    const tlod_draw_list* dl = items[k].item->draw_list;
+    instances += dl->instance_count;
+    strips += dl->strip_count;
+    refs += strip_refs(d, dl);
+    patches = dl->patch_count > patches ? dl->patch_count : patches;
+  }
+  if (!_tlod_device_grow(d->ctx, (void**)&d->instances, &d->instance_cap, instances + 1, sizeof(tlod_gl_instance)) ||
+      !_tlod_device_grow(d->ctx, (void**)&d->strips, &d->strip_cap, strips + 1, sizeof(tlod_gl_strip)) ||
+      !_tlod_device_grow(d->ctx, (void**)&d->refs, &d->ref_cap, refs + 1, sizeof(uint32_t[2])) ||
+      !_tlod_device_grow(d->ctx, (void**)&d->instance_of, &d->instance_of_cap, patches + 1, sizeof(uint32_t)) ||
+      !_tlod_device_grow(d->ctx, (void**)&d->ranges, &d->range_cap, desc->item_count, sizeof(*d->ranges)))
+    return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory staging a draw");
+  uint32_t i0 = 0, s0 = 0, r = 0;
+  for (uint32_t k = 0; k < desc->item_count; k++) {
+    double t0 = tlod_now_ms();
+    const tlod_draw_list* dl = items[k].item->draw_list;
+    tlod_mesh_view m = tlod_mesh_query_view(tlod_surface_mesh(items[k].surface));
+    d->ranges[k].instance_first = i0;
+    d->ranges[k].ref_first = r;
+    for (uint32_t j = 0; j < dl->instance_count; j++) {
+      const tlod_draw_instance* in = &dl->instances[j];
+      d->instances[i0 + j] =
+          (tlod_gl_instance){.patch = in->patch,
+                             .level = in->level,
+                             .edge_levels = d->hardware ? edge_levels(&m, dl, in) : 0u,
+                             .morph = {in->morph, in->edge_morph[0], in->edge_morph[1], in->edge_morph[2]},
+                             .morph_e3 = {in->edge_morph[3], 0, 0, 0}};
+      if (in->patch < dl->patch_count) d->instance_of[in->patch] = j;
+    }
+    for (uint32_t j = 0; j < dl->strip_count; j++) {
+      const tlod_draw_strip* st = &dl->strips[j];
+      /* Each side blends its edge points as its own patch does. */
+      float ma = dl->instances[d->instance_of[st->patch_a]].edge_morph[st->edge_a];
+      float mb = dl->instances[d->instance_of[st->patch_b]].edge_morph[st->edge_b];
+      d->strips[s0 + j] = (tlod_gl_strip){st->patch_a,
+                                          st->patch_b,
+                                          st->edge_a | (uint32_t)st->edge_b << 8,
+                                          st->level_a | (uint32_t)st->level_b << 8,
+                                          {ma, mb, 0.0f, 0.0f}};
+      uint32_t count;
+      const uint32_t* tris = tlod_patterns_connection(d->patterns, st->level_a, st->level_b, &count);
+      for (uint32_t t = 0; t < 3 * count; t++)
+        d->refs[r][0] = s0 + j, d->refs[r++][1] = tris[t];
+    }
+    d->ranges[k].ref_count = r - d->ranges[k].ref_first;
+    i0 += dl->instance_count;
+    s0 += dl->strip_count;
+    item_stats[k].cpu_ms = tlod_now_ms() - t0;
+  }
+  /* Orphans each buffer and fills it: the driver never waits for a draw in flight. */
+  const GLuint bufs[3] = {d->buf_instances, d->buf_strips, d->buf_refs};
+  const void* data[3] = {d->instances, d->strips, d->refs};
+  const size_t bytes[3] = {sizeof(tlod_gl_instance) * instances, sizeof(tlod_gl_strip) * strips,
+                           sizeof(uint32_t[2]) * r};
+  for (int b = 0; b < 3; b++) {
+    glNamedBufferData(bufs[b], (GLsizeiptr)(bytes[b] ? bytes[b] : 16), NULL, GL_STREAM_DRAW);
+    if (bytes[b]) glNamedBufferSubData(bufs[b], 0, (GLsizeiptr)bytes[b], data[b]);
+  }
+  d->stats->gl.buffer_streams = 3;
+  return TLOD_SUCCESS;
+}
+
+/* ---- drawing ----------------------------------------------------------------- */
+
+/* The programs of a surface type in use: pattern and strip, and the two
+ * tessellation programs with hardware tessellation. */
+static int programs_of(const gl_device* d, const gl_programs* ps, const gl_program* out[4]) {
+  out[0] = &ps->pattern, out[1] = &ps->strip, out[2] = &ps->tess[0], out[3] = &ps->tess[1];
+  return d->hardware ? 4 : 2;
+}
+
+/* The view's uniforms, on every program the device linked. */
+static void set_view_uniforms(gl_device* d, const tlod_draw_desc* fr) {
+  float light[3] = {fr->light_dir[0], fr->light_dir[1], fr->light_dir[2]};
+  if (light[0] == 0.0f && light[1] == 0.0f && light[2] == 0.0f) light[0] = 0.3f, light[1] = 0.8f, light[2] = 0.5f;
+  float len = sqrtf(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
+  const float* v = fr->view;
+  float eye[3], fwd[3];
+  for (int i = 0; i < 3; i++) {
+    eye[i] = -(v[i * 4 + 0] * v[12] + v[i * 4 + 1] * v[13] + v[i * 4 + 2] * v[14]);
+    fwd[i] = -v[i * 4 + 2];
+  }
+  for (int t = 0; t < TYPE_COUNT; t++) {
+    gl_programs* ps = &d->programs[t];
+    if (!ps->linked) continue;
+    const gl_program* progs[4];
+    for (int k = 0, n = programs_of(d, ps, progs); k < n; k++) {
+      const gl_program* p = progs[k];
+      glProgramUniform3f(p->id, p->loc[U_LIGHT_DIR], light[0] / len, light[1] / len, light[2] / len);
+      glProgramUniform1ui(p->id, p->loc[U_DEBUG], (uint32_t)fr->debug);
+      glProgramUniform3fv(p->id, p->loc[U_EYE], 1, eye);
+      glProgramUniform3fv(p->id, p->loc[U_FORWARD], 1, fwd);
+      glProgramUniform1ui(p->id, p->loc[U_ORTHO], fr->proj[15] == 1.0f ? 1u : 0u);
+    }
+  }
+}
+
+static void set_item_uniforms(const gl_device* d, const gl_programs* ps, const _tlod_item_shading* sh) {
+  const gl_program* progs[4];
+  for (int k = 0, n = programs_of(d, ps, progs); k < n; k++) {
+    const gl_program* p = progs[k];
+    glProgramUniformMatrix4fv(p->id, p->loc[U_VIEW_PROJ], 1, GL_FALSE, sh->mvp);
+    glProgramUniformMatrix4fv(p->id, p->loc[U_MODEL], 1, GL_FALSE, sh->model);
+    glProgramUniformMatrix3fv(p->id, p->loc[U_NORMAL_MATRIX], 1, GL_FALSE, sh->normal_matrix);
+    glProgramUniform4fv(p->id, p->loc[U_BASE_COLOR], 1, sh->color);
+  }
+}
+
+static void set_debug(const gl_device* d, const gl_programs* ps, uint32_t debug) {
+  const gl_program* progs[4];
+  for (int k = 0, n = programs_of(d, ps, progs); k < n; k++)
+    glProgramUniform1ui(progs[k]->id, progs[k]->loc[U_DEBUG], debug);
+}
+
+/* One instanced draw per refinement pattern, then the item's strips in one draw. */
+static uint32_t issue_draws(const gl_device* d, const gl_programs* ps, const tlod_draw_list* dl,
+                            const struct gl_item_range* range, uint64_t* vertices) {
+  uint32_t calls = 0;
+  const gl_program* p = &ps->pattern;
+  glUseProgram(p->id);
+  glBindVertexArray(d->vao_pattern);
+  for (uint32_t k = 0; k < dl->bucket_count; k++) {
+    const tlod_draw_bucket* bk = &dl->buckets[k];
+    uint32_t sh = (uint32_t)bk->shape;
+    glProgramUniform1ui(p->id, p->loc[U_FIRST_INSTANCE], range->instance_first + bk->first);
+    glProgramUniform1ui(p->id, p->loc[U_SHAPE_BASE], d->shape_base[sh]);
+    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)d->index_count[sh][bk->level], GL_UNSIGNED_INT,
+                            (const void*)(sizeof(uint32_t) * (size_t)d->index_first[sh][bk->level]),
+                            (GLsizei)bk->count);
+    *vertices += (uint64_t)tlod_pattern_vertex_count(bk->shape, bk->level) * bk->count;
+    calls++;
+  }
+  if (range->ref_count) {
+    glUseProgram(ps->strip.id);
+    glBindVertexArray(d->vao_strip);
+    glDrawArrays(GL_TRIANGLES, (GLint)range->ref_first, (GLsizei)range->ref_count);
+    *vertices += range->ref_count;
+    calls++;
+  }
+  return calls;
+}
+
+/* Tessellated vertices of a patch whose largest level is l (docs/platform.md section 1.2). */
+static uint32_t tess_vertices(uint32_t corners, uint32_t l) {
+  uint32_t n = 1u << l;
+  if (corners == 4) return (n + 1) * (n + 1);
+  return n == 1 ? 3u : 3u * n * n / 4u + 3u * n / 2u + 1u;
+}
+
+/* Hardware path: per bucket, draws of whole patches kept under 65,536
+ * tessellated vertices each (Mesa drops what lies past that, silently). */
+static uint32_t issue_tess_draws(const gl_device* d, const gl_programs* ps, const tlod_draw_list* dl,
+                                 const struct gl_item_range* range, uint64_t* vertices) {
+  uint32_t calls = 0;
+  for (uint32_t k = 0; k < dl->bucket_count; k++) {
+    const tlod_draw_bucket* bk = &dl->buckets[k];
+    uint32_t sh = (uint32_t)bk->shape, corners = sh ? 4u : 3u;
+    const gl_program* p = &ps->tess[sh];
+    glUseProgram(p->id);
+    glBindVertexArray(d->vao_pattern);
+    glPatchParameteri(GL_PATCH_VERTICES, (GLint)corners);
+    glProgramUniform1ui(p->id, p->loc[U_CORNERS], corners);
+    uint32_t start = range->instance_first + bk->first, end = start + bk->count, batch_vertices = 0;
+    for (uint32_t i = start; i <= end; i++) {
+      uint32_t v = 0;
+      if (i < end) {
+        uint32_t l = d->instances[i].level;
+        for (uint32_t e = 0; e < corners; e++) {
+          uint32_t le = (d->instances[i].edge_levels >> (8 * e)) & 255u;
+          l = le > l ? le : l;
+        }
+        v = tess_vertices(corners, l);
+      }
+      if (i == end || batch_vertices + v > 65535u) {
+        if (i > start) {
+          glProgramUniform1ui(p->id, p->loc[U_FIRST_INSTANCE], start);
+          glDrawArrays(GL_PATCHES, 0, (GLsizei)((i - start) * corners));
+          calls++;
+        }
+        start = i;
+        batch_vertices = 0;
+      }
+      batch_vertices += v;
+      *vertices += v;
+    }
+  }
+  return calls;
+}
+
+static void read_query(gl_device* d) {
+  /* The query of QUERY_RING - 1 draws ago: reading it never stalls. */
+  if (d->frame < QUERY_RING) return;
+  GLuint q = d->queries[(d->frame + 1) % QUERY_RING];
+  GLint ready = 0;
+  glGetQueryObjectiv(q, GL_QUERY_RESULT_AVAILABLE, &ready);
+  if (!ready) return;
+  GLuint64 ns = 0, prims = 0;
+  glGetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);
+  glGetQueryObjectui64v(d->prim_queries[(d->frame + 1) % QUERY_RING], GL_QUERY_RESULT, &prims);
+  d->stats->gpu_ms = (double)ns * 1e-6;
+  d->stats->gpu_draw = d->query_draw[(d->frame + 1) % QUERY_RING];
+  d->stats->gl.primitives_generated = prims;
+}
+
+/* Item k: its patterns and strips, then (wireframe) its edges over them. */
+static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, uint32_t k,
+                      tlod_draw_item_stats* st) {
+  double t0 = tlod_now_ms();
+  const gl_surface* gs = it->surface_state;
+  const gl_programs* ps = &d->programs[gs->type];
+  const tlod_draw_list* dl = it->item->draw_list;
+  const struct gl_item_range* range = &d->ranges[k];
+  _tlod_item_shading sh;
+  _tlod_item_shading_of(fr, it->item, &sh);
+  set_item_uniforms(d, ps, &sh);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TLOD_BINDING_PATCHES, gs->buf_patches);
+  if (fr->wireframe) {
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 1.0f);
+  }
+  uint64_t vertices = 0;
+  uint32_t calls =
+      d->hardware ? issue_tess_draws(d, ps, dl, range, &vertices) : issue_draws(d, ps, dl, range, &vertices);
+  if (fr->wireframe) {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    set_debug(d, ps, 4u);
+    uint64_t unused = 0;
+    calls += d->hardware ? issue_tess_draws(d, ps, dl, range, &unused) : issue_draws(d, ps, dl, range, &unused);
+    set_debug(d, ps, (uint32_t)fr->debug);
+  }
+  st->triangles = d->hardware ? dl->pattern_triangles : dl->pattern_triangles + range->ref_count / 3;
+  st->vertices = vertices;
+  st->draw_calls = calls;
+  st->cpu_ms += tlod_now_ms() - t0;
+}
+
+static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
+                           tlod_draw_item_stats* item_stats) {
+  gl_device* d = state;
+  double t0 = tlod_now_ms();
+  gl_saved_state saved;
+  _tlod_gl_save_state(&saved);
+  tlod_result r = stage(d, fr, items, item_stats);
+  if (r != TLOD_SUCCESS) {
+    _tlod_gl_restore_state(&saved);
+    return r;
+  }
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TLOD_BINDING_PATTERN, d->buf_pattern);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TLOD_BINDING_INSTANCES, d->buf_instances);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TLOD_BINDING_STRIPS, d->buf_strips);
+  glViewport((GLint)fr->viewport[0], (GLint)fr->viewport[1], (GLsizei)fr->viewport[2], (GLsizei)fr->viewport[3]);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  /* An engine may be timing the frame around us: one query per target can
+   * be active, so ours stay out of its way then. */
+  GLint busy_time = 0, busy_prims = 0;
+  glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &busy_time);
+  glGetQueryiv(GL_PRIMITIVES_GENERATED, GL_CURRENT_QUERY, &busy_prims);
+  bool timed = !busy_time && !busy_prims;
+  if (timed) {
+    d->query_draw[d->frame % QUERY_RING] = d->stats->draws + 1; /* the dispatch counts this draw on success */
+    glBeginQuery(GL_TIME_ELAPSED, d->queries[d->frame % QUERY_RING]);
+    glBeginQuery(GL_PRIMITIVES_GENERATED, d->prim_queries[d->frame % QUERY_RING]);
+  }
+  set_view_uniforms(d, fr);
+  for (uint32_t k = 0; k < fr->item_count; k++)
+    draw_item(d, fr, &items[k], k, &item_stats[k]);
+  if (timed) {
+    glEndQuery(GL_PRIMITIVES_GENERATED);
+    glEndQuery(GL_TIME_ELAPSED);
+    read_query(d);
+    d->frame++;
+  }
+  _tlod_gl_restore_state(&saved);
+  d->stats->cpu_ms = tlod_now_ms() - t0;
+  if (fr->finish) {
+    glFinish();
+    d->stats->wall_ms = tlod_now_ms() - t0;
+  }
+  return TLOD_SUCCESS;
+}
+
+static tlod_result gl_read_image(void* state, uint32_t width, uint32_t height, uint8_t* rgba) {
+  (void)state;
+  /* Into client memory whatever the engine's pack state: a bound pixel pack
+   * buffer or a row length would redirect or reshape the read. */
+  GLint align = 4, row_length = 0, pack_buffer = 0;
+  glGetIntegerv(GL_PACK_ALIGNMENT, &align);
+  glGetIntegerv(GL_PACK_ROW_LENGTH, &row_length);
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+  glReadPixels(0, 0, (GLsizei)width, (GLsizei)height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  glPixelStorei(GL_PACK_ALIGNMENT, align);
+  glPixelStorei(GL_PACK_ROW_LENGTH, row_length);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
+  return TLOD_SUCCESS;
+}
+
+const _tlod_device_vtbl _tlod_gl_device_vtbl = {gl_create,          gl_destroy, gl_create_surface, gl_update_surface,
+                                                gl_destroy_surface, gl_draw,    gl_read_image,     true};

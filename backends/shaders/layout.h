@@ -1,0 +1,121 @@
+/*
+ * backends/shaders/layout.h -- the buffer layouts and binding points the GPU
+ * backends and their shaders share. One file, valid C and GLSL:
+ *   - GLSL: the GL backend assembles every program as
+ *       "#version 450 core" + "#define TLOD_GLSL 1" + this file + common.glsl + ...
+ *     so the shaders get the binding points, the structs and the buffer blocks;
+ *   - C: backends/gl includes it (TLOD_GLSL undefined) and gets the same
+ *     binding points and C mirrors of the structs, checked with
+ *     _Static_assert against std430 and against core's tlod_patch_record.
+ * Only the preprocessor subset both languages share is used (#define, #if,
+ * #ifdef, comments). The binding points are public as TLOD_GL_BINDING_* in
+ * tesslod/gl.h; gl_internal.h checks they agree.
+ */
+#ifndef TLOD_SHADER_LAYOUT_H
+#define TLOD_SHADER_LAYOUT_H
+
+/* Shader storage binding points. */
+#define TLOD_BINDING_PATCHES 0   /* per patch: tlod_patch_record (core.h) */
+#define TLOD_BINDING_PATTERN 1   /* pattern vertices of both shapes */
+#define TLOD_BINDING_INSTANCES 2 /* per visible patch of the draw: level, geomorph blends, edge levels */
+#define TLOD_BINDING_STRIPS 3    /* per connection strip of the draw: patches, edges, levels, blends */
+#define TLOD_BINDING_COUNT 4
+
+/* Vertex attribute of the strip program: (strip, point) pairs. */
+#define TLOD_ATTRIB_STRIP_REF 0
+
+/* Pattern vertex code: kind | level << 8 (kind: 0-3 corner, 4-7 edge, 8 interior,
+ * as tlod_grid_point_kind()). */
+#define TLOD_CODE_LEVEL_SHIFT 8
+
+/* std430 sizes in bytes (every member a multiple of 16 bytes or packed uints). */
+#define TLOD_PATCH_BYTES 368 /* 23 vec4 */
+#define TLOD_PATTERN_VERTEX_BYTES 32
+#define TLOD_INSTANCE_BYTES 48
+#define TLOD_STRIP_BYTES 32
+
+#ifdef TLOD_GLSL
+/* ---- GLSL --------------------------------------------------------------- */
+
+struct Patch { /* == tlod_patch_record */
+  vec4 p[4];   /* corner positions, alpha in w */
+  vec4 n[4];   /* corner normals */
+  uvec4 weld;  /* welded position id per corner (canonical edge direction) */
+  uvec4 info;  /* x: corner count */
+  vec4 b[10];  /* PN control points b300 b030 b003 b210 b120 b021 b012 b102 b201 b111 */
+  vec4 mn[3];  /* PN mid-edge normals n110 n011 n101 */
+};
+
+struct PatternVertex {
+  vec2 uv;
+  uint parent0, parent1;
+  uint code;  /* kind | level << 8 */
+  uint param; /* edge: numerator of the end corner's weight over N */
+  uint pad0, pad1;
+};
+
+struct Instance {
+  uint patch_id, level;
+  uint edge_levels; /* hardware path: outer level exponent per edge, 8 bits each */
+  uint pad1;
+  vec4 morph;    /* x: interior blend; y, z, w: edges 0-2 */
+  vec4 morph_e3; /* x: edge 3 */
+};
+
+struct Strip {
+  uint patch_a, patch_b, edges, levels; /* edges: ea | eb << 8; levels: la | lb << 8 */
+  vec4 morph;                           /* x: a's edge blend, y: b's edge blend */
+};
+
+layout(std430, binding = TLOD_BINDING_PATCHES) readonly buffer Patches { Patch patches[]; };
+layout(std430, binding = TLOD_BINDING_PATTERN) readonly buffer Pattern { PatternVertex pattern[]; };
+layout(std430, binding = TLOD_BINDING_INSTANCES) readonly buffer Instances { Instance instances[]; };
+layout(std430, binding = TLOD_BINDING_STRIPS) readonly buffer Strips { Strip strips[]; };
+
+#else
+/* ---- C ------------------------------------------------------------------ */
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "tesslod/core.h"
+
+/* Patch: tlod_patch_record (tesslod/core.h), written by tlod_surface_patch_records(). */
+_Static_assert(sizeof(tlod_patch_record) == TLOD_PATCH_BYTES, "tlod_patch_record is the std430 Patch");
+_Static_assert(offsetof(tlod_patch_record, corner) == 0, "Patch.p");
+_Static_assert(offsetof(tlod_patch_record, normal) == 64, "Patch.n");
+_Static_assert(offsetof(tlod_patch_record, weld) == 128, "Patch.weld");
+_Static_assert(offsetof(tlod_patch_record, info) == 144, "Patch.info");
+_Static_assert(offsetof(tlod_patch_record, pn_control) == 160, "Patch.b");
+_Static_assert(offsetof(tlod_patch_record, pn_normal) == 320, "Patch.mn");
+
+typedef struct tlod_gl_pattern_vertex { /* PatternVertex */
+  float uv[2];
+  uint32_t parent0, parent1;
+  uint32_t code, param;
+  uint32_t pad[2];
+} tlod_gl_pattern_vertex;
+
+typedef struct tlod_gl_instance { /* Instance */
+  uint32_t patch, level;
+  uint32_t edge_levels;
+  uint32_t pad;
+  float morph[4];
+  float morph_e3[4];
+} tlod_gl_instance;
+
+typedef struct tlod_gl_strip { /* Strip */
+  uint32_t patch_a, patch_b, edges, levels;
+  float morph[4];
+} tlod_gl_strip;
+
+_Static_assert(sizeof(tlod_gl_pattern_vertex) == TLOD_PATTERN_VERTEX_BYTES, "PatternVertex");
+_Static_assert(offsetof(tlod_gl_pattern_vertex, code) == 16, "PatternVertex.code");
+_Static_assert(sizeof(tlod_gl_instance) == TLOD_INSTANCE_BYTES, "Instance");
+_Static_assert(offsetof(tlod_gl_instance, morph) == 16, "Instance.morph");
+_Static_assert(offsetof(tlod_gl_instance, morph_e3) == 32, "Instance.morph_e3");
+_Static_assert(sizeof(tlod_gl_strip) == TLOD_STRIP_BYTES, "Strip");
+_Static_assert(offsetof(tlod_gl_strip, morph) == 16, "Strip.morph");
+
+#endif
+#endif
