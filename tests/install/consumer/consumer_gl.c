@@ -82,29 +82,32 @@ static void gl_target_destroy(gl_target* t) {
   if (t->display != EGL_NO_DISPLAY && t->display) eglTerminate(t->display);
 }
 
-/* Every call into tesslod's backend API: create the "gl" backend in the current context, upload, draw
- * the draw list into the bound framebuffer, read the image back (bottom row first). 1 on success. */
+/* Every call into tesslod's device API: create a "gl" device in the current context, make the
+ * surface's device surface, draw the draw list into the bound framebuffer, read the image back
+ * (bottom row first). 1 on success. */
 static int draw_with_backend(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
                              const tlod_draw_list* list, const float view[16], const float proj[16], uint8_t* rgba) {
-  tlod_backend* b = NULL;
-  tlod_result r = tlod_backend_create(ctx, &(tlod_backend_desc){.name = "gl"}, &b);
+  tlod_device* dev = NULL;
+  tlod_result r = tlod_device_create(ctx, &(tlod_device_desc){.backend = "gl", .patterns = patterns}, &dev);
   if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "consumer_gl: tlod_backend_create(gl): %s: %s\n", tlod_result_string(r),
+    fprintf(stderr, "consumer_gl: tlod_device_create(gl): %s: %s\n", tlod_result_string(r),
             tlod_context_last_error(ctx));
     return 0;
   }
-  int ok = strcmp(tlod_backend_name(b), "gl") == 0;
-  if (!ok) fprintf(stderr, "consumer_gl: backend name '%s', expected 'gl'\n", tlod_backend_name(b));
-  tlod_backend_frame frame = {.draw_list = list, .viewport = {0, 0, W, H}, .finish = true};
-  memcpy(frame.view, view, sizeof frame.view);
-  memcpy(frame.proj, proj, sizeof frame.proj);
-  if (ok && (r = tlod_backend_upload(b, surface, patterns)) != TLOD_SUCCESS)
-    ok = 0, fprintf(stderr, "consumer_gl: tlod_backend_upload: %s\n", tlod_context_last_error(ctx));
-  if (ok && (r = tlod_backend_draw(b, &frame)) != TLOD_SUCCESS)
-    ok = 0, fprintf(stderr, "consumer_gl: tlod_backend_draw: %s\n", tlod_context_last_error(ctx));
-  if (ok && (r = tlod_backend_read_image(b, W, H, rgba)) != TLOD_SUCCESS)
-    ok = 0, fprintf(stderr, "consumer_gl: tlod_backend_read_image: %s\n", tlod_context_last_error(ctx));
-  tlod_backend_destroy(b);
+  int ok = strcmp(tlod_device_backend(dev), "gl") == 0;
+  if (!ok) fprintf(stderr, "consumer_gl: backend '%s', expected 'gl'\n", tlod_device_backend(dev));
+  tlod_device_surface* ds = NULL;
+  if (ok && tlod_device_create_surface(dev, surface, &ds) != TLOD_SUCCESS)
+    ok = 0, fprintf(stderr, "consumer_gl: tlod_device_create_surface: %s\n", tlod_context_last_error(ctx));
+  tlod_draw_item item = {.surface = ds, .draw_list = list};
+  tlod_draw_desc draw = {.items = &item, .item_count = 1, .viewport = {0, 0, W, H}, .finish = true};
+  memcpy(draw.view, view, sizeof draw.view);
+  memcpy(draw.proj, proj, sizeof draw.proj);
+  if (ok && tlod_device_draw(dev, &draw) != TLOD_SUCCESS)
+    ok = 0, fprintf(stderr, "consumer_gl: tlod_device_draw: %s\n", tlod_context_last_error(ctx));
+  if (ok && tlod_device_read_image(dev, W, H, rgba) != TLOD_SUCCESS)
+    ok = 0, fprintf(stderr, "consumer_gl: tlod_device_read_image: %s\n", tlod_context_last_error(ctx));
+  tlod_device_destroy(dev); /* also destroys ds */
   return ok;
 }
 
