@@ -21,7 +21,7 @@
  * DOES NOT
  *   - create windows or GL contexts: the GL device draws into the context
  *     current on the calling thread and into the framebuffer bound there (the
- *     engine's own). samples/common has a small EGL/GLFW platform module;
+ *     engine's own). platform/ has a small EGL/GLFW platform module;
  *   - decide levels: the scheduler (tesslod/lod.h) does, one per object;
  *   - apply the model matrix to the level decisions: plan an item's draw list
  *     with view * model as the scheduler's view (the scheduler works in the
@@ -29,7 +29,7 @@
  *   - clear the framebuffer or present it.
  *
  * STEP BY STEP
- *   1. make a context current (engine, or samples/common platform);
+ *   1. make a context current (the engine's, or the platform/ glue's);
  *   2. tlod_device_create(ctx, &(tlod_device_desc){ .backend = "gl",
  *      .patterns = patterns }, &dev) once
  *      -> on failure tlod_context_last_error() says why (not in this build,

@@ -14,7 +14,7 @@
  *
  * DOES NOT
  *   - create or make current a context, or a framebuffer: the engine's (or
- *     samples/common's platform) are used as they are;
+ *     the platform/ glue) are used as they are;
  *   - clear, present, or touch state outside the list below (scissor,
  *     stencil, colour mask, blend function, framebuffer bindings, textures,
  *     samplers stay as the engine set them);
