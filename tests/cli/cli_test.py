@@ -4,29 +4,11 @@ half-written outputs, closed output for closed input, stats contents.
 Usage: cli_test.py TLOD DATA_DIR WORK_DIR"""
 import json, os, struct, subprocess, sys, glob
 
+from tlod_cli import check, finish, init, one_error_line, run
+
 TLOD, DATA, WORK = sys.argv[1:4]
+init(TLOD)
 os.makedirs(WORK, exist_ok=True)
-passed = failed = 0
-
-
-def run(*args):
-    p = subprocess.run([TLOD, *args], capture_output=True, text=True, timeout=300)
-    return p.returncode, p.stdout, p.stderr
-
-
-def check(name, cond, detail=""):
-    global passed, failed
-    if cond:
-        passed += 1
-        print("ok   " + name)
-    else:
-        failed += 1
-        print("FAIL " + name + (": " + detail if detail else ""))
-
-
-def one_error_line(err):
-    lines = [l for l in err.splitlines() if l.strip()]
-    return len(lines) == 1 and lines[0].startswith("tlod: error: ")
 
 
 def read_obj(path):
@@ -190,5 +172,4 @@ check("bench eval: ratios printed", "phong/flat" in out and "pn/flat" in out and
 rc, out, err = run("bench", "--suite", "table1", "--model", "demo:cylinder")
 check("bench table1: three policies", rc == 0 and out.count("table1 ") == 3 and "uniform/adaptive" in out, err)
 
-print("%d passed, %d failed" % (passed, failed))
-sys.exit(1 if failed else 0)
+finish()

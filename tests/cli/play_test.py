@@ -6,34 +6,14 @@ no-argument default run.
 Usage: play_test.py TLOD DATA_DIR WORK_DIR"""
 import glob, json, os, shutil, signal, struct, subprocess, sys, time, zlib
 
+from tlod_cli import check, finish, init, one_error_line, run
+
 TLOD, DATA, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
+init(TLOD)
 shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
-passed = failed = 0
 SIZE = (640, 360)  # small: keeps the gl runs and the PNG decoding quick
 SIZE_ARG = "%dx%d" % SIZE
-
-
-def run(*args, cwd=None, timeout=300, env=None):
-    p = subprocess.run([TLOD, *args], capture_output=True, text=True, timeout=timeout, cwd=cwd,
-                       env=dict(os.environ, **env) if env else None)
-    return p.returncode, p.stdout, p.stderr
-
-
-def check(name, cond, detail=""):
-    global passed, failed
-    if cond:
-        passed += 1
-        print("ok   " + name)
-    else:
-        failed += 1
-        print("FAIL " + name + (": " + str(detail)[:2000] if detail else ""))
-    return cond
-
-
-def one_error_line(err):
-    lines = [l for l in err.splitlines() if l.strip()]
-    return len(lines) == 1 and lines[0].startswith("tlod: error: ")
 
 
 def load_json(path):
@@ -602,5 +582,4 @@ tmp = [p for p in glob.glob(os.path.join(WORK, "**", "*.tmp*"), recursive=True)]
 check("no temporary files left anywhere", not tmp, tmp)
 
 print("(%.0f s)" % (time.time() - t0))
-print("%d passed, %d failed" % (passed, failed))
-sys.exit(1 if failed else 0)
+finish()

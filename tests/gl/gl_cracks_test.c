@@ -109,7 +109,7 @@ static double linear_depth(const camera* c, float d) {
  * reference_dl is the complete draw list for the reference. */
 static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, const tlod_draw_list* dl,
                              const tlod_draw_list* reference_dl, const camera* cam, bool* ok) {
-  tlod_view_desc view = camera_view(cam);
+  tlod_view_desc view = make_view(cam);
   const tlod_view_desc* v = &view;
   hole_count hc;
   memset(&hc, 0, sizeof hc);
@@ -229,16 +229,34 @@ static void env_free(gl_env* env) {
   memset(env, 0, sizeof *env);
 }
 
-TEST(test_no_holes) {
+/* What every test here starts with: the GL context and buffers, a tesslod
+ * context, patterns to MAX_LEVEL and a "gl" device on them. Close with
+ * cracks_close. */
+static void cracks_open(gl_env* env, tlod_context** ctx, tlod_patterns** pat, tlod_device** dev,
+                        tlod_device_gl_desc gl) {
   char err[512] = "";
+  *ctx = NULL, *pat = NULL, *dev = NULL;
+  CHECK_MSG(env_init(env, err, sizeof err), "cannot create a GL context: %s", err);
+  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, ctx) == TLOD_SUCCESS);
+  *pat = new_patterns(*ctx, MAX_LEVEL);
+  CHECK(*pat);
+  *dev = new_gl_device(*ctx, *pat, "gl_cracks", gl);
+  CHECK(*dev);
+}
+
+static void cracks_close(gl_env* env, tlod_context* ctx, tlod_patterns* pat, tlod_device* dev) {
+  tlod_device_destroy(dev);
+  tlod_patterns_destroy(pat);
+  tlod_context_destroy(ctx);
+  env_free(env);
+}
+
+TEST(test_no_holes) {
   gl_env env;
-  CHECK_MSG(env_init(&env, err, sizeof err), "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
-  CHECK(pat);
-  tlod_device* dev = new_gl_device(ctx, pat, "gl_cracks", (tlod_device_gl_desc){0});
-  CHECK(dev);
+  tlod_context* ctx;
+  tlod_patterns* pat;
+  tlod_device* dev;
+  CALL(cracks_open(&env, &ctx, &pat, &dev, (tlod_device_gl_desc){0}));
   shape shapes[3] = {shape_icosphere(2), shape_torus(16, 10), shape_cube_soft()};
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   uint32_t frames = 0, failures = 0, mixed = 0, references = 0;
@@ -253,7 +271,7 @@ TEST(test_no_holes) {
       uint32_t case_failures = 0;
       for (int k = 0; k < CAMERAS; ++k) {
         camera cam = random_camera(&rng);
-        tlod_view_desc v = camera_view(&cam);
+        tlod_view_desc v = make_view(&cam);
         const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
         CHECK(dl);
         uint32_t levels_used = 0;
@@ -290,10 +308,7 @@ TEST(test_no_holes) {
          (unsigned long long)contour_back, failures);
   for (int k = 0; k < 3; ++k)
     shape_free(&shapes[k]);
-  tlod_device_destroy(dev);
-  tlod_patterns_destroy(pat);
-  tlod_context_destroy(ctx);
-  env_free(&env);
+  cracks_close(&env, ctx, pat, dev);
   CHECK_MSG(mixed >= frames / 2, "only %u of %u frames had mixed levels: the test does not exercise strips", mixed,
             frames);
   CHECK_MSG(failures == 0, "%u frames with holes (see above)", failures);
@@ -301,15 +316,11 @@ TEST(test_no_holes) {
 
 /* The detector sees the cracks that strips close. */
 TEST(test_detector_sees_missing_strips) {
-  char err[512] = "";
   gl_env env;
-  CHECK_MSG(env_init(&env, err, sizeof err), "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
-  CHECK(pat);
-  tlod_device* dev = new_gl_device(ctx, pat, "gl_cracks", (tlod_device_gl_desc){0});
-  CHECK(dev);
+  tlod_context* ctx;
+  tlod_patterns* pat;
+  tlod_device* dev;
+  CALL(cracks_open(&env, &ctx, &pat, &dev, (tlod_device_gl_desc){0}));
   shape cube = shape_cube_soft();
   fixture fx;
   CHECK(fixture_make(&fx, ctx, &cube, TLOD_SURFACE_PN, pat, dev));
@@ -322,7 +333,7 @@ TEST(test_detector_sees_missing_strips) {
   uint64_t total_enclosed = 0, total_back = 0, removed = 0;
   for (int k = 0; k < 8; ++k) {
     camera cam = camera_look(eyes[k][0], eyes[k][1], eyes[k][2], 0, 0, 0, 50, W, H);
-    tlod_view_desc v = camera_view(&cam);
+    tlod_view_desc v = make_view(&cam);
     const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
     CHECK(dl);
     /* the full list is hole-free ... */
@@ -352,10 +363,7 @@ TEST(test_detector_sees_missing_strips) {
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
   shape_free(&cube);
-  tlod_device_destroy(dev);
-  tlod_patterns_destroy(pat);
-  tlod_context_destroy(ctx);
-  env_free(&env);
+  cracks_close(&env, ctx, pat, dev);
   CHECK_MSG(removed > 0, "the draw lists had no strips to remove");
   CHECK_MSG(frames_with_holes >= 1, "no holes found with the strips removed: the detector is blind");
 }
@@ -365,15 +373,11 @@ TEST(test_detector_sees_missing_strips) {
  * design) on the smooth shapes: no holes either. Close cameras make draws
  * that need batching under Mesa's 65,536 tessellated vertices per draw. */
 TEST(test_hardware_path_no_holes) {
-  char err[512] = "";
   gl_env env;
-  CHECK_MSG(env_init(&env, err, sizeof err), "cannot create a GL context: %s", err);
-  tlod_context* ctx = NULL;
-  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &ctx) == TLOD_SUCCESS);
-  tlod_patterns* pat = new_patterns(ctx, MAX_LEVEL);
-  CHECK(pat);
-  tlod_device* dev = new_gl_device(ctx, pat, "gl_cracks", (tlod_device_gl_desc){.hardware_tessellation = true});
-  CHECK(dev);
+  tlod_context* ctx;
+  tlod_patterns* pat;
+  tlod_device* dev;
+  CALL(cracks_open(&env, &ctx, &pat, &dev, (tlod_device_gl_desc){.hardware_tessellation = true}));
   shape shapes[2] = {shape_icosphere(2), shape_torus(16, 10)};
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   uint32_t frames = 0, failures = 0, most_calls = 0;
@@ -387,7 +391,7 @@ TEST(test_hardware_path_no_holes) {
       shape_rng rng = {0xA4D00000u + 10u * (uint64_t)si + (uint64_t)ti};
       for (int k = 0; k < 20; ++k) {
         camera cam = random_camera(&rng);
-        tlod_view_desc v = camera_view(&cam);
+        tlod_view_desc v = make_view(&cam);
         const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
         CHECK(dl);
         bool ok;
@@ -422,7 +426,7 @@ TEST(test_hardware_path_no_holes) {
                                                                    .no_frustum_cull = true});
     CHECK(sch);
     camera cam = camera_look(1.7, -2.2, 1.1, 0, 0, 0, 40, W, H);
-    tlod_view_desc v = camera_view(&cam);
+    tlod_view_desc v = make_view(&cam);
     const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
     CHECK(dl);
     bool ok;
@@ -447,10 +451,7 @@ TEST(test_hardware_path_no_holes) {
          frames, failures, (unsigned long long)most_vertices, most_calls);
   for (int k = 0; k < 2; ++k)
     shape_free(&shapes[k]);
-  tlod_device_destroy(dev);
-  tlod_patterns_destroy(pat);
-  tlod_context_destroy(ctx);
-  env_free(&env);
+  cracks_close(&env, ctx, pat, dev);
   CHECK_MSG(failures == 0, "hardware path: %u frames with holes (see above)", failures);
 }
 

@@ -115,7 +115,7 @@ TEST(test_one_device_many_objects) {
 
   camera cam = camera_look(0.5, -9.0, 6.0, 0, 0, 0, 50, W, H);
   cam.znear = 1.0, cam.zfar = 30.0;
-  tlod_view_desc v = camera_view(&cam);
+  tlod_view_desc v = make_view(&cam);
   uint32_t covered = 0;
   uint64_t triangles = 0;
   CHECK(play(gs.dev, objs, items, &v, &covered, &triangles));
@@ -180,7 +180,7 @@ TEST(test_model_and_colour) {
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
   CHECK(sch);
   camera cam = camera_look(1.4, -2.4, 1.6, 0, 0, 0, 50, W, H);
-  tlod_view_desc v = camera_view(&cam);
+  tlod_view_desc v = make_view(&cam);
   const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
   CHECK(dl);
   uint8_t* img[3];

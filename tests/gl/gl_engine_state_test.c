@@ -181,17 +181,14 @@ static const char* const tri_fs = "#version 450 core\n"
 
 TEST(test_engine_state) {
   gl_session gs;
-  CHECK_MSG(gl_session_open(&gs, W, H, 5, "engine_state", (tlod_device_gl_desc){0}),
-            "no GL context or device (see above)");
-  shape sph = shape_icosphere(2);
+  shape sph;
   fixture fx;
-  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PN, gs.pat, gs.dev));
+  tlod_scheduler* sch;
+  CALL(sphere_scene_open(&gs, &sph, &fx, &sch, W, H, "engine_state", TLOD_SURFACE_PN));
   tlod_result r;
-  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
-  CHECK(sch);
   /* the sphere sits right of centre; the engine's triangle covers the left */
   camera cam = camera_look(0.9, -3.2, 0.6, -0.7, 0, 0, 50, W, H);
-  tlod_view_desc v = camera_view(&cam);
+  tlod_view_desc v = make_view(&cam);
   const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
   CHECK(dl);
   one_draw frame;
@@ -346,10 +343,7 @@ TEST(test_engine_state) {
   free(alone);
   free(before);
   free(after);
-  tlod_scheduler_destroy(sch);
-  fixture_free(&fx);
-  shape_free(&sph);
-  gl_session_close(&gs);
+  sphere_scene_close(&gs, &sph, &fx, sch);
 }
 
 /* An engine that times its passes has its own GL_TIME_ELAPSED (and
@@ -360,16 +354,13 @@ TEST(test_engine_state) {
  * report. */
 TEST(test_engine_queries_active) {
   gl_session gs;
-  CHECK_MSG(gl_session_open(&gs, W, H, 5, "engine_queries", (tlod_device_gl_desc){0}),
-            "no GL context or device (see above)");
-  shape sph = shape_icosphere(2);
+  shape sph;
   fixture fx;
-  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PHONG, gs.pat, gs.dev));
+  tlod_scheduler* sch;
+  CALL(sphere_scene_open(&gs, &sph, &fx, &sch, W, H, "engine_queries", TLOD_SURFACE_PHONG));
   tlod_result r;
-  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
-  CHECK(sch);
   camera cam = camera_look(0.9, -3.2, 0.6, 0, 0, 0, 50, W, H);
-  tlod_view_desc v = camera_view(&cam);
+  tlod_view_desc v = make_view(&cam);
   const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
   CHECK(dl);
   one_draw frame;
@@ -412,10 +403,7 @@ TEST(test_engine_queries_active) {
          (unsigned long long)(dl->pattern_triangles + dl->strip_triangles));
   glDeleteQueries(2, q);
   uint64_t pattern_triangles = dl->pattern_triangles; /* dl dies with the scheduler */
-  tlod_scheduler_destroy(sch);
-  fixture_free(&fx);
-  shape_free(&sph);
-  gl_session_close(&gs);
+  sphere_scene_close(&gs, &sph, &fx, sch);
   CHECK_MSG(errors == 0,
             "tlod_device_draw inside an engine's GL_TIME_ELAPSED / GL_PRIMITIVES_GENERATED queries: %d "
             "errors, first %s (0x%04X)",

@@ -207,7 +207,7 @@ TEST(test_parity) {
         camera cams[2] = {camera_look(2.6, -3.4, 1.9, 0, 0, 0, 45, W, H),
                           camera_look(1.25, 1.9, 0.35, 0.15, 0.1, 0.05, 60, W, H)};
         for (int ci = 0; ci < 2; ++ci) {
-          tlod_view_desc v = camera_view(&cams[ci]);
+          tlod_view_desc v = make_view(&cams[ci]);
           const tlod_draw_list* dl = plan(&fx, sch, &v, ci == 0 ? 0.0f : 60.0f);
           CHECK(dl);
           char what[96];

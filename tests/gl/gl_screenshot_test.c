@@ -77,19 +77,16 @@ static void check_png(const char* path, uint32_t w, uint32_t h, const uint8_t* r
 
 TEST(test_screenshot) {
   gl_session gs;
-  CHECK_MSG(gl_session_open(&gs, W, H, 5, "gl_screenshot", (tlod_device_gl_desc){0}),
-            "no GL context or device (see above)");
+  shape sph;
+  fixture fx;
+  tlod_scheduler* sch;
+  CALL(sphere_scene_open(&gs, &sph, &fx, &sch, W, H, "gl_screenshot", TLOD_SURFACE_PN));
   uint32_t pw = 0, ph = 0;
   tlod_platform_size(gs.platform, &pw, &ph);
   CHECK(pw == W && ph == H && tlod_platform_framebuffer(gs.platform) != 0);
-  shape sph = shape_icosphere(2);
-  fixture fx;
-  CHECK(fixture_make(&fx, gs.ctx, &sph, TLOD_SURFACE_PN, gs.pat, gs.dev));
   tlod_result r;
-  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 5});
-  CHECK(sch);
   camera cam = camera_look(1.2, -2.6, 1.4, 0, 0, 0.2, 45, W, H);
-  tlod_view_desc v = camera_view(&cam);
+  tlod_view_desc v = make_view(&cam);
   const tlod_draw_list* dl = plan(&fx, sch, &v, 0.0f);
   CHECK(dl);
   tlod_platform_bind(gs.platform);
@@ -170,10 +167,7 @@ TEST(test_screenshot) {
 
   free(top_first);
   free(bottom_first);
-  tlod_scheduler_destroy(sch);
-  fixture_free(&fx);
-  shape_free(&sph);
-  gl_session_close(&gs);
+  sphere_scene_close(&gs, &sph, &fx, sch);
 }
 
 TEST(test_platform_errors) {

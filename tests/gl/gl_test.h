@@ -26,15 +26,9 @@
 #include "tesslod/cpu.h"
 #include "tesslod/lod.h"
 #include "test.h"
+#include "test_camera.h"
+#include "test_lod.h"
 #include "tlod_platform.h"
-
-/* Stops the calling test as soon as a helper's check failed. */
-#define CALL(expr)                                                                                                     \
-  do {                                                                                                                 \
-    int _failed_before = _test_checks_failed;                                                                          \
-    expr;                                                                                                              \
-    if (_test_checks_failed != _failed_before) return;                                                                 \
-  } while (0)
 
 /* Like TEST_END, but a failed run exits with _Exit: the early returns of a
  * failed check leave objects behind, and LeakSanitizer's report of them
@@ -135,56 +129,8 @@ static inline void gl_stencil_facing_begin(void) {
 static inline void gl_stencil_facing_end(void) { glDisable(GL_STENCIL_TEST); }
 
 /* ------------------------------------------------------------------------ */
-/* Cameras (double precision, stored as float)                              */
+/* Cameras (test_camera.h: double precision, stored as float)               */
 /* ------------------------------------------------------------------------ */
-
-typedef struct camera {
-  double eye[3], target[3], up[3];
-  double fovy; /* radians */
-  double znear, zfar;
-  uint32_t width, height;
-} camera;
-
-static inline void cam_cross(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static inline double cam_dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-/* Column-major GL look-at and perspective. */
-static inline tlod_view_desc camera_view(const camera* c) {
-  tlod_view_desc v;
-  memset(&v, 0, sizeof v);
-  double f[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]}, s[3], u[3];
-  shape_normalize3(f);
-  cam_cross(f, c->up, s);
-  shape_normalize3(s);
-  cam_cross(s, f, u);
-  double m[16] = {0};
-  for (int k = 0; k < 3; ++k) {
-    m[4 * k + 0] = s[k];
-    m[4 * k + 1] = u[k];
-    m[4 * k + 2] = -f[k];
-  }
-  m[12] = -cam_dot(s, c->eye);
-  m[13] = -cam_dot(u, c->eye);
-  m[14] = cam_dot(f, c->eye);
-  m[15] = 1;
-  double p[16] = {0};
-  double n = c->znear, fa = c->zfar, F = 1.0 / tan(c->fovy / 2), aspect = (double)c->width / c->height;
-  p[0] = F / aspect;
-  p[5] = F;
-  p[10] = (fa + n) / (n - fa);
-  p[11] = -1.0;
-  p[14] = 2.0 * fa * n / (n - fa);
-  for (int k = 0; k < 16; ++k)
-    v.view[k] = (float)m[k], v.proj[k] = (float)p[k];
-  v.viewport_width = c->width;
-  v.viewport_height = c->height;
-  return v;
-}
 
 /* Camera at eye looking at target; near / far hug a unit-radius-ish object
  * (24-bit depth keeps plenty of precision). */
@@ -192,12 +138,13 @@ static inline camera camera_look(double ex, double ey, double ez, double tx, dou
                                  uint32_t w, uint32_t h) {
   camera c = {.eye = {ex, ey, ez}, .target = {tx, ty, tz}, .up = {0, 0, 1}, .fovy = fovy_deg * SHAPES_PI / 180.0};
   double d[3] = {tx - ex, ty - ey, tz - ez};
-  double dist = sqrt(cam_dot(d, d));
+  double dist = len3(d);
   shape_normalize3(d);
   if (fabs(d[2]) > 0.95) c.up[0] = 0, c.up[1] = 1, c.up[2] = 0;
   c.znear = dist > 3.0 ? dist - 2.5 : 0.05;
   c.zfar = dist + 3.0;
   c.width = w, c.height = h;
+  c.aspect = (double)w / h;
   return c;
 }
 
@@ -250,29 +197,14 @@ static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, 
   return true;
 }
 
-static inline const char* type_name(tlod_surface_type t) {
-  return t == TLOD_SURFACE_FLAT ? "flat" : t == TLOD_SURFACE_PN ? "pn" : "phong";
-}
-
 static inline tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
-  tlod_scheduler* s = NULL;
-  tlod_result r = tlod_scheduler_create(fx->ctx, fx->surf, fx->pat, &d, &s);
-  if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "tlod_scheduler_create: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
-    return NULL;
-  }
-  return s;
+  return scheduler_create(fx->ctx, fx->surf, fx->pat, d);
 }
 
 /* One frame for one view; NULL on failure (reported). */
 static inline const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* v, float dt_ms) {
   tlod_frame_desc f = {.views = v, .view_count = 1, .dt_ms = dt_ms};
-  tlod_result r = tlod_scheduler_update(s, &f);
-  if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "tlod_scheduler_update: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
-    return NULL;
-  }
-  return tlod_scheduler_draw_list(s, 0);
+  return scheduler_plan(fx->ctx, s, &f);
 }
 
 /* The CPU reference realisation of a draw list (welded, with normals). */
@@ -341,6 +273,29 @@ static inline bool gl_session_open(gl_session* s, uint32_t w, uint32_t h, uint32
   return true;
 }
 
+/* What the one-object device tests start with: a session of w x h with
+ * patterns to level 5, an icosphere(2) fixture of `type` on its device and
+ * a scheduler to level 5. Close with sphere_scene_close, also after a
+ * failed check (every member starts out NULL / empty). */
+static inline void sphere_scene_open(gl_session* gs, shape* sph, fixture* fx, tlod_scheduler** sch, uint32_t w,
+                                     uint32_t h, const char* label, tlod_surface_type type) {
+  memset(sph, 0, sizeof *sph);
+  memset(fx, 0, sizeof *fx);
+  *sch = NULL;
+  CHECK_MSG(gl_session_open(gs, w, h, 5, label, (tlod_device_gl_desc){0}), "no GL context or device (see above)");
+  *sph = shape_icosphere(2);
+  CHECK(fixture_make(fx, gs->ctx, sph, type, gs->pat, gs->dev));
+  *sch = new_scheduler(fx, (tlod_scheduler_desc){.max_level = 5});
+  CHECK(*sch);
+}
+
+static inline void sphere_scene_close(gl_session* gs, shape* sph, fixture* fx, tlod_scheduler* sch) {
+  tlod_scheduler_destroy(sch);
+  fixture_free(fx);
+  shape_free(sph);
+  gl_session_close(gs);
+}
+
 /* One item (identity model, default colour) for one view: desc.items points
  * at item, so keep the struct where it is (do not copy it). */
 typedef struct one_draw {
@@ -392,16 +347,24 @@ static const char* const ref_fs =
     "  o_color = vec4(u_base.rgb * (0.15 + 0.85 * max(dot(n, u_light), 0.0)), u_base.a);\n"
     "}\n";
 
+/* Whether a shader's (program's) status is GL_TRUE; if not, prints its
+ * info log after `what`. */
+static inline bool gl_status_ok(GLuint object, GLenum status, void (*get_iv)(GLuint, GLenum, GLint*),
+                                void (*get_log)(GLuint, GLsizei, GLsizei*, GLchar*), const char* what) {
+  GLint ok = 0;
+  get_iv(object, status, &ok);
+  if (ok) return true;
+  char log[1024] = "";
+  get_log(object, sizeof log, NULL, log);
+  fprintf(stderr, "%s: %s\n", what, log);
+  return false;
+}
+
 static inline GLuint gl_compile(GLenum stage, const char* src) {
   GLuint s = glCreateShader(stage);
   glShaderSource(s, 1, &src, NULL);
   glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = "";
-    glGetShaderInfoLog(s, sizeof log, NULL, log);
-    fprintf(stderr, "shader compile failed: %s\n", log);
+  if (!gl_status_ok(s, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, "shader compile failed")) {
     glDeleteShader(s);
     return 0;
   }
@@ -421,12 +384,7 @@ static inline GLuint gl_program(const char* vs, const char* fs) {
   glLinkProgram(p);
   glDeleteShader(v);
   glDeleteShader(f);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = "";
-    glGetProgramInfoLog(p, sizeof log, NULL, log);
-    fprintf(stderr, "program link failed: %s\n", log);
+  if (!gl_status_ok(p, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, "program link failed")) {
     glDeleteProgram(p);
     return 0;
   }

@@ -6,6 +6,7 @@
 
 #include "tesslod/core.h"
 #include "test.h"
+#include "test_context.h"
 
 #define PI 3.14159265358979323846
 
@@ -13,13 +14,14 @@
 /* Fixtures                                                                 */
 /* ------------------------------------------------------------------------ */
 
-/* An allocator that counts, and fails once its budget is spent. */
+/* An allocator that counts, and fails once its budget is spent (test_alloc.h
+ * fails the k-th call instead). */
 typedef struct counting {
   long budget; /* allocations left; < 0: unlimited */
   size_t allocs, frees;
 } counting;
 
-static void* counting_alloc(size_t size, void* user) {
+static void* budget_alloc(size_t size, void* user) {
   counting* c = user;
   if (c->budget == 0) return NULL;
   if (c->budget > 0) c->budget--;
@@ -27,7 +29,7 @@ static void* counting_alloc(size_t size, void* user) {
   return malloc(size);
 }
 
-static void counting_free(void* ptr, void* user) {
+static void budget_free(void* ptr, void* user) {
   counting* c = user;
   if (ptr) c->frees++;
   free(ptr);
@@ -55,12 +57,6 @@ static bool mesh_alphas(tlod_context* ctx, const tlod_mesh* m, float* out) {
   memcpy(out, tlod_surface_query_view(s).vertex_alpha, sizeof(float) * tlod_mesh_vertex_count(m));
   tlod_surface_destroy(s);
   return true;
-}
-
-static tlod_context* make_context(void) {
-  tlod_context* ctx = NULL;
-  tlod_context_create(&(tlod_context_desc){.thread_count = 1}, &ctx);
-  return ctx;
 }
 
 /* Cube [-1, 1]^3, vertex x + 2y + 4z, faces counter-clockwise seen from
@@ -183,7 +179,7 @@ static bool has_finding(const tlod_mesh* m, tlod_finding_kind kind, uint32_t ele
 /* ------------------------------------------------------------------------ */
 
 TEST(shared_cube_is_closed) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   shared_cube c;
   make_shared_cube(&c);
   tlod_mesh_desc d = shared_cube_desc(&c);
@@ -219,7 +215,7 @@ TEST(shared_cube_is_closed) {
 }
 
 TEST(split_cube_welds_and_creases) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   split_cube c;
   make_split_cube(&c);
   tlod_mesh_desc d = split_cube_desc(&c);
@@ -256,7 +252,7 @@ TEST(split_cube_welds_and_creases) {
 }
 
 TEST(open_grid_boundary) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   for (int tri = 0; tri < 2; tri++) {
     grid g;
     make_grid(&g, 3, 4, tri);
@@ -288,7 +284,7 @@ TEST(open_grid_boundary) {
 }
 
 TEST(findings_past_the_limit_are_counted) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   grid g;
   make_grid(&g, 40, 30, false);
   tlod_mesh_desc d = {.positions = g.pos,
@@ -310,7 +306,7 @@ TEST(findings_past_the_limit_are_counted) {
 }
 
 TEST(non_manifold_edges) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   float pos[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
   /* Three triangles on edge (0, 1). */
   uint32_t fan[9] = {0, 1, 2, 1, 0, 3, 1, 0, 4};
@@ -339,7 +335,7 @@ TEST(non_manifold_edges) {
 }
 
 TEST(mixed_faces) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   float pos[5][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}};
   uint32_t idx[7] = {0, 1, 2, 3, 1, 4, 2};
   uint8_t sizes[2] = {4, 3};
@@ -376,7 +372,7 @@ TEST(mixed_faces) {
 /* ------------------------------------------------------------------------ */
 
 TEST(index_out_of_range) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   float pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
   uint32_t idx[6] = {0, 1, 2, 1, 3, 4096};
   tlod_mesh_desc d = {.positions = &pos[0][0], .vertex_count = 4, .indices = idx, .index_count = 6, .label = "duck"};
@@ -391,7 +387,7 @@ TEST(index_out_of_range) {
 }
 
 TEST(nan_position) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   float pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, NAN, 0}, {1, 1, 0}};
   uint32_t idx[6] = {0, 1, 3, 0, 3, 2};
   tlod_mesh_desc d = {.positions = &pos[0][0], .vertex_count = 4, .indices = idx, .index_count = 6};
@@ -414,7 +410,7 @@ TEST(nan_position) {
 }
 
 TEST(wrong_api_use) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   shared_cube c;
   make_shared_cube(&c);
   tlod_mesh_desc good = shared_cube_desc(&c);
@@ -473,7 +469,7 @@ TEST(wrong_api_use) {
 /* ------------------------------------------------------------------------ */
 
 TEST(degenerate_faces_dropped) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   float pos[6][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   /* 0 ok, 1 repeated index, 2 collinear, 3 ok, 4 two corners at one position. */
   uint32_t idx[15] = {0, 1, 2, 0, 0, 1, 0, 1, 3, 1, 4, 2, 1, 5, 2};
@@ -510,7 +506,7 @@ TEST(degenerate_faces_dropped) {
 }
 
 TEST(quad_with_one_flat_half_is_kept) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   /* Corners 0, 1, 2 are collinear: (0, 1, 2) is flat, (0, 2, 3) is not. */
   float pos[5][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1, 1, 0}, {3, 0, 0}};
   uint32_t idx[8] = {0, 1, 2, 3, 0, 1, 2, 4};
@@ -533,7 +529,7 @@ static const float octa_pos[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0
 static const uint32_t octa_idx[24] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
 
 TEST(bad_normals_repaired) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   float nrm[6][3];
   memcpy(nrm, octa_pos, sizeof(nrm));
   nrm[0][0] = 0.0f; /* zero-length */
@@ -562,7 +558,7 @@ TEST(bad_normals_repaired) {
 }
 
 TEST(alphas_clamped) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   float alphas[6] = {-0.5f, 0.25f, 2.0f, 1.0f, 0.0f, 0.75f};
   tlod_mesh_desc d = {
       .positions = &octa_pos[0][0], .alphas = alphas, .vertex_count = 6, .indices = octa_idx, .index_count = 24};
@@ -581,7 +577,7 @@ TEST(alphas_clamped) {
 }
 
 TEST(unused_vertex_counted) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   float pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {100, 100, 100}};
   uint32_t idx[3] = {0, 1, 2};
   tlod_mesh_desc d = {.positions = &pos[0][0], .vertex_count = 4, .indices = idx, .index_count = 3};
@@ -603,7 +599,7 @@ TEST(unused_vertex_counted) {
 /* ------------------------------------------------------------------------ */
 
 TEST(weld_epsilon_and_signed_zero) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   /* Two triangles on edge (1, 2) / (3, 4); the copies are a hair off. */
   float pos[6][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 1.000001f, 0}, {1.000001f, 0, 0}, {1, 1, 0}};
   uint32_t idx[6] = {0, 1, 2, 3, 4, 5};
@@ -702,7 +698,7 @@ static void make_weld_cloud(float (*pos)[3], float jitter) {
 }
 
 TEST(weld_epsilon_matches_brute_force) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   static float pos[WELD_N][3];
   static uint32_t want[WELD_N];
   const float eps_list[2] = {0.01f, 0.4f}; /* 0.4: x neighbours (0.37 apart) overlap */
@@ -743,7 +739,7 @@ TEST(weld_epsilon_matches_brute_force) {
  * 45-degree corners, -y and -z one 90-degree corner each. Angle weights
  * see three right angles, area weights see twice the area on +x. */
 TEST(angle_weighted_cube_corner) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   shared_cube c;
   make_shared_cube(&c);
   tlod_mesh_desc d = shared_cube_desc(&c);
@@ -775,7 +771,7 @@ TEST(angle_weighted_cube_corner) {
 }
 
 TEST(recompute_modes_ignore_given_normals) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   split_cube c;
   make_split_cube(&c);
   tlod_mesh_desc d = split_cube_desc(&c);
@@ -799,7 +795,7 @@ TEST(recompute_modes_ignore_given_normals) {
 }
 
 TEST(quad_normals) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   /* A non-planar quad: the diagonals' cross product is the normal. */
   float pos[4][3] = {{0, 0, 0}, {1, 0, 0.25f}, {1, 1, 0}, {0, 1, 0.25f}};
   uint32_t idx[4] = {0, 1, 2, 3};
@@ -858,7 +854,7 @@ TEST(crease_angle_splits_shared_cube) {
 }
 
 TEST(crease_angle_keeps_smooth_regions) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   /* A gentle fold (10 degrees) in a grid stays smooth at 30 degrees. */
   grid g;
   make_grid(&g, 4, 2, true);
@@ -893,7 +889,7 @@ static bool same_info(const tlod_mesh_info* a, const tlod_mesh_info* b) {
 }
 
 TEST(strides_match_tight_arrays) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   split_cube c;
   make_split_cube(&c);
   c.nrm[3][0] = c.nrm[3][1] = c.nrm[3][2] = 0.0f; /* a repair, to compare too */
@@ -950,7 +946,7 @@ TEST(strides_match_tight_arrays) {
 /* ------------------------------------------------------------------------ */
 
 TEST(update_positions_recomputes_normals) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   shared_cube c;
   make_shared_cube(&c);
   tlod_mesh_desc d = shared_cube_desc(&c);
@@ -998,7 +994,7 @@ TEST(update_positions_recomputes_normals) {
 }
 
 TEST(update_normals_refreshes_smooth_flags) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   split_cube c;
   make_split_cube(&c);
   tlod_mesh_desc d = split_cube_desc(&c);
@@ -1028,7 +1024,7 @@ TEST(update_normals_refreshes_smooth_flags) {
 }
 
 TEST(update_moves_crease_splits) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   shared_cube c;
   make_shared_cube(&c);
   tlod_mesh_desc d = shared_cube_desc(&c);
@@ -1097,7 +1093,7 @@ static tlod_mesh_desc make_busy(busy_mesh* b) {
 TEST(allocator_balanced) {
   counting cnt = {.budget = -1};
   tlod_context* ctx = NULL;
-  tlod_context_desc cd = {.thread_count = 1, .allocator = {counting_alloc, counting_free, &cnt}};
+  tlod_context_desc cd = {.thread_count = 1, .allocator = {budget_alloc, budget_free, &cnt}};
   CHECK(tlod_context_create(&cd, &ctx) == TLOD_SUCCESS);
   size_t a0 = cnt.allocs, f0 = cnt.frees;
   busy_mesh b;
@@ -1121,7 +1117,7 @@ TEST(allocator_balanced) {
 TEST(allocation_failures) {
   counting cnt = {.budget = -1};
   tlod_context* ctx = NULL;
-  tlod_context_desc cd = {.thread_count = 1, .allocator = {counting_alloc, counting_free, &cnt}};
+  tlod_context_desc cd = {.thread_count = 1, .allocator = {budget_alloc, budget_free, &cnt}};
   CHECK(tlod_context_create(&cd, &ctx) == TLOD_SUCCESS);
   busy_mesh b;
   tlod_mesh_desc d = make_busy(&b);
@@ -1186,7 +1182,7 @@ TEST(allocation_failures) {
 /* ------------------------------------------------------------------------ */
 
 TEST(million_triangles) {
-  tlod_context* ctx = make_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   grid g;
   make_grid(&g, 1000, 500, true); /* 1,000,000 triangles */
   tlod_mesh_desc d = {

@@ -48,6 +48,7 @@
 #include "tesslod/core.h"
 #include "tesslod/lod.h"
 #include "test.h"
+#include "test_context.h"
 
 #define EVAL_REL 1e-6
 #define FLAT_REL 1e-7
@@ -109,12 +110,6 @@ static double v_maxdiff(const double a[3], const double b[3]) {
 /* ------------------------------------------------------------------------ */
 /* Fixtures                                                                 */
 /* ------------------------------------------------------------------------ */
-
-static tlod_context* new_context(void) {
-  tlod_context* ctx = NULL;
-  tlod_context_desc desc = {.thread_count = 1};
-  return tlod_context_create(&desc, &ctx) == TLOD_SUCCESS ? ctx : NULL;
-}
 
 static tlod_mesh* new_mesh(tlod_context* ctx, const tlod_mesh_desc* desc) {
   tlod_mesh* mesh = NULL;
@@ -347,19 +342,22 @@ static void ref_phong_quad(const patch_ref* r, double alpha, double u, double v,
     out[c] = (1 - alpha) * q[c] + alpha * P[c];
 }
 
-static void ref_flat(const patch_ref* r, double u, double v, double out[3]) {
+/* The linear (triangle) or bilinear (quad) blend of per-corner values. */
+static void ref_corner_blend(const patch_ref* r, const double (*corner)[3], double u, double v, double out[3]) {
   v_set(out, 0, 0, 0);
   if (r->n == 3) {
     double bw[3] = {u, v, 1.0 - u - v};
     for (int x = 0; x < 3; ++x)
-      v_axpy(out, bw[x], r->p[x]);
+      v_axpy(out, bw[x], corner[x]);
   } else {
     double wt[4];
     quad_weights(u, v, wt);
     for (int x = 0; x < 4; ++x)
-      v_axpy(out, wt[x], r->p[x]);
+      v_axpy(out, wt[x], corner[x]);
   }
 }
+
+static void ref_flat(const patch_ref* r, double u, double v, double out[3]) { ref_corner_blend(r, r->p, u, v, out); }
 
 /* The reference position of any surface kind. */
 static void ref_position(const surf_cfg* cfg, const patch_ref* r, double u, double v, double out[3]) {
@@ -399,17 +397,7 @@ static void ref_derivatives(const surf_cfg* cfg, const patch_ref* r, double u, d
 
 /* Interpolated shading normal of Phong (and flat) patches. */
 static void ref_interp_normal(const patch_ref* r, double u, double v, double out[3]) {
-  v_set(out, 0, 0, 0);
-  if (r->n == 3) {
-    double bw[3] = {u, v, 1.0 - u - v};
-    for (int x = 0; x < 3; ++x)
-      v_axpy(out, bw[x], r->nrm[x]);
-  } else {
-    double wt[4];
-    quad_weights(u, v, wt);
-    for (int x = 0; x < 4; ++x)
-      v_axpy(out, wt[x], r->nrm[x]);
-  }
+  ref_corner_blend(r, r->nrm, u, v, out);
   v_normalize(out);
 }
 
@@ -597,7 +585,7 @@ static double compare_positions(const tlod_surface* s, const tlod_mesh* mesh, co
 }
 
 TEST(test_phong_triangle_eval) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   random_mesh m = random_patches(21, 8, 3, false);
   tlod_mesh_desc md = random_mesh_desc(&m);
@@ -630,7 +618,7 @@ TEST(test_phong_triangle_eval) {
 }
 
 TEST(test_phong_vertex_alpha) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   random_mesh m = random_patches(31, 8, 3, false);
   tlod_mesh_desc md = random_mesh_desc(&m);
@@ -656,7 +644,7 @@ TEST(test_phong_vertex_alpha) {
 
 /* Shading normal (interpolated and true) and tangents of Phong triangles. */
 TEST(test_phong_triangle_frame) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   random_mesh m = random_patches(41, 8, 3, true);
   tlod_mesh_desc md = random_mesh_desc(&m);
@@ -746,7 +734,7 @@ TEST(test_pn_reference_self) {
 }
 
 TEST(test_pn_eval) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   random_mesh m = random_patches(61, 8, 3, false);
   tlod_mesh_desc md = random_mesh_desc(&m);
@@ -809,7 +797,7 @@ TEST(test_pn_eval) {
 /* ------------------------------------------------------------------------ */
 
 TEST(test_phong_quad) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   random_mesh m = random_patches(71, 8, 4, false);
   tlod_mesh_desc md = random_mesh_desc(&m);
@@ -873,7 +861,7 @@ TEST(test_phong_quad) {
 }
 
 TEST(test_flat_eval) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   for (uint32_t corners = 3; corners <= 4; ++corners) {
     random_mesh m = random_patches(81 + corners, 8, corners, false);
@@ -920,7 +908,7 @@ static void check_corners(const tlod_surface* s, const tlod_mesh* mesh, const ch
 }
 
 TEST(test_corners_exact) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   const surf_cfg cfgs[] = {{TLOD_SURFACE_FLAT, 0.75, false, 0},
                            {TLOD_SURFACE_PHONG, 0.75, false, 0},
@@ -985,7 +973,7 @@ static void flat_deviation(const tlod_surface* s, const tlod_surface* flat, cons
 }
 
 TEST(test_alpha_zero_is_flat) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   double worst[2][2][2] = {{{0}}}; /* [corners - 3][global, vertex alpha][exact, library flat] */
   for (uint32_t corners = 3; corners <= 4; ++corners) {
@@ -1025,7 +1013,7 @@ TEST(test_alpha_zero_is_flat) {
 }
 
 TEST(test_equal_normals_are_flat) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   random_mesh m = random_patches(121, 16, 3, false);
   for (uint32_t f = 0; f < 16; ++f) {
@@ -1098,7 +1086,7 @@ static void sphere_error(const tlod_surface* s, double* max_err, double* mean_er
 }
 
 TEST(test_sphere_approximation) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   shape sph = shape_icosphere(1);
   tlod_mesh_desc md = shape_mesh_desc(&sph);
@@ -1209,7 +1197,7 @@ static void measure_bounds(const tlod_surface* s, const tlod_patterns* pat, boun
  * run_mask[mesh] selects cfgs[c]) at levels 0..4, prints the tightness,
  * and fails on any violation of the error bound or the bounding sphere. */
 static void error_bound_family(const unsigned run_mask[5]) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   tlod_patterns* pat = NULL;
   CHECK(tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = 6}, &pat) == TLOD_SUCCESS);
@@ -1336,7 +1324,7 @@ static void check_shared_edges(const tlod_surface* s, const tlod_mesh* mesh, con
 }
 
 TEST(test_shared_edges_bitwise) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   shape shapes[5] = {shape_icosphere(2), shape_torus(16, 10), shape_seam_sphere(6, 12), shape_open_grid(4),
                      shape_quad_sphere(3)};
@@ -1393,7 +1381,7 @@ static long face_number_in(const char* msg) {
 }
 
 TEST(test_pn_on_quads_unsupported) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   /* two triangles, then the quad as face 2 */
   const float pos[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0.5f, 1.5f, 0, 2, 0.5f, 0};
@@ -1441,7 +1429,7 @@ TEST(test_pn_on_quads_unsupported) {
 }
 
 TEST(test_bad_alpha_rejected) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   shape sph = shape_icosphere(1);
   tlod_mesh_desc md = shape_mesh_desc(&sph);
@@ -1505,7 +1493,7 @@ static void check_same_surface(const tlod_surface* a, const tlod_surface* b, con
 }
 
 TEST(test_refresh_after_update) {
-  tlod_context* ctx = new_context();
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   const tlod_surface_type types[] = {TLOD_SURFACE_FLAT, TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   for (int ti = 0; ti < 3; ++ti) {

@@ -8,13 +8,8 @@
 #include "shapes.h"
 #include "tesslod/core.h"
 #include "test.h"
+#include "test_context.h"
 #include "test_names.h"
-
-static tlod_context* new_context(void) {
-  tlod_context* ctx = NULL;
-  tlod_context_create(&(tlod_context_desc){.thread_count = 1}, &ctx);
-  return ctx;
-}
 
 static bool bits_equal(const float* a, const float* b, size_t n) { return memcmp(a, b, n * sizeof(float)) == 0; }
 
@@ -28,7 +23,7 @@ typedef struct fixture {
 
 static bool fixture_make(fixture* fx, shape s, tlod_surface_type type) {
   memset(fx, 0, sizeof *fx);
-  fx->ctx = new_context();
+  fx->ctx = new_context(1, NULL, NULL);
   fx->shape = s;
   tlod_mesh_desc md = shape_mesh_desc(&s);
   if (tlod_mesh_create(fx->ctx, &md, &fx->mesh) != TLOD_SUCCESS) return false;

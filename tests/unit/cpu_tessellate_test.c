@@ -17,56 +17,14 @@
 #include "tesslod/cpu.h"
 #include "tesslod/lod.h"
 #include "test.h"
-#include "test_alloc.h"
+#include "test_context.h"
+#include "test_lod.h"
 
 #define MAX_LEVEL 6
-
-/* Stops the calling test as soon as a helper's check failed. */
-#define CALL(expr)                                                                                                     \
-  do {                                                                                                                 \
-    int _failed_before = _test_checks_failed;                                                                          \
-    expr;                                                                                                              \
-    if (_test_checks_failed != _failed_before) return;                                                                 \
-  } while (0)
 
 /* ------------------------------------------------------------------------ */
 /* Fixtures                                                                 */
 /* ------------------------------------------------------------------------ */
-
-/* Allocator that counts and can fail: the fail_at-th call (0-based) when
- * fail_all is false, every call from fail_at on when it is true. */
-/* A parallel-for that runs chunks of 7 in reverse order on 3 "workers". */
-typedef struct reverse_pool {
-  long calls, chunks;
-} reverse_pool;
-
-static void reverse_parallel_for(tlod_task_fn fn, void* task_data, uint32_t count, void* user_data) {
-  reverse_pool* pool = user_data;
-  pool->calls++;
-  const uint32_t chunk = 7;
-  uint32_t chunks = (count + chunk - 1) / chunk;
-  for (uint32_t c = chunks; c-- > 0;) {
-    uint32_t end = (c + 1) * chunk < count ? (c + 1) * chunk : count;
-    pool->chunks++;
-    fn(task_data, c * chunk, end, c % 3);
-  }
-}
-
-static tlod_context* new_context(uint32_t threads, counting_allocator* counter, reverse_pool* pool) {
-  tlod_context_desc desc = {.thread_count = threads};
-  if (counter) {
-    desc.allocator.alloc_fn = counting_alloc;
-    desc.allocator.free_fn = counting_free;
-    desc.allocator.user_data = counter;
-  }
-  if (pool) {
-    desc.parallel_for.func = reverse_parallel_for;
-    desc.parallel_for.worker_count = 3;
-    desc.parallel_for.user_data = pool;
-  }
-  tlod_context* ctx = NULL;
-  return tlod_context_create(&desc, &ctx) == TLOD_SUCCESS ? ctx : NULL;
-}
 
 typedef struct fixture {
   tlod_context* ctx;
@@ -116,10 +74,6 @@ static int8_t* random_levels(uint32_t patches, uint64_t seed, int max_level) {
   for (uint32_t p = 0; p < patches; ++p)
     l[p] = (int8_t)(shape_rng_next(&rng) % (uint64_t)(max_level + 1));
   return l;
-}
-
-static const char* type_name(tlod_surface_type t) {
-  return t == TLOD_SURFACE_FLAT ? "flat" : t == TLOD_SURFACE_PN ? "pn" : "phong";
 }
 
 /* ------------------------------------------------------------------------ */

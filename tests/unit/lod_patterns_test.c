@@ -14,6 +14,7 @@
 
 #include "tesslod/lod.h"
 #include "test.h"
+#include "test_context.h"
 
 static const tlod_pattern_shape k_shapes[2] = {TLOD_PATTERN_TRIANGLE, TLOD_PATTERN_QUAD};
 static const char* const k_shape_names[2] = {"triangle", "quad"};
@@ -27,38 +28,6 @@ static const uint32_t k_corner_count[2] = {3, 4};
 /* ------------------------------------------------------------------------ */
 /* Fixtures                                                                 */
 /* ------------------------------------------------------------------------ */
-
-/* Allocator that counts and can fail its fail_at-th call (0-based). */
-typedef struct counting_allocator {
-  long calls, allocs, frees;
-  long fail_at; /* -1: never */
-} counting_allocator;
-
-static void* counting_alloc(size_t size, void* user_data) {
-  counting_allocator* c = user_data;
-  long call = c->calls++;
-  if (c->fail_at >= 0 && call == c->fail_at) return NULL;
-  void* p = malloc(size ? size : 1);
-  if (p) c->allocs++;
-  return p;
-}
-
-static void counting_free(void* ptr, void* user_data) {
-  counting_allocator* c = user_data;
-  if (ptr) c->frees++;
-  free(ptr);
-}
-
-static tlod_context* new_context(counting_allocator* counter) {
-  tlod_context_desc desc = {.thread_count = 1};
-  if (counter) {
-    desc.allocator.alloc_fn = counting_alloc;
-    desc.allocator.free_fn = counting_free;
-    desc.allocator.user_data = counter;
-  }
-  tlod_context* ctx = NULL;
-  return tlod_context_create(&desc, &ctx) == TLOD_SUCCESS ? ctx : NULL;
-}
 
 static tlod_patterns* new_patterns(tlod_context* ctx, uint32_t max_level) {
   tlod_patterns* p = NULL;
@@ -484,7 +453,7 @@ TEST(test_closed_formulas) {
 }
 
 TEST(test_default_level) {
-  tlod_context* ctx = new_context(NULL);
+  tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx != NULL);
   tlod_patterns* p = NULL;
   tlod_result r = tlod_patterns_create(ctx, NULL, &p);
@@ -500,7 +469,7 @@ TEST(test_default_level) {
 
 /* The default max level (6), every check on every level. */
 TEST(test_structure_level6) {
-  tlod_context* ctx = new_context(NULL);
+  tlod_context* ctx = new_context(1, NULL, NULL);
   tlod_patterns* p = new_patterns(ctx, 6);
   CHECK(p != NULL);
   check_all(p, 0);
@@ -512,7 +481,7 @@ TEST(test_structure_level6) {
  * (1M quad vertices) the sort-based checks run on levels 9 and 10 only, to
  * keep the sanitizer build quick, and the linear ones on the whole array. */
 static void build_and_check(uint32_t max_level, uint32_t first_checked) {
-  tlod_context* ctx = new_context(NULL);
+  tlod_context* ctx = new_context(1, NULL, NULL);
   double t0 = now_seconds();
   tlod_patterns* p = new_patterns(ctx, max_level);
   double t1 = now_seconds();
@@ -551,7 +520,7 @@ static void expected_memory(uint32_t max, size_t* nested, size_t* separate) {
 }
 
 TEST(test_memory) {
-  tlod_context* ctx = new_context(NULL);
+  tlod_context* ctx = new_context(1, NULL, NULL);
   const uint32_t levels[2] = {6, 8};
   for (int k = 0; k < 2; ++k) {
     tlod_patterns* p = new_patterns(ctx, levels[k]);
@@ -568,7 +537,7 @@ TEST(test_memory) {
 }
 
 TEST(test_invalid_arguments) {
-  tlod_context* ctx = new_context(NULL);
+  tlod_context* ctx = new_context(1, NULL, NULL);
   tlod_patterns* p = (tlod_patterns*)&p; /* must be reset to NULL */
   tlod_result r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = TLOD_MAX_LEVEL + 1}, &p);
   char message[512];
@@ -585,7 +554,7 @@ TEST(test_invalid_arguments) {
 }
 
 TEST(test_queries_reject_bad_input) {
-  tlod_context* ctx = new_context(NULL);
+  tlod_context* ctx = new_context(1, NULL, NULL);
   tlod_patterns* p = new_patterns(ctx, 2);
   uint32_t count = 99, buf[8];
   const void* bad_shape = tlod_patterns_vertices(p, TLOD_PATTERN_SHAPE_NUM, &count);
@@ -607,7 +576,7 @@ TEST(test_queries_reject_bad_input) {
 
 /* Two builds are bytewise identical (deterministic order, zeroed padding). */
 TEST(test_deterministic) {
-  tlod_context* ctx = new_context(NULL);
+  tlod_context* ctx = new_context(1, NULL, NULL);
   tlod_patterns* a = new_patterns(ctx, 5);
   tlod_patterns* b = new_patterns(ctx, 5);
   bool same = a && b;
@@ -632,7 +601,7 @@ TEST(test_deterministic) {
  * succeeds: each failure reports OUT_OF_MEMORY, returns NULL and frees all. */
 static void check_failing_allocator(uint32_t max_level) {
   counting_allocator counter = {.fail_at = -1};
-  tlod_context* ctx = new_context(&counter);
+  tlod_context* ctx = new_context(1, &counter, NULL);
   CHECK(ctx != NULL);
   long live = counter.allocs - counter.frees, k = 0;
   tlod_patterns* p = NULL;
@@ -662,7 +631,7 @@ TEST(test_failing_allocator) {
 /* Everything goes through the context's allocator. */
 TEST(test_uses_context_allocator) {
   counting_allocator counter = {.fail_at = -1};
-  tlod_context* ctx = new_context(&counter);
+  tlod_context* ctx = new_context(1, &counter, NULL);
   long before = counter.allocs;
   tlod_patterns* p = new_patterns(ctx, 4);
   long during = counter.allocs - before;

@@ -11,7 +11,7 @@
  * depth); docs/design.md (maths, invariants 3 and 4).
  *
  * References. Every expected value is computed here, in double precision,
- * from the public inputs only: the camera matrices built by this file
+ * from the public inputs only: the camera matrices built by test_camera.h
  * (column-major GL look-at, perspective and orthographic, stored as float),
  * tlod_surface_patch() (error bound, bounding sphere), the mesh's vertices
  * and tlod_surface_eval(). The library's own helpers (tlod_level_for_error,
@@ -23,6 +23,8 @@
  * is exact: no_weld output welded by bitwise equal positions. Geomorph
  * midpoints are compared bitwise. Screen error: see test_screen_error.
  */
+#define TEST_POOL_CHUNK 5 /* the reverse parallel-for's chunks (test_context.h) */
+
 #include <float.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -32,7 +34,9 @@
 #include "tesslod/cpu.h"
 #include "tesslod/lod.h"
 #include "test.h"
-#include "test_alloc.h"
+#include "test_camera.h"
+#include "test_context.h"
+#include "test_lod.h"
 
 #define PAT_MAX 5 /* patterns built to this level */
 #define DEG (SHAPES_PI / 180.0)
@@ -41,44 +45,6 @@ static double now_seconds(void) {
   struct timespec ts;
   timespec_get(&ts, TIME_UTC);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* ------------------------------------------------------------------------ */
-/* Contexts: counting / failing allocator, reverse-order parallel-for       */
-/* ------------------------------------------------------------------------ */
-
-/* The fail_at-th call (0-based) fails; with fail_all every later one too. */
-/* Chunks of 5 in reverse order on 3 "workers". */
-typedef struct reverse_pool {
-  long calls, chunks;
-} reverse_pool;
-
-static void reverse_parallel_for(tlod_task_fn fn, void* task_data, uint32_t count, void* user_data) {
-  reverse_pool* pool = user_data;
-  pool->calls++;
-  const uint32_t chunk = 5;
-  uint32_t chunks = (count + chunk - 1) / chunk;
-  for (uint32_t c = chunks; c-- > 0;) {
-    uint32_t end = (c + 1) * chunk < count ? (c + 1) * chunk : count;
-    pool->chunks++;
-    fn(task_data, c * chunk, end, c % 3);
-  }
-}
-
-static tlod_context* new_context(uint32_t threads, counting_allocator* counter, reverse_pool* pool) {
-  tlod_context_desc desc = {.thread_count = threads};
-  if (counter) {
-    desc.allocator.alloc_fn = counting_alloc;
-    desc.allocator.free_fn = counting_free;
-    desc.allocator.user_data = counter;
-  }
-  if (pool) {
-    desc.parallel_for.func = reverse_parallel_for;
-    desc.parallel_for.worker_count = 3;
-    desc.parallel_for.user_data = pool;
-  }
-  tlod_context* ctx = NULL;
-  return tlod_context_create(&desc, &ctx) == TLOD_SUCCESS ? ctx : NULL;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -102,10 +68,6 @@ typedef struct fixture {
   tlod_cpu_mesh* out;        /* realisation, reused */
   uint32_t* base;            /* no_weld block of each patch in `out` */
 } fixture;
-
-static const char* type_name(tlod_surface_type t) {
-  return t == TLOD_SURFACE_FLAT ? "flat" : t == TLOD_SURFACE_PN ? "pn" : "phong";
-}
 
 static tlod_pattern_shape shape_of(const fixture* fx, uint32_t p) {
   return fx->ncorner[p] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
@@ -171,25 +133,14 @@ static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_su
 }
 
 static tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
-  tlod_scheduler* s = NULL;
-  tlod_result r = tlod_scheduler_create(fx->ctx, fx->surf, fx->pat, &d, &s);
-  if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "tlod_scheduler_create: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
-    return NULL;
-  }
-  return s;
+  return scheduler_create(fx->ctx, fx->surf, fx->pat, d);
 }
 
 /* One frame; NULL on failure (reported). */
 static const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* views, uint32_t count,
                                   float dt_ms, float measured_ms) {
   tlod_frame_desc f = {.views = views, .view_count = count, .dt_ms = dt_ms, .measured_frame_ms = measured_ms};
-  tlod_result r = tlod_scheduler_update(s, &f);
-  if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "tlod_scheduler_update: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
-    return NULL;
-  }
-  return tlod_scheduler_draw_list(s, 0);
+  return scheduler_plan(fx->ctx, s, &f);
 }
 
 /* Realises a draw list with no_weld (every patch its own pattern vertices,
@@ -230,70 +181,8 @@ static bool realise(fixture* fx, const tlod_draw_list* dl, bool no_stitch) {
 }
 
 /* ------------------------------------------------------------------------ */
-/* Cameras (double precision, stored as float)                              */
+/* Cameras (test_camera.h: double precision, stored as float)               */
 /* ------------------------------------------------------------------------ */
-
-typedef struct camera {
-  double eye[3], target[3], up[3];
-  double fovy;   /* perspective, radians */
-  double half_h; /* orthographic half height */
-  double aspect, znear, zfar;
-  bool ortho;
-  uint32_t width, height;
-} camera;
-
-static void cross3(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-static double len3(const double a[3]) { return sqrt(dot3(a, a)); }
-
-/* Column-major GL look-at and projection. */
-static tlod_view_desc make_view(const camera* c) {
-  tlod_view_desc v;
-  memset(&v, 0, sizeof v);
-  double f[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]}, s[3], u[3];
-  shape_normalize3(f);
-  cross3(f, c->up, s);
-  shape_normalize3(s);
-  cross3(s, f, u);
-  double m[16] = {0};
-  for (int k = 0; k < 3; ++k) {
-    m[4 * k + 0] = s[k];
-    m[4 * k + 1] = u[k];
-    m[4 * k + 2] = -f[k];
-  }
-  m[12] = -dot3(s, c->eye);
-  m[13] = -dot3(u, c->eye);
-  m[14] = dot3(f, c->eye);
-  m[15] = 1;
-  double p[16] = {0};
-  double n = c->znear, fa = c->zfar;
-  if (c->ortho) {
-    double hw = c->half_h * c->aspect;
-    p[0] = 1.0 / hw;
-    p[5] = 1.0 / c->half_h;
-    p[10] = -2.0 / (fa - n);
-    p[14] = -(fa + n) / (fa - n);
-    p[15] = 1.0;
-  } else {
-    double F = 1.0 / tan(c->fovy / 2);
-    p[0] = F / c->aspect;
-    p[5] = F;
-    p[10] = (fa + n) / (n - fa);
-    p[11] = -1.0;
-    p[14] = 2.0 * fa * n / (n - fa);
-  }
-  for (int k = 0; k < 16; ++k)
-    v.view[k] = (float)m[k], v.proj[k] = (float)p[k];
-  v.viewport_width = c->width;
-  v.viewport_height = c->height;
-  return v;
-}
 
 static camera look_from(double ex, double ey, double ez, double tx, double ty, double tz) {
   camera c = {.eye = {ex, ey, ez},
@@ -390,13 +279,7 @@ static view_ref make_ref(const tlod_view_desc* v, const camera* c) {
   memset(&r, 0, sizeof r);
   for (int k = 0; k < 16; ++k)
     r.V[k] = v->view[k], r.P[k] = v->proj[k];
-  for (int col = 0; col < 4; ++col)
-    for (int row = 0; row < 4; ++row) {
-      double s = 0;
-      for (int k = 0; k < 4; ++k)
-        s += r.P[4 * k + row] * r.V[4 * col + k];
-      r.M[4 * col + row] = s;
-    }
+  mat4_mul(r.P, r.V, r.M);
   /* Gribb & Hartmann: row3 +- row0 / row1 / row2 */
   for (int pl = 0; pl < 6; ++pl) {
     int axis = pl / 2;

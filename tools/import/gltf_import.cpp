@@ -22,6 +22,7 @@
 
 #include "import_error.hpp"
 #include "import_internal.h"
+#include "import_output.hpp"
 
 namespace {
 
@@ -81,24 +82,11 @@ void normal_matrix(const Mat4& a, double out[3][3]) {
 }
 
 // ---------------------------------------------------------------------------
-// Output being built.
+// Output being built (normals are kept the size of positions).
 
-struct Output {
-  std::vector<float> positions;
-  std::vector<float> normals; // kept the size of positions
-  std::vector<uint32_t> indices;
-  std::vector<tlod_import_part> parts;
-  bool any_normals = false;
+struct Output : tlod_import_detail::OutputBase {
   uint32_t strips_fans_converted = 0;
   uint32_t primitives_skipped = 0;
-  std::string warnings;
-  uint32_t warning_count = 0;
-
-  void warn(const std::string& w) {
-    warnings += w;
-    warnings += '\n';
-    warning_count++;
-  }
 };
 
 // One mesh reached through the node hierarchy.
@@ -965,18 +953,10 @@ void warn_unused_features(const tinygltf::Model& model, Output& out) {
 
 tlod_result finish(const _tlod_import_job* job, Output& out) {
   _tlod_import_data d{};
-  d.vertex_count = uint32_t(out.positions.size() / 3);
-  d.positions = out.positions.data();
-  d.normals = out.any_normals ? out.normals.data() : nullptr;
-  d.index_count = uint32_t(out.indices.size());
-  d.indices = out.indices.data();
+  out.fill(d);
   d.face_count = uint32_t(out.indices.size() / 3);
-  d.part_count = uint32_t(out.parts.size());
-  d.parts = out.parts.data();
   d.strips_fans_converted = out.strips_fans_converted;
   d.primitives_skipped = out.primitives_skipped;
-  d.warnings = out.warnings.c_str();
-  d.warning_count = out.warning_count;
   return _tlod_import_finish(job, &d);
 }
 

@@ -26,6 +26,7 @@
 
 #include "import_error.hpp"
 #include "import_internal.h"
+#include "import_output.hpp"
 
 namespace {
 
@@ -244,21 +245,10 @@ private:
 // ---------------------------------------------------------------------------
 // Output.
 
-struct Output {
-  std::vector<float> positions, normals;
-  std::vector<uint32_t> indices;
+struct Output : tlod_import_detail::OutputBase {
   std::vector<uint8_t> face_sizes;
-  std::vector<tlod_import_part> parts;
-  bool any_normals = false, any_quads = false;
+  bool any_quads = false;
   uint32_t polygons_triangulated = 0;
-  std::string warnings;
-  uint32_t warning_count = 0;
-
-  void warn(const std::string& w) {
-    warnings += w;
-    warnings += '\n';
-    warning_count++;
-  }
 };
 
 class Builder {
@@ -462,18 +452,10 @@ std::string one_line(std::string s) {
 
 tlod_result finish(const _tlod_import_job* job, const Output& out) {
   _tlod_import_data d{};
-  d.vertex_count = uint32_t(out.positions.size() / 3);
-  d.positions = out.positions.data();
-  d.normals = out.any_normals ? out.normals.data() : nullptr;
-  d.index_count = uint32_t(out.indices.size());
-  d.indices = out.indices.data();
+  out.fill(d);
   d.face_count = uint32_t(out.face_sizes.size());
   d.face_sizes = out.any_quads ? out.face_sizes.data() : nullptr;
-  d.part_count = uint32_t(out.parts.size());
-  d.parts = out.parts.data();
   d.polygons_triangulated = out.polygons_triangulated;
-  d.warnings = out.warnings.c_str();
-  d.warning_count = out.warning_count;
   return _tlod_import_finish(job, &d);
 }
 

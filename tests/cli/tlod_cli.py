@@ -1,0 +1,40 @@
+"""Shared by the end-to-end tests of the tlod command (cli_test.py,
+play_test.py): running it, one "ok"/"FAIL" line per check, the one-line
+error rule, and the closing "N passed, N failed" line and exit code.
+Call init(TLOD) before run()."""
+import os, subprocess, sys
+
+TLOD = None
+passed = failed = 0
+
+
+def init(tlod):
+    global TLOD
+    TLOD = tlod
+
+
+def run(*args, cwd=None, timeout=300, env=None):
+    p = subprocess.run([TLOD, *args], capture_output=True, text=True, timeout=timeout, cwd=cwd,
+                       env=dict(os.environ, **env) if env else None)
+    return p.returncode, p.stdout, p.stderr
+
+
+def check(name, cond, detail=""):
+    global passed, failed
+    if cond:
+        passed += 1
+        print("ok   " + name)
+    else:
+        failed += 1
+        print("FAIL " + name + (": " + str(detail)[:2000] if detail else ""))
+    return cond
+
+
+def one_error_line(err):
+    lines = [l for l in err.splitlines() if l.strip()]
+    return len(lines) == 1 and lines[0].startswith("tlod: error: ")
+
+
+def finish():
+    print("%d passed, %d failed" % (passed, failed))
+    sys.exit(1 if failed else 0)
