@@ -422,13 +422,19 @@ static double ref_depth(const view_ref* r, const float c[3]) {
   return -(r->V[2] * c[0] + r->V[6] * c[1] + r->V[10] * c[2] + r->V[14]);
 }
 
-/* e_max = error_bound * f / z_near; z_near = depth(centre) - radius, at
- * least the near plane; orthographic: error_bound * pixels per unit. */
+/* Pixels per world unit over the patch's sphere: the library's
+ * tlod_patch_projection_scale() (checked against finite differences of the
+ * projection in test_projection_scale), on the float matrices r holds. */
+static double ref_scale(const view_ref* r, const tlod_patch_info* in) {
+  tlod_view_desc v = {.viewport_width = (uint32_t)r->width, .viewport_height = (uint32_t)r->height};
+  for (int k = 0; k < 16; ++k)
+    v.view[k] = (float)r->V[k], v.proj[k] = (float)r->P[k];
+  return tlod_patch_projection_scale(&v, in->center, in->radius);
+}
+
+/* e_max = the level-0 table bound times the projection scale. */
 static double ref_emax(const view_ref* r, const tlod_patch_info* in) {
-  if (r->ortho) return in->error_bound * r->pix;
-  double z = ref_depth(r, in->center) - in->radius;
-  if (z < r->znear) z = r->znear;
-  return in->error_bound * r->pix / z;
+  return (double)tlod_patch_error_bound(in, 0) * ref_scale(r, in);
 }
 
 /* 1: the sphere is fully outside a frustum plane (must be culled);
@@ -722,6 +728,20 @@ typedef struct ref_stats {
   double worst_rel;
 } ref_stats;
 
+/* The level rule on the per-level tables: the smallest l <= lmax with
+ * tlod_patch_error_bound(in, l) * scale <= eps. *ambiguous: a rung lies
+ * within 1e-5 (relative) of eps. */
+static int ref_table_level(const tlod_patch_info* in, double scale, double eps, int lmax, bool* ambiguous) {
+  *ambiguous = false;
+  int want = -1;
+  for (int l = 0; l <= lmax; ++l) {
+    double b = (double)tlod_patch_error_bound(in, (uint32_t)l) * scale;
+    if (fabs(b - eps) <= 1e-5 * eps) *ambiguous = true;
+    if (want < 0 && b <= eps) want = l;
+  }
+  return want < 0 ? lmax : want;
+}
+
 /* Every patch of one draw list against the reference: structure, culling,
  * e_max, and (ERROR policy) the level rule. */
 static void check_levels(const fixture* fx, const tlod_draw_list* dl, const view_ref* r, tlod_lod_policy policy,
@@ -752,11 +772,11 @@ static void check_levels(const fixture* fx, const tlod_draw_list* dl, const view
     double rel = fabs(dl->e_max[p] - e) / fmax(e, 1e-30);
     if (e == 0) rel = dl->e_max[p] == 0 ? 0 : 1;
     st->worst_rel = fmax(st->worst_rel, rel);
-    CHECK_MSG(rel <= 1e-5, "%s: patch %u e_max %.9g, reference %.9g (error bound %.6g, depth %.6g, radius %.6g)", what,
-              p, dl->e_max[p], e, in->error_bound, ref_depth(r, in->center), in->radius);
+    CHECK_MSG(rel <= 1e-5, "%s: patch %u e_max %.9g, reference %.9g (level-0 bound %.6g, depth %.6g, radius %.6g)",
+              what, p, dl->e_max[p], e, in->error_table[0], ref_depth(r, in->center), in->radius);
     if (policy != TLOD_POLICY_ERROR) continue; /* other policies: test_policy_rules */
     bool amb = false;
-    int want = ref_level(e, eps, lmax, &amb);
+    int want = ref_table_level(in, ref_scale(r, in), eps, lmax, &amb);
     st->ambiguous += amb;
     st->policy_checked++;
     CHECK_MSG(level == want || (amb && abs(level - want) <= 1), "%s: patch %u level %d, reference %d (e_max %.9g)",
@@ -879,7 +899,7 @@ TEST(test_policy_rules) {
       depth_bad += err > 1e-4 * m_explicit;
     }
     for (uint32_t p = 0; p < fx.patches; ++p) {
-      double e = ref_emax(&r, &fx.info[p]), s = ref_patch_s(&fx, &r, p);
+      double s = ref_patch_s(&fx, &r, p);
       bool front = false, back = false, tie = false;
       for (uint32_t k = 0; k < fx.ncorner[p]; ++k) {
         const double* q = fx.vpos[fx.corner[p][k]];
@@ -889,7 +909,7 @@ TEST(test_policy_rules) {
       }
       if (front && back) s = 1, straddling++;
       bool amb;
-      int want = ref_level(e, eps * pow(16.0, 1.0 - s), lmax, &amb);
+      int want = ref_table_level(&fx.info[p], ref_scale(&r, &fx.info[p]), eps * pow(16.0, 1.0 - s), lmax, &amb);
       amb = amb || tie;
       ambiguous += amb;
       if (!(dh->levels[p] == want || (amb && abs(dh->levels[p] - want) <= 1))) {
@@ -1147,8 +1167,22 @@ static double dist3f(const float* a, const float* b) {
   return len3(d);
 }
 
+/* The smallest blend a of level l whose morphed mesh meets eps (lod.h
+ * TLOD_MORPH_CONTINUOUS, docs/design.md 3.9): (1 - a) b_{l-1} + a b_l = eps,
+ * b_x = tlod_patch_error_bound(in, x) * scale; 0 when level l - 1 meets eps,
+ * 1 when level l does not. */
+static double ref_eps_blend(const tlod_patch_info* in, double scale, double eps, int l) {
+  if (l <= 0) return 1.0;
+  double hi = (double)tlod_patch_error_bound(in, (uint32_t)l - 1) * scale;
+  double lo = (double)tlod_patch_error_bound(in, (uint32_t)l) * scale;
+  if (hi <= eps) return 0.0;
+  if (lo > eps) return 1.0;
+  return (hi - eps) / (hi - lo);
+}
+
 /* (a) TIME: settle far away, step close with dt = 16 ms. Patches whose level
- * rose by one start with blend dt / morph_ms; the frame realised with those
+ * rose by one start with blend max(dt / morph_ms, a_eps), a_eps the smallest
+ * blend that meets eps (ref_eps_blend); the frame realised with those
  * blends set to 0 is the old level exactly: the old vertices are bitwise the
  * old frame's and each new vertex is bitwise its parents' midpoint. With the
  * real blend each new vertex lies blend * |surface - midpoint| from it. */
@@ -1156,7 +1190,7 @@ TEST(test_geomorph_starts_at_coarse_level) {
   tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   shape shapes[2] = {shape_icosphere(1), shape_torus(12, 8)};
-  uint32_t risen_total = 0, new_vertices = 0;
+  uint32_t risen_total = 0, new_vertices = 0, at_step = 0, jumped = 0;
   double worst_blend_dev = 0;
   for (int run = 0; run < 3; ++run) {
     const shape* s = &shapes[run == 2];
@@ -1169,8 +1203,9 @@ TEST(test_geomorph_starts_at_coarse_level) {
                                                                    .morph_ms = morph_ms,
                                                                    .no_frustum_cull = true});
     CHECK(sch);
-    camera far = look_from(0.3, 0.5, 14, 0, 0, 0), near = look_from(0.3, 0.5, 3.2, 0, 0, 0);
+    camera far = look_from(0.3, 0.5, 14, 0, 0, 0), near = look_from(0.3, 0.5, 6.0, 0, 0, 0);
     tlod_view_desc vf = make_view(&far), vn = make_view(&near);
+    view_ref rn = make_ref(&vn, &near);
     const tlod_draw_list* dl = NULL;
     for (int k = 0; k < 3; ++k)
       dl = plan(&fx, sch, &vf, 1, 1000, 0); /* dt >= morph_ms: settled */
@@ -1191,21 +1226,33 @@ TEST(test_geomorph_starts_at_coarse_level) {
     const float step = dt / morph_ms;
     uint32_t risen = 0;
     dl_copy zero = copy_draw_list(dl), one = copy_draw_list(dl);
+    float* blend = calloc(fx.patches, sizeof *blend);
     for (uint32_t i = 0; i < dl->instance_count; ++i) {
       const tlod_draw_instance* in = &dl->instances[i];
       int l0 = lev0[in->patch];
-      CHECK_MSG((int)in->level <= l0 + 1 && (int)in->level >= l0 - 1,
-                "patch %u jumped from level %d to %u in one frame of %g ms", in->patch, l0, in->level, dt);
+      /* More than one level up only where eps asks for it at once. */
+      bool amb;
+      int need = ref_table_level(&fx.info[in->patch], ref_scale(&rn, &fx.info[in->patch]), 1.0, PAT_MAX, &amb);
+      jumped += (int)in->level > l0 + 1;
+      CHECK_MSG(((int)in->level <= l0 + 1 || (int)in->level <= need + amb) && (int)in->level >= l0 - 1,
+                "patch %u jumped from level %d to %u in one frame of %g ms (eps needs %d)", in->patch, l0, in->level,
+                dt, need);
       one.inst[i].morph = 1;
       for (int e = 0; e < 4; ++e)
         one.inst[i].edge_morph[e] = 1;
       if ((int)in->level != l0 + 1) continue;
       risen++;
-      CHECK_MSG(in->morph > 0 && in->morph <= step * (1 + 1e-5f), "patch %u rose to level %u with blend %.9g (step %g)",
-                in->patch, in->level, in->morph, step);
+      const tlod_patch_info* pi = &fx.info[in->patch];
+      double a_eps = ref_eps_blend(pi, ref_scale(&rn, pi), 1.0, (int)in->level);
+      double want = fmax(step, fmax(a_eps, 1e-4));
+      at_step += a_eps < step;
+      blend[in->patch] = in->morph;
+      CHECK_MSG(in->morph > 0 && fabs(in->morph - want) <= 1e-5 * want + 1e-7,
+                "patch %u rose to level %u with blend %.9g (step %g, eps blend %.9g)", in->patch, in->level, in->morph,
+                step, a_eps);
       for (uint32_t e = 0; e < fx.ncorner[in->patch]; ++e)
-        CHECK_MSG(in->edge_morph[e] <= step * (1 + 1e-5f), "patch %u edge %u blend %.9g after rising", in->patch, e,
-                  in->edge_morph[e]);
+        CHECK_MSG(in->edge_morph[e] == in->morph, "patch %u edge %u blend %.9g after rising, patch %.9g", in->patch, e,
+                  in->edge_morph[e], in->morph);
       zero.inst[i].morph = 0;
       for (int e = 0; e < 4; ++e)
         zero.inst[i].edge_morph[e] = 0;
@@ -1247,18 +1294,19 @@ TEST(test_geomorph_starts_at_coarse_level) {
         double full = dist3f(p1 + 3 * (size_t)(fx.base[p] + x), mid);
         double dev = dist3f(pr + 3 * (size_t)(fx.base[p] + x), mid);
         worst_blend_dev = fmax(worst_blend_dev, full > 0 ? dev / full : 0);
-        CHECK_MSG(dev <= step * full * (1 + 1e-4) + 1e-6,
+        CHECK_MSG(dev <= blend[p] * full * (1 + 1e-4) + 1e-6,
                   "%s: patch %u vertex %u is %.3g from the midpoint, %.3g x %g allowed", s->name, p, x, dev, full,
-                  step);
+                  blend[p]);
       }
     }
-    free(p0), free(pz), free(p1), free(base0), free(basez), free(lev0), free(zero.inst), free(one.inst);
+    free(p0), free(pz), free(p1), free(base0), free(basez), free(lev0), free(zero.inst), free(one.inst), free(blend);
     tlod_scheduler_destroy(sch);
     fixture_free(&fx);
   }
-  printf("  %u patches rose one level; %u new vertices at blend 0 bitwise on their parents' midpoints; with the real "
-         "blend at most %.4f of the way to the surface\n",
-         risen_total, new_vertices, worst_blend_dev);
+  printf("  %u patches rose one level (%u starting at dt / morph_ms, the rest at the blend that meets eps), %u two "
+         "(eps needs it); %u new vertices at blend 0 bitwise on their parents' midpoints; with the real blend at most "
+         "%.4f of the way to the surface\n",
+         risen_total, at_step, jumped, new_vertices, worst_blend_dev);
   for (int k = 0; k < 2; ++k)
     shape_free(&shapes[k]);
   tlod_context_destroy(ctx);
@@ -1390,8 +1438,8 @@ TEST(test_geomorph_continuity) {
   shape_free(&tor);
 }
 
-/* (c) CONTINUOUS: the continuous level is log4(e_max / eps); the drawn level
- * is its ceiling and the blend its fraction, in (0, 1]. */
+/* (c) CONTINUOUS: the drawn level is the table rule's and the blend the
+ * smallest that meets eps (ref_eps_blend), in (0, 1]. */
 TEST(test_geomorph_continuous) {
   tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
@@ -1411,6 +1459,7 @@ TEST(test_geomorph_continuous) {
     double d = 1.7 + 0.25 * f;
     camera c = look_from(0.2 * d, 0.3 * d, d, 0, 0, 0);
     tlod_view_desc v = make_view(&c);
+    view_ref r = make_ref(&v, &c);
     const tlod_draw_list* dl = plan(&fx, sch, &v, 1, 16, 0);
     CHECK(dl);
     char why[256];
@@ -1422,21 +1471,24 @@ TEST(test_geomorph_continuous) {
         CHECK_MSG(in->edge_morph[e] > 0 && in->edge_morph[e] <= 1, "patch %u edge %u: blend %.9g", in->patch, e,
                   in->edge_morph[e]);
       fractional += in->morph < 1;
-      double cl = log(dl->e_max[in->patch] / eps) / log(4.0);
+      const tlod_patch_info* pi = &fx.info[in->patch];
+      double scale = ref_scale(&r, pi);
+      bool amb;
+      int lw = ref_table_level(pi, scale, eps, 4, &amb);
       if (in->level == 0 || in->level == 4) continue;
-      CHECK_MSG(ceil(cl - 1e-6) == in->level || fabs(cl - round(cl)) < 1e-5, "patch %u: level %u, log4(e/eps) = %.6f",
-                in->patch, in->level, cl);
-      double want = fmax(cl - (in->level - 1), 0);
+      CHECK_MSG((int)in->level == lw || amb, "patch %u: level %u, table rule %d", in->patch, in->level, lw);
+      if (amb) continue;
+      double want = fmax(ref_eps_blend(pi, scale, eps, (int)in->level), 1e-4);
       worst = fmax(worst, fabs(in->morph - want));
-      CHECK_MSG(fabs(in->morph - want) <= 1e-4, "patch %u level %u: blend %.7f, fraction of log4(e/eps) %.7f",
-                in->patch, in->level, in->morph, want);
+      CHECK_MSG(in->morph >= want * (1 - 1e-6) && in->morph - want <= 1e-5,
+                "patch %u level %u: blend %.7f, the blend that meets eps %.7f", in->patch, in->level, in->morph, want);
       checked++;
     }
     CHECK(realise(&fx, dl, false));
     CHECK_MSG(realised_closed(&fx, why, sizeof why), "frame %d: %s", f, why);
   }
-  printf("  %u blends checked against log4(e_max/eps) (worst error %.2g), %u fractional; all frames closed\n", checked,
-         worst, fractional);
+  printf("  %u blends checked against the blend that meets eps (worst error %.2g), %u fractional; all frames closed\n",
+         checked, worst, fractional);
   CHECK(fractional > 100 && checked > 100);
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
@@ -1696,10 +1748,11 @@ TEST(test_monotone_and_budget) {
         CHECK_MSG(dl->level_histogram[0] == fx.patches, "budget %u below the level-0 count %u: %u patches at level 0",
                   budgets[k], level0, dl->level_histogram[0]);
       }
+      view_ref rb = make_ref(&v, &c);
       if (pol == 0) /* ERROR: the levels are the rule's at the effective epsilon */
         for (uint32_t p = 0; p < fx.patches; ++p) {
           bool amb;
-          int want = ref_level(dl->e_max[p], dl->effective_epsilon, PAT_MAX, &amb);
+          int want = ref_table_level(&fx.info[p], ref_scale(&rb, &fx.info[p]), dl->effective_epsilon, PAT_MAX, &amb);
           CHECK_MSG(dl->levels[p] == want || (amb && abs(dl->levels[p] - want) <= 1),
                     "budget %u: patch %u level %d, rule at effective epsilon %g: %d", budgets[k], p, dl->levels[p],
                     dl->effective_epsilon, want);
