@@ -334,8 +334,8 @@ typedef struct tlod_patch_info {
   float d_max;     /* PN: max tangent control point distance; Phong: alpha-scaled max |d_e| */
   float center[3]; /* bounding sphere of the curved patch */
   float radius;
-  /* -- error tables (superseding error_bound, which the scheduler reads
-   * until it moves to tlod_patch_error_bound()). error_table[l]: upper
+  /* -- error tables (superseding error_bound; the scheduler's level rule
+   * reads them through tlod_patch_error_bound()). error_table[l]: upper
    * bound, world units, of max |S(u,v) - P_l(u,v)| over the patch, P_l the
    * level-l pattern's piecewise-linear interpolant of the surface (as the
    * pattern draws it: 4^l triangles, quads 2 * 4^l with the pattern's

@@ -7,8 +7,9 @@
  *   per patch the frustum test and the projection scale (pixels per world
  *   unit over the patch's bounding sphere), then a refinement level per
  *   patch by policy from the patch's per-level error table (tesslod/core.h
- *   tlod_patch_error_bound(); Schwarz, Staginski & Stamminger 2006), under an optional triangle budget or frame-time
- *   target, with geomorph state so that level changes blend in over time.
+ *   tlod_patch_error_bound(); Schwarz, Staginski & Stamminger 2006),
+ *   under an optional triangle budget or frame-time target, with geomorph
+ *   state so that level changes blend in over time (within epsilon).
  *   The result is a draw list: instances bucketed by (shape, level),
  *   connection strips where neighbouring patches differ, and statistics.
  *   Includes tesslod/patterns.h (the refinement and connection patterns the
