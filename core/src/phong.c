@@ -117,8 +117,10 @@ float _tlod_phong_tri_bound(const _tlod_corners* c, float* d_max) {
 
 /* Per-vertex alpha makes the patch cubic: alpha (linear, net alpha_x) times
  * the quadratic deviation (net: 0 at corners, d_e at edges). The product's
- * net by the Bernstein product rule feeds the second-derivative bound. */
-float _tlod_phong_alpha_bound(const _tlod_corners* c) {
+ * net by the Bernstein product rule: B1_K B2_J = (K! J! ... ) B3_{K+J} with
+ * weight 2/3 for an edge coefficient (K = 100, J = 110: 2 u^2 v = (2/3) B3_210)
+ * and 1/3 for the centre (K = 100, J = 011: 2 u v w = (1/3) B3_111). */
+void _tlod_phong_alpha_net(const _tlod_corners* c, double net[10][3]) {
   double dev[3][3];
   for (uint32_t e = 0; e < 3; e++) {
     uint32_t i = e, j = (e + 1) % 3;
@@ -127,21 +129,25 @@ float _tlod_phong_alpha_bound(const _tlod_corners* c) {
     dev[e][0] = d.x, dev[e][1] = d.y, dev[e][2] = d.z;
   }
   /* Cubic net in _tlod_tri_net order: 300 030 003 210 120 021 012 102 201 111.
-   * c_{2x+y} = alpha_y d_xy / 3 (from J = x+y, K = x... only K = y contributes
-   * a nonzero d), c_111 = (alpha_i d_jk + alpha_j d_ki + alpha_k d_ij) / 3. */
+   * c_{2x+y} = 2 alpha_x d_xy / 3, c_111 = (alpha_i d_jk + alpha_j d_ki + alpha_k d_ij) / 3. */
   const double* a_ij = dev[0];
   const double* a_jk = dev[1];
   const double* a_ki = dev[2];
-  double net[10][3] = {{0}};
   for (int k = 0; k < 3; k++) {
+    net[0][k] = net[1][k] = net[2][k] = 0.0;
     net[3][k] = 2.0 * c->alpha[0] * a_ij[k] / 3.0; /* 210: J = 200 (0) or 110 (d_ij) with K = 100 */
     net[4][k] = 2.0 * c->alpha[1] * a_ij[k] / 3.0; /* 120 */
     net[5][k] = 2.0 * c->alpha[1] * a_jk[k] / 3.0; /* 021 */
     net[6][k] = 2.0 * c->alpha[2] * a_jk[k] / 3.0; /* 012 */
     net[7][k] = 2.0 * c->alpha[2] * a_ki[k] / 3.0; /* 102 */
     net[8][k] = 2.0 * c->alpha[0] * a_ki[k] / 3.0; /* 201 */
-    net[9][k] = 2.0 * (c->alpha[0] * a_jk[k] + c->alpha[1] * a_ki[k] + c->alpha[2] * a_ij[k]) / 3.0;
+    net[9][k] = (c->alpha[0] * a_jk[k] + c->alpha[1] * a_ki[k] + c->alpha[2] * a_ij[k]) / 3.0;
   }
+}
+
+float _tlod_phong_alpha_bound(const _tlod_corners* c) {
+  double net[10][3];
+  _tlod_phong_alpha_net(c, net);
   return _tlod_tri_net_bound(net, c);
 }
 
@@ -153,11 +159,13 @@ float _tlod_phong_alpha_bound(const _tlod_corners* c) {
  * bounding |d2P/ds2| over unit directions s: so the level-l pattern is within
  * 4^-l * M / 4 of the surface. The same holds for the flat (bilinear) quad,
  * whose two level-0 triangles differ from it where it is not planar. */
+/* b may alias f (the second pass converts in place). */
 static void cubic_net(const double f[4], double b[4]) {
-  b[0] = f[0];
-  b[1] = (-5.0 * f[0] + 18.0 * f[1] - 9.0 * f[2] + 2.0 * f[3]) / 6.0;
-  b[2] = (2.0 * f[0] - 9.0 * f[1] + 18.0 * f[2] - 5.0 * f[3]) / 6.0;
-  b[3] = f[3];
+  double f0 = f[0], f1 = f[1], f2 = f[2], f3 = f[3];
+  b[0] = f0;
+  b[1] = (-5.0 * f0 + 18.0 * f1 - 9.0 * f2 + 2.0 * f3) / 6.0;
+  b[2] = (2.0 * f0 - 9.0 * f1 + 18.0 * f2 - 5.0 * f3) / 6.0;
+  b[3] = f3;
 }
 
 double _tlod_norm3(const double v[3]) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
@@ -203,8 +211,8 @@ float _tlod_tri_net_bound(const double net[10][3], const _tlod_corners* c) {
   return (float)((fmax(uu, vv) + uv) / 4.0 + _tlod_bound_slack(c));
 }
 
-float _tlod_quad_bound(const _tlod_corners* c, float* d_max) {
-  double f[4][4][3], net[4][4][3];
+void _tlod_quad_net(const _tlod_corners* c, double net[4][4][3]) {
+  double f[4][4][3];
   for (int i = 0; i < 4; i++) {
     for (int j = 0; j < 4; j++) {
       tlod_surface_point pt;
@@ -227,6 +235,9 @@ float _tlod_quad_bound(const _tlod_corners* c, float* d_max) {
       for (int j = 0; j < 4; j++)
         net[i][j][k] = tmp[i][j];
   }
+}
+
+double _tlod_quad_net_m(const double net[4][4][3]) {
   double uu = 0.0, vv = 0.0, uv = 0.0, d[3];
   for (int i = 0; i < 4; i++) {
     for (int j = 0; j < 4; j++) {
@@ -247,7 +258,17 @@ float _tlod_quad_bound(const _tlod_corners* c, float* d_max) {
       }
     }
   }
-  double bound = (fmax(uu, vv) + uv) / 4.0 + _tlod_bound_slack(c);
+  return fmax(uu, vv) + uv;
+}
+
+float _tlod_quad_net_bound(const double net[4][4][3], const _tlod_corners* c, float* d_max) {
+  double bound = _tlod_quad_net_m(net) / 4.0 + _tlod_bound_slack(c);
   *d_max = (float)bound;
   return (float)bound;
+}
+
+float _tlod_quad_bound(const _tlod_corners* c, float* d_max) {
+  double net[4][4][3];
+  _tlod_quad_net(c, net);
+  return _tlod_quad_net_bound(net, c, d_max);
 }

@@ -45,11 +45,35 @@ static void sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n,
   info->radius = (r + grow) * (1.0f + 1e-5f);
 }
 
+/* Per-level error tables (error_table.c): the cubic net a triangle needs,
+ * the quad net computed above for Phong quads. */
+static void build_error_table(tlod_surface* s, uint32_t f, const _tlod_corners* c, const double (*quad_net)[4][3]) {
+  tlod_patch_info* info = &s->info[f];
+  double net[10][3];
+  bool phong = s->desc.type == TLOD_SURFACE_PHONG;
+  if (c->n == 4) {
+    _tlod_error_table(s->desc.type, c, NULL, phong ? quad_net : NULL, info);
+    return;
+  }
+  if (s->desc.type == TLOD_SURFACE_PN) {
+    for (int i = 0; i < 10; i++)
+      for (int k = 0; k < 3; k++)
+        net[i][k] = s->pn[f].b[i][k];
+  } else if (phong && !(c->alpha[0] == c->alpha[1] && c->alpha[1] == c->alpha[2])) {
+    _tlod_phong_alpha_net(c, net);
+  } else {
+    _tlod_error_table(s->desc.type, c, NULL, NULL, info);
+    return;
+  }
+  _tlod_error_table(s->desc.type, c, (const double(*)[3])net, NULL, info);
+}
+
 static void build_patch(tlod_surface* s, uint32_t f) {
   _tlod_corners c;
   gather(s, f, &c);
   tlod_patch_info* info = &s->info[f];
   info->corner_count = c.n;
+  double quad_net[4][4][3];
   switch (s->desc.type) {
   case TLOD_SURFACE_PN: {
     _tlod_pn_build(&c, &s->pn[f]);
@@ -62,7 +86,12 @@ static void build_patch(tlod_surface* s, uint32_t f) {
     break;
   }
   case TLOD_SURFACE_PHONG:
-    info->error_bound = c.n == 3 ? _tlod_phong_tri_bound(&c, &info->d_max) : _tlod_quad_bound(&c, &info->d_max);
+    if (c.n == 3) {
+      info->error_bound = _tlod_phong_tri_bound(&c, &info->d_max);
+    } else {
+      _tlod_quad_net(&c, quad_net);
+      info->error_bound = _tlod_quad_net_bound(quad_net, &c, &info->d_max);
+    }
     sphere_of(&c, NULL, 0, info->error_bound, info);
     break;
   default:
@@ -72,6 +101,7 @@ static void build_patch(tlod_surface* s, uint32_t f) {
     sphere_of(&c, NULL, 0, info->error_bound, info);
     break;
   }
+  build_error_table(s, f, &c, quad_net);
 }
 
 typedef struct build_job {

@@ -31,6 +31,14 @@ double _tlod_norm3(const double v[3]);
 double _tlod_bound_slack(const _tlod_corners* c);
 /* Quads, Phong or flat (alphas zero): from the second derivatives. */
 float _tlod_quad_bound(const _tlod_corners* c, float* d_max);
+/* The pieces of the two above: the per-vertex-alpha deviation net (surface
+ * minus flat patch, cubic, corners zero, _tlod_tri_net order); the quad's
+ * tensor Bezier net (bidegree 3, from 16 evaluations); M bounding
+ * |d2P/ds2| over unit directions s from that net; the old bound from it. */
+void _tlod_phong_alpha_net(const _tlod_corners* c, double net[10][3]);
+void _tlod_quad_net(const _tlod_corners* c, double net[4][4][3]);
+double _tlod_quad_net_m(const double net[4][4][3]);
+float _tlod_quad_net_bound(const double net[4][4][3], const _tlod_corners* c, float* d_max);
 
 /* Flat: the input triangle, the bilinear quad. */
 void _tlod_flat_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm);
@@ -44,6 +52,14 @@ void _tlod_pn_eval(const _tlod_pn_patch* patch, const _tlod_corners* c, float u,
                    tlod_surface_point* out);
 /* d_max: the paper's d'_max; returns max(9/4 d'_max, the second-derivative bound). */
 float _tlod_pn_bound(const _tlod_pn_patch* patch, const _tlod_corners* c, float* d_max);
+
+/* error_table.c: per-level error tables (issue #9, docs/design.md "Error
+ * tables"). Fills error_table, error_tail and error_slack of info. net: the
+ * cubic triangle net of surface minus flat patch (per-vertex-alpha Phong)
+ * or of the surface (PN); NULL for flat and global-alpha Phong triangles.
+ * quad_net: the tensor net of a quad (Phong; NULL for flat quads). */
+void _tlod_error_table(tlod_surface_type type, const _tlod_corners* c, const double (*net)[3],
+                       const double (*quad_net)[4][3], tlod_patch_info* info);
 
 /* surface.c: a patch's corner data, and evaluation with those corners
  * gathered once (tangents only when flags ask). */

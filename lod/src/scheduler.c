@@ -52,7 +52,8 @@ static tlod_result out_of_memory(const tlod_scheduler* s) {
 }
 
 static void free_view(tlod_context* ctx, _tlod_view_state* v) {
-  void* arrays[] = {v->levels, v->e_max, v->depth, v->contour, v->target, v->cont, v->visible, v->instances, v->strips};
+  void* arrays[] = {v->levels, v->e_max, v->scale,   v->depth,     v->contour,
+                    v->target, v->cont,  v->visible, v->instances, v->strips};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(ctx, arrays[i]);
   memset(v, 0, sizeof(*v));
@@ -64,13 +65,15 @@ static tlod_result alloc_view(tlod_scheduler* s, _tlod_view_state* v) {
   size_t np = (size_t)s->patch_count + 1, nv = (size_t)s->vertex_count + 1;
   v->levels = tlod_context_calloc(ctx, np, 1);
   v->e_max = tlod_context_calloc(ctx, np, sizeof(float));
+  v->scale = tlod_context_calloc(ctx, np, sizeof(float));
   v->depth = tlod_context_calloc(ctx, nv, sizeof(float));
   v->contour = tlod_context_calloc(ctx, np, sizeof(float));
   v->target = tlod_context_calloc(ctx, np, sizeof(float));
   v->cont = tlod_context_calloc(ctx, np, sizeof(float));
   v->visible = tlod_context_calloc(ctx, np, 1);
   v->instances = tlod_context_calloc(ctx, np, sizeof(tlod_draw_instance));
-  bool ok = v->levels && v->e_max && v->depth && v->contour && v->target && v->cont && v->visible && v->instances;
+  bool ok =
+      v->levels && v->e_max && v->scale && v->depth && v->contour && v->target && v->cont && v->visible && v->instances;
   return ok ? TLOD_SUCCESS : out_of_memory(s);
 }
 

@@ -32,6 +32,7 @@ typedef struct _tlod_view_state {
   _tlod_camera cam;
   int8_t* levels;
   float* e_max;
+  float* scale;   /* per patch pixels per world unit (tlod_patch_projection_scale) */
   float* depth;   /* per vertex d_i */
   float* contour; /* per patch s = max d_i / m */
   float* target;  /* per patch target level (continuous) */
@@ -80,10 +81,13 @@ void _tlod_silhouette_task(void* frame, uint32_t begin, uint32_t end, uint32_t w
 /* Per patch: visibility, e_max and contour s. */
 void _tlod_metric_task(void* frame, uint32_t begin, uint32_t end, uint32_t worker);
 /* The level rule, every form of it (policy, discrete or continuous): the
- * target level of a patch with error bound e_max and contour s at epsilon
- * eps under level cap cap. ceil() of the result is always the discrete
- * rule's level. */
-float _tlod_level_rule(const tlod_scheduler_desc* d, float e_max, float contour, float eps, float cap);
+ * target level of patch info projected at scale pixels per world unit,
+ * contour s, at epsilon eps under level cap cap. ceil() of the result is
+ * always the discrete rule's level. ERROR and HYBRID return the fractional
+ * level whose blended bound meets eps (docs/design.md 3.9): the morph stage
+ * never draws a patch below it. */
+float _tlod_level_rule(const tlod_scheduler_desc* d, const tlod_patch_info* info, float scale, float contour, float eps,
+                       float cap);
 
 /* scheduler_levels.c */
 /* Targets of every patch, with epsilon (or the cap) raised until the

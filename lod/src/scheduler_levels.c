@@ -16,7 +16,8 @@ static void target_task(void* data, uint32_t begin, uint32_t end, uint32_t worke
   _tlod_frame* fr = data;
   _tlod_view_state* vs = fr->vs;
   for (uint32_t f = begin; f < end; f++)
-    vs->target[f] = _tlod_level_rule(&fr->s->desc, vs->e_max[f], vs->contour[f], fr->eps, fr->level_cap);
+    vs->target[f] =
+        _tlod_level_rule(&fr->s->desc, &fr->surface.patches[f], vs->scale[f], vs->contour[f], fr->eps, fr->level_cap);
 }
 
 static tlod_pattern_shape shape_of(const tlod_mesh_view* m, uint32_t f) {

@@ -1,12 +1,15 @@
 /* tesslod::lod -- the per-frame metrics: silhouette depth per vertex,
- * projected error bound, frustum test and contour measure per patch, and
- * the level rule that turns them into levels.
+ * projection scale (nearest depth and off-axis factor), frustum test and
+ * contour measure per patch, and the level rule that turns the patch's
+ * per-level error table (tesslod/core.h) into levels.
  *
  * This work is based on:
  *   T. Boubekeur, M. Alexa. Phong Tessellation. 2008 (silhouette depth
  *   d_i = (1 - |n_i . (c - p_i)/|c - p_i||) m);
- *   M. Schwarz, M. Staginski, M. Stamminger. 2006 (e_max = projected
- *   d'_max bound; l smallest with 4^-l e_max <= eps). */
+ *   M. Schwarz, M. Staginski, M. Stamminger. 2006 (projected error bound,
+ *   the smallest level that meets eps; here with the per-level tables of
+ *   issue #9 instead of 4^-l e_max, docs/design.md 3.6). */
+#include <float.h>
 #include <math.h>
 
 #include "scheduler_frame.h"
@@ -21,13 +24,10 @@ float tlod_projection_scale(const float proj[16], uint32_t viewport_height, floa
   return depth > 0.0f ? half / depth : INFINITY;
 }
 
-/* Rigid view: eye = -R^T t, forward = -(third row of R). */
-static void eye_and_forward(const float view[16], _tlod_camera* cam) {
-  const float* t = view + 12;
-  for (int i = 0; i < 3; i++) {
-    cam->eye[i] = -(view[i * 4 + 0] * t[0] + view[i * 4 + 1] * t[1] + view[i * 4 + 2] * t[2]);
-    cam->forward[i] = -view[i * 4 + 2];
-  }
+/* The smallest float >= x (x >= 0, finite). */
+static float float_up(double x) {
+  float f = (float)x;
+  return (double)f < x ? nextafterf(f, INFINITY) : f;
 }
 
 /* Near distance of a GL projection (a [0, 1]-depth one gives about half of
@@ -36,6 +36,41 @@ static float near_distance(const float proj[16], bool ortho) {
   float denom = proj[10] - 1.0f;
   float n = denom != 0.0f ? proj[14] / denom : 0.0f;
   return ortho || !(n > 0.0f) ? 0.0f : n;
+}
+
+/* docs/design.md 3.6: f = max(W |P00|, H |P11|) / 2; at view point (x, y, z)
+ * a displacement d projects to at most (f / z) sqrt(1 + (x/z)^2 + (y/z)^2) |d|
+ * pixels; over the sphere z >= z_c - r (at least the near plane) and
+ * |x/z| <= (|x_c| + r) / z_min, at most the frustum's (1 + |P20|) / |P00|
+ * (y likewise). Computed in double, rounded up. */
+float tlod_patch_projection_scale(const tlod_view_desc* v, const float center[3], float radius) {
+  const float *V = v->view, *P = v->proj;
+  double fx = 0.5 * (double)v->viewport_width * fabs((double)P[0]);
+  double fy = 0.5 * (double)v->viewport_height * fabs((double)P[5]);
+  double f = fx > fy ? fx : fy;
+  if (is_ortho(P)) return float_up(f);
+  double c[3] = {center[0], center[1], center[2]}, r = radius > 0.0f ? radius : 0.0;
+  double x = V[0] * c[0] + V[4] * c[1] + V[8] * c[2] + V[12];
+  double y = V[1] * c[0] + V[5] * c[1] + V[9] * c[2] + V[13];
+  double z = -(V[2] * c[0] + V[6] * c[1] + V[10] * c[2] + V[14]) - r;
+  double zmin = near_distance(P, false);
+  if (!(zmin > 0.0)) zmin = r > 0.0 ? 1e-4 * r : 1e-30;
+  if (!(z >= zmin)) z = zmin;
+  double tx = (1.0 + fabs((double)P[8])) / fabs((double)P[0]), ty = (1.0 + fabs((double)P[9])) / fabs((double)P[5]);
+  double rx = (fabs(x) + r) / z, ry = (fabs(y) + r) / z;
+  rx = rx < tx ? rx : tx;
+  ry = ry < ty ? ry : ty;
+  double s = f / z * sqrt(1.0 + rx * rx + ry * ry);
+  return isfinite(s) && s < (double)FLT_MAX ? float_up(s) : INFINITY;
+}
+
+/* Rigid view: eye = -R^T t, forward = -(third row of R). */
+static void eye_and_forward(const float view[16], _tlod_camera* cam) {
+  const float* t = view + 12;
+  for (int i = 0; i < 3; i++) {
+    cam->eye[i] = -(view[i * 4 + 0] * t[0] + view[i * 4 + 1] * t[1] + view[i * 4 + 2] * t[2]);
+    cam->forward[i] = -view[i * 4 + 2];
+  }
 }
 
 /* Frustum planes from the rows of clip = P V (Gribb & Hartmann). */
@@ -72,10 +107,6 @@ void _tlod_camera_from_view(const float view[16], const float proj[16], _tlod_ca
 
 /* ---- per vertex and per patch measures -------------------------------------------- */
 
-static float view_depth(const float view[16], const float p[3]) {
-  return -(view[2] * p[0] + view[6] * p[1] + view[10] * p[2] + view[14]);
-}
-
 static bool sphere_visible(const _tlod_camera* cam, const float c[3], float r) {
   for (int p = 0; p < 6; p++) {
     const float* pl = cam->planes[p];
@@ -101,17 +132,6 @@ static float silhouette_depth(const _tlod_camera* cam, const float p[3], const f
   if (!(len > 0.0f)) return m;
   float c = fabsf(n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / len;
   return (1.0f - (c > 1.0f ? 1.0f : c)) * m;
-}
-
-/* Projected error bound of a patch at level 0, pixels, at the nearest depth
- * of its bounding sphere: the bound must hold for every point of the patch. */
-static float patch_e_max(const _tlod_camera* cam, const tlod_view_desc* vd, const tlod_patch_info* info) {
-  if (cam->ortho) return info->error_bound * tlod_projection_scale(vd->proj, vd->viewport_height, 1.0f);
-  float z = view_depth(vd->view, info->center) - info->radius;
-  /* Inside the sphere or past the near plane: the nearest visible depth. */
-  float zmin = cam->near_z > 0.0f ? cam->near_z : 1e-4f * info->radius;
-  if (z < zmin) z = zmin;
-  return info->error_bound * tlod_projection_scale(vd->proj, vd->viewport_height, z);
 }
 
 /* s = max d_i / m over the corners, 1 where the corner normals face both
@@ -146,34 +166,43 @@ void _tlod_metric_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
   for (uint32_t f = begin; f < end; f++) {
     const tlod_patch_info* info = &fr->surface.patches[f];
     vs->visible[f] = fr->s->desc.no_frustum_cull || sphere_visible(&vs->cam, info->center, info->radius);
-    vs->e_max[f] = patch_e_max(&vs->cam, fr->view, info);
+    /* Every point of the patch lies in its sphere, and so does every
+     * pattern point (a convex combination of surface points). */
+    vs->scale[f] = tlod_patch_projection_scale(fr->view, info->center, info->radius);
+    vs->e_max[f] = tlod_patch_error_bound(info, 0) * vs->scale[f];
     vs->contour[f] = patch_contour(fr, f);
   }
 }
 
 /* ---- the level rule ------------------------------------------------------------ */
 
-/* Smallest l <= max_level with 4^-l e_max <= eps. Multiplies up rather than
- * taking a log, so the rule is exact at the thresholds:
- * 4^-l e <= eps <=> e <= eps * 4^l. */
-static uint32_t error_level(float e_max, float eps, uint32_t max_level) {
+/* Bound of level l in pixels, double (exact product of two floats). */
+static double px_bound(const tlod_patch_info* info, float scale, uint32_t l) {
+  return (double)tlod_patch_error_bound(info, l) * (double)scale;
+}
+
+/* The compare ladder: the smallest l <= max_level whose bound, projected,
+ * is <= eps (the table is non-increasing in l). Exact at the thresholds. */
+static uint32_t error_level(const tlod_patch_info* info, float scale, float eps, uint32_t max_level) {
   uint32_t l = 0;
-  double bound = eps;
-  while (l < max_level && !((double)e_max <= bound)) {
-    bound *= 4.0;
+  while (l < max_level && !(px_bound(info, scale, l) <= (double)eps))
     l++;
-  }
   return l;
 }
 
-/* ERROR and HYBRID: the discrete level, or for CONTINUOUS morphs log4(e_max
- * / eps) kept in (l - 1, l], so that its ceil is the discrete level. */
-static float error_target(const tlod_scheduler_desc* d, float e_max, float eps) {
-  uint32_t l = error_level(e_max, eps, d->max_level);
-  if (d->morph != TLOD_MORPH_CONTINUOUS || l == 0) return (float)l;
-  float t = log2f(e_max / eps) * 0.5f;
-  float lo = (float)(l - 1) + 1e-4f;
-  return t < lo ? lo : (t > (float)l ? (float)l : t);
+/* ERROR and HYBRID: the discrete level l, and below it the fractional level
+ * (l - 1) + a with the smallest blend a whose morphed mesh is within eps:
+ * (1 - a) b_{l-1} + a b_l = eps, b the projected bounds (docs/design.md 3.9),
+ * in [1e-4, 1], rounded up. Its ceil is l; a patch clamped at max_level
+ * (b_l > eps) gets l. */
+static float error_target(const tlod_scheduler_desc* d, const tlod_patch_info* info, float scale, float eps) {
+  uint32_t l = error_level(info, scale, eps, d->max_level);
+  if (l == 0) return 0.0f;
+  double hi = px_bound(info, scale, l - 1), lo = px_bound(info, scale, l);
+  if (!(lo <= (double)eps)) return (float)l;
+  double a = (hi - (double)eps) / (hi - lo); /* hi > eps >= lo */
+  a = a > 1e-4 ? (a < 1.0 ? a : 1.0) : 1e-4;
+  return float_up((double)(l - 1) + a);
 }
 
 /* SILHOUETTE: log2 of the segments the contour asks for, at most the cap
@@ -186,7 +215,8 @@ static float silhouette_target(const tlod_scheduler_desc* d, float contour, floa
   return d->morph == TLOD_MORPH_CONTINUOUS ? t : ceilf(t);
 }
 
-float _tlod_level_rule(const tlod_scheduler_desc* d, float e_max, float contour, float eps, float cap) {
+float _tlod_level_rule(const tlod_scheduler_desc* d, const tlod_patch_info* info, float scale, float contour, float eps,
+                       float cap) {
   switch (d->policy) {
   case TLOD_POLICY_FLAT:
     return 0.0f;
@@ -196,13 +226,18 @@ float _tlod_level_rule(const tlod_scheduler_desc* d, float e_max, float contour,
     return silhouette_target(d, contour, cap);
   case TLOD_POLICY_HYBRID:
     /* Away from contours (s < 1) shading hides the flat geometry. */
-    return error_target(d, e_max, eps * powf(d->hybrid_relax, 1.0f - contour));
+    return error_target(d, info, scale, eps * powf(d->hybrid_relax, 1.0f - contour));
   default:
-    return error_target(d, e_max, eps);
+    return error_target(d, info, scale, eps);
   }
 }
 
+/* The old rule through the one ladder: a table e_max 4^-l (exact: powers
+ * of two), no slack, scale 1. */
 uint32_t tlod_level_for_error(float e_max, float epsilon, uint32_t max_level) {
+  tlod_patch_info info = {.corner_count = 3, .error_bound = e_max, .error_tail = e_max};
+  for (uint32_t l = 0; l < TLOD_ERROR_TABLE_LEVELS; l++)
+    info.error_table[l] = ldexpf(e_max, -2 * (int)l);
   tlod_scheduler_desc d = {.policy = TLOD_POLICY_ERROR, .max_level = max_level, .morph = TLOD_MORPH_NONE};
-  return (uint32_t)_tlod_level_rule(&d, e_max, 0.0f, epsilon, INFINITY);
+  return _tlod_drawn_level(_tlod_level_rule(&d, &info, 1.0f, 0.0f, epsilon, INFINITY));
 }

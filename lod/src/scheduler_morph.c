@@ -1,6 +1,7 @@
 /* tesslod::lod -- geomorph state: each patch's continuous level follows its
- * target (at once, or 1 level per morph_ms of frame time), and the drawn
- * level and vertex blends derive from it.
+ * target (at once, or 1 level per morph_ms of frame time, never below the
+ * blend that meets the error bound), and the drawn level and vertex blends
+ * derive from it.
  *
  * This work is based on:
  *   M. Schwarz, M. Staginski, M. Stamminger. GPU-based rendering of PN
@@ -21,13 +22,20 @@ void _tlod_morph_task(void* data, uint32_t begin, uint32_t end, uint32_t worker)
   (void)worker;
   _tlod_frame* fr = data;
   _tlod_view_state* vs = fr->vs;
+  const tlod_scheduler_desc* d = &fr->s->desc;
   /* Without history (first frame, after a reset) there is nothing to blend from. */
-  bool timed = fr->s->desc.morph == TLOD_MORPH_TIME && vs->has_history;
+  bool timed = d->morph == TLOD_MORPH_TIME && vs->has_history;
+  /* ERROR and HYBRID targets are fractional: the smallest continuous level
+   * whose blended mesh meets eps (docs/design.md 3.9). TIME and NONE head
+   * for its ceil, the discrete level, and never fall below it. */
+  bool bounded = d->policy == TLOD_POLICY_ERROR || d->policy == TLOD_POLICY_HYBRID;
+  bool fractional = d->morph == TLOD_MORPH_CONTINUOUS;
   for (uint32_t f = begin; f < end; f++) {
-    float t = vs->target[f];
-    float c = timed && vs->visible[f] ? approach(vs->cont[f], t, fr->step) : t;
+    float t = vs->target[f], goal = fractional ? t : ceilf(t);
+    float c = timed && vs->visible[f] ? approach(vs->cont[f], goal, fr->step) : goal;
+    if (bounded && c < t) c = t;
     /* A budget is a hard cap: never draw above the budget's level. */
-    if (fr->s->desc.triangle_budget && c > ceilf(t)) c = ceilf(t);
+    if (d->triangle_budget && c > ceilf(t)) c = ceilf(t);
     vs->cont[f] = c;
   }
 }

@@ -16,7 +16,9 @@
  * tlod_surface_patch() (error bound, bounding sphere), the mesh's vertices
  * and tlod_surface_eval(). The library's own helpers (tlod_level_for_error,
  * tlod_projection_scale) are checked against the same references, never used
- * as one.
+ * as one; the exception is tlod_patch_projection_scale(), the one projection
+ * bound of lod.h, which the references use after test_projection_scale has
+ * checked it against finite differences of the projection.
  *
  * Tolerances. e_max: relative 1e-5. A level may differ by one only when the
  * reference e_max lies within 1e-5 (relative) of a level threshold. Topology
@@ -305,13 +307,19 @@ static double ref_depth(const view_ref* r, const float c[3]) {
   return -(r->V[2] * c[0] + r->V[6] * c[1] + r->V[10] * c[2] + r->V[14]);
 }
 
-/* e_max = error_bound * f / z_near; z_near = depth(centre) - radius, at
- * least the near plane; orthographic: error_bound * pixels per unit. */
+/* Pixels per world unit over the patch's sphere: the library's
+ * tlod_patch_projection_scale() (checked against finite differences of the
+ * projection in test_projection_scale), on the float matrices r holds. */
+static double ref_scale(const view_ref* r, const tlod_patch_info* in) {
+  tlod_view_desc v = {.viewport_width = (uint32_t)r->width, .viewport_height = (uint32_t)r->height};
+  for (int k = 0; k < 16; ++k)
+    v.view[k] = (float)r->V[k], v.proj[k] = (float)r->P[k];
+  return tlod_patch_projection_scale(&v, in->center, in->radius);
+}
+
+/* e_max = the level-0 table bound times the projection scale. */
 static double ref_emax(const view_ref* r, const tlod_patch_info* in) {
-  if (r->ortho) return in->error_bound * r->pix;
-  double z = ref_depth(r, in->center) - in->radius;
-  if (z < r->znear) z = r->znear;
-  return in->error_bound * r->pix / z;
+  return (double)tlod_patch_error_bound(in, 0) * ref_scale(r, in);
 }
 
 /* 1: the sphere is fully outside a frustum plane (must be culled);
@@ -605,6 +613,20 @@ typedef struct ref_stats {
   double worst_rel;
 } ref_stats;
 
+/* The level rule on the per-level tables: the smallest l <= lmax with
+ * tlod_patch_error_bound(in, l) * scale <= eps. *ambiguous: a rung lies
+ * within 1e-5 (relative) of eps. */
+static int ref_table_level(const tlod_patch_info* in, double scale, double eps, int lmax, bool* ambiguous) {
+  *ambiguous = false;
+  int want = -1;
+  for (int l = 0; l <= lmax; ++l) {
+    double b = (double)tlod_patch_error_bound(in, (uint32_t)l) * scale;
+    if (fabs(b - eps) <= 1e-5 * eps) *ambiguous = true;
+    if (want < 0 && b <= eps) want = l;
+  }
+  return want < 0 ? lmax : want;
+}
+
 /* Every patch of one draw list against the reference: structure, culling,
  * e_max, and (ERROR policy) the level rule. */
 static void check_levels(const fixture* fx, const tlod_draw_list* dl, const view_ref* r, tlod_lod_policy policy,
@@ -635,11 +657,11 @@ static void check_levels(const fixture* fx, const tlod_draw_list* dl, const view
     double rel = fabs(dl->e_max[p] - e) / fmax(e, 1e-30);
     if (e == 0) rel = dl->e_max[p] == 0 ? 0 : 1;
     st->worst_rel = fmax(st->worst_rel, rel);
-    CHECK_MSG(rel <= 1e-5, "%s: patch %u e_max %.9g, reference %.9g (error bound %.6g, depth %.6g, radius %.6g)", what,
-              p, dl->e_max[p], e, in->error_bound, ref_depth(r, in->center), in->radius);
+    CHECK_MSG(rel <= 1e-5, "%s: patch %u e_max %.9g, reference %.9g (level-0 bound %.6g, depth %.6g, radius %.6g)",
+              what, p, dl->e_max[p], e, in->error_table[0], ref_depth(r, in->center), in->radius);
     if (policy != TLOD_POLICY_ERROR) continue; /* other policies: test_policy_rules */
     bool amb = false;
-    int want = ref_level(e, eps, lmax, &amb);
+    int want = ref_table_level(in, ref_scale(r, in), eps, lmax, &amb);
     st->ambiguous += amb;
     st->policy_checked++;
     CHECK_MSG(level == want || (amb && abs(level - want) <= 1), "%s: patch %u level %d, reference %d (e_max %.9g)",
@@ -762,7 +784,7 @@ TEST(test_policy_rules) {
       depth_bad += err > 1e-4 * m_explicit;
     }
     for (uint32_t p = 0; p < fx.patches; ++p) {
-      double e = ref_emax(&r, &fx.info[p]), s = ref_patch_s(&fx, &r, p);
+      double s = ref_patch_s(&fx, &r, p);
       bool front = false, back = false, tie = false;
       for (uint32_t k = 0; k < fx.ncorner[p]; ++k) {
         const double* q = fx.vpos[fx.corner[p][k]];
@@ -772,7 +794,7 @@ TEST(test_policy_rules) {
       }
       if (front && back) s = 1, straddling++;
       bool amb;
-      int want = ref_level(e, eps * pow(16.0, 1.0 - s), lmax, &amb);
+      int want = ref_table_level(&fx.info[p], ref_scale(&r, &fx.info[p]), eps * pow(16.0, 1.0 - s), lmax, &amb);
       amb = amb || tie;
       ambiguous += amb;
       if (!(dh->levels[p] == want || (amb && abs(dh->levels[p] - want) <= 1))) {
@@ -1030,8 +1052,22 @@ static double dist3f(const float* a, const float* b) {
   return len3(d);
 }
 
+/* The smallest blend a of level l whose morphed mesh meets eps (lod.h
+ * TLOD_MORPH_CONTINUOUS, docs/design.md 3.9): (1 - a) b_{l-1} + a b_l = eps,
+ * b_x = tlod_patch_error_bound(in, x) * scale; 0 when level l - 1 meets eps,
+ * 1 when level l does not. */
+static double ref_eps_blend(const tlod_patch_info* in, double scale, double eps, int l) {
+  if (l <= 0) return 1.0;
+  double hi = (double)tlod_patch_error_bound(in, (uint32_t)l - 1) * scale;
+  double lo = (double)tlod_patch_error_bound(in, (uint32_t)l) * scale;
+  if (hi <= eps) return 0.0;
+  if (lo > eps) return 1.0;
+  return (hi - eps) / (hi - lo);
+}
+
 /* (a) TIME: settle far away, step close with dt = 16 ms. Patches whose level
- * rose by one start with blend dt / morph_ms; the frame realised with those
+ * rose by one start with blend max(dt / morph_ms, a_eps), a_eps the smallest
+ * blend that meets eps (ref_eps_blend); the frame realised with those
  * blends set to 0 is the old level exactly: the old vertices are bitwise the
  * old frame's and each new vertex is bitwise its parents' midpoint. With the
  * real blend each new vertex lies blend * |surface - midpoint| from it. */
@@ -1039,7 +1075,7 @@ TEST(test_geomorph_starts_at_coarse_level) {
   tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
   shape shapes[2] = {shape_icosphere(1), shape_torus(12, 8)};
-  uint32_t risen_total = 0, new_vertices = 0;
+  uint32_t risen_total = 0, new_vertices = 0, at_step = 0, jumped = 0;
   double worst_blend_dev = 0;
   for (int run = 0; run < 3; ++run) {
     const shape* s = &shapes[run == 2];
@@ -1052,8 +1088,9 @@ TEST(test_geomorph_starts_at_coarse_level) {
                                                                    .morph_ms = morph_ms,
                                                                    .no_frustum_cull = true});
     CHECK(sch);
-    camera far = look_from(0.3, 0.5, 14, 0, 0, 0), near = look_from(0.3, 0.5, 3.2, 0, 0, 0);
+    camera far = look_from(0.3, 0.5, 14, 0, 0, 0), near = look_from(0.3, 0.5, 6.0, 0, 0, 0);
     tlod_view_desc vf = make_view(&far), vn = make_view(&near);
+    view_ref rn = make_ref(&vn, &near);
     const tlod_draw_list* dl = NULL;
     for (int k = 0; k < 3; ++k)
       dl = plan(&fx, sch, &vf, 1, 1000, 0); /* dt >= morph_ms: settled */
@@ -1074,21 +1111,33 @@ TEST(test_geomorph_starts_at_coarse_level) {
     const float step = dt / morph_ms;
     uint32_t risen = 0;
     dl_copy zero = copy_draw_list(dl), one = copy_draw_list(dl);
+    float* blend = calloc(fx.patches, sizeof *blend);
     for (uint32_t i = 0; i < dl->instance_count; ++i) {
       const tlod_draw_instance* in = &dl->instances[i];
       int l0 = lev0[in->patch];
-      CHECK_MSG((int)in->level <= l0 + 1 && (int)in->level >= l0 - 1,
-                "patch %u jumped from level %d to %u in one frame of %g ms", in->patch, l0, in->level, dt);
+      /* More than one level up only where eps asks for it at once. */
+      bool amb;
+      int need = ref_table_level(&fx.info[in->patch], ref_scale(&rn, &fx.info[in->patch]), 1.0, PAT_MAX, &amb);
+      jumped += (int)in->level > l0 + 1;
+      CHECK_MSG(((int)in->level <= l0 + 1 || (int)in->level <= need + amb) && (int)in->level >= l0 - 1,
+                "patch %u jumped from level %d to %u in one frame of %g ms (eps needs %d)", in->patch, l0, in->level,
+                dt, need);
       one.inst[i].morph = 1;
       for (int e = 0; e < 4; ++e)
         one.inst[i].edge_morph[e] = 1;
       if ((int)in->level != l0 + 1) continue;
       risen++;
-      CHECK_MSG(in->morph > 0 && in->morph <= step * (1 + 1e-5f), "patch %u rose to level %u with blend %.9g (step %g)",
-                in->patch, in->level, in->morph, step);
+      const tlod_patch_info* pi = &fx.info[in->patch];
+      double a_eps = ref_eps_blend(pi, ref_scale(&rn, pi), 1.0, (int)in->level);
+      double want = fmax(step, fmax(a_eps, 1e-4));
+      at_step += a_eps < step;
+      blend[in->patch] = in->morph;
+      CHECK_MSG(in->morph > 0 && fabs(in->morph - want) <= 1e-5 * want + 1e-7,
+                "patch %u rose to level %u with blend %.9g (step %g, eps blend %.9g)", in->patch, in->level, in->morph,
+                step, a_eps);
       for (uint32_t e = 0; e < fx.ncorner[in->patch]; ++e)
-        CHECK_MSG(in->edge_morph[e] <= step * (1 + 1e-5f), "patch %u edge %u blend %.9g after rising", in->patch, e,
-                  in->edge_morph[e]);
+        CHECK_MSG(in->edge_morph[e] == in->morph, "patch %u edge %u blend %.9g after rising, patch %.9g", in->patch, e,
+                  in->edge_morph[e], in->morph);
       zero.inst[i].morph = 0;
       for (int e = 0; e < 4; ++e)
         zero.inst[i].edge_morph[e] = 0;
@@ -1130,18 +1179,19 @@ TEST(test_geomorph_starts_at_coarse_level) {
         double full = dist3f(p1 + 3 * (size_t)(fx.base[p] + x), mid);
         double dev = dist3f(pr + 3 * (size_t)(fx.base[p] + x), mid);
         worst_blend_dev = fmax(worst_blend_dev, full > 0 ? dev / full : 0);
-        CHECK_MSG(dev <= step * full * (1 + 1e-4) + 1e-6,
+        CHECK_MSG(dev <= blend[p] * full * (1 + 1e-4) + 1e-6,
                   "%s: patch %u vertex %u is %.3g from the midpoint, %.3g x %g allowed", s->name, p, x, dev, full,
-                  step);
+                  blend[p]);
       }
     }
-    free(p0), free(pz), free(p1), free(base0), free(basez), free(lev0), free(zero.inst), free(one.inst);
+    free(p0), free(pz), free(p1), free(base0), free(basez), free(lev0), free(zero.inst), free(one.inst), free(blend);
     tlod_scheduler_destroy(sch);
     fixture_free(&fx);
   }
-  printf("  %u patches rose one level; %u new vertices at blend 0 bitwise on their parents' midpoints; with the real "
-         "blend at most %.4f of the way to the surface\n",
-         risen_total, new_vertices, worst_blend_dev);
+  printf("  %u patches rose one level (%u starting at dt / morph_ms, the rest at the blend that meets eps), %u two "
+         "(eps needs it); %u new vertices at blend 0 bitwise on their parents' midpoints; with the real blend at most "
+         "%.4f of the way to the surface\n",
+         risen_total, at_step, jumped, new_vertices, worst_blend_dev);
   for (int k = 0; k < 2; ++k)
     shape_free(&shapes[k]);
   tlod_context_destroy(ctx);
@@ -1273,8 +1323,8 @@ TEST(test_geomorph_continuity) {
   shape_free(&tor);
 }
 
-/* (c) CONTINUOUS: the continuous level is log4(e_max / eps); the drawn level
- * is its ceiling and the blend its fraction, in (0, 1]. */
+/* (c) CONTINUOUS: the drawn level is the table rule's and the blend the
+ * smallest that meets eps (ref_eps_blend), in (0, 1]. */
 TEST(test_geomorph_continuous) {
   tlod_context* ctx = new_context(1, NULL, NULL);
   CHECK(ctx);
@@ -1294,6 +1344,7 @@ TEST(test_geomorph_continuous) {
     double d = 1.7 + 0.25 * f;
     camera c = look_from(0.2 * d, 0.3 * d, d, 0, 0, 0);
     tlod_view_desc v = make_view(&c);
+    view_ref r = make_ref(&v, &c);
     const tlod_draw_list* dl = plan(&fx, sch, &v, 1, 16, 0);
     CHECK(dl);
     char why[256];
@@ -1305,21 +1356,24 @@ TEST(test_geomorph_continuous) {
         CHECK_MSG(in->edge_morph[e] > 0 && in->edge_morph[e] <= 1, "patch %u edge %u: blend %.9g", in->patch, e,
                   in->edge_morph[e]);
       fractional += in->morph < 1;
-      double cl = log(dl->e_max[in->patch] / eps) / log(4.0);
+      const tlod_patch_info* pi = &fx.info[in->patch];
+      double scale = ref_scale(&r, pi);
+      bool amb;
+      int lw = ref_table_level(pi, scale, eps, 4, &amb);
       if (in->level == 0 || in->level == 4) continue;
-      CHECK_MSG(ceil(cl - 1e-6) == in->level || fabs(cl - round(cl)) < 1e-5, "patch %u: level %u, log4(e/eps) = %.6f",
-                in->patch, in->level, cl);
-      double want = fmax(cl - (in->level - 1), 0);
+      CHECK_MSG((int)in->level == lw || amb, "patch %u: level %u, table rule %d", in->patch, in->level, lw);
+      if (amb) continue;
+      double want = fmax(ref_eps_blend(pi, scale, eps, (int)in->level), 1e-4);
       worst = fmax(worst, fabs(in->morph - want));
-      CHECK_MSG(fabs(in->morph - want) <= 1e-4, "patch %u level %u: blend %.7f, fraction of log4(e/eps) %.7f",
-                in->patch, in->level, in->morph, want);
+      CHECK_MSG(in->morph >= want * (1 - 1e-6) && in->morph - want <= 1e-5,
+                "patch %u level %u: blend %.7f, the blend that meets eps %.7f", in->patch, in->level, in->morph, want);
       checked++;
     }
     CHECK(realise(&fx, dl, false));
     CHECK_MSG(realised_closed(&fx, why, sizeof why), "frame %d: %s", f, why);
   }
-  printf("  %u blends checked against log4(e_max/eps) (worst error %.2g), %u fractional; all frames closed\n", checked,
-         worst, fractional);
+  printf("  %u blends checked against the blend that meets eps (worst error %.2g), %u fractional; all frames closed\n",
+         checked, worst, fractional);
   CHECK(fractional > 100 && checked > 100);
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
@@ -1331,136 +1385,307 @@ TEST(test_geomorph_continuous) {
 /* 5. Screen-space error of the realised frame                              */
 /* ------------------------------------------------------------------------ */
 
-typedef struct screen_stats {
-  double worst_raw, worst_adjusted; /* measured / eps; measured / (eps * off-axis factor) */
-  uint64_t samples;
-  uint32_t patches, clamped, cameras;
-} screen_stats;
-
-/* Clip-space position and the view-space tangents of a world point. */
-static void project(const view_ref* r, const double p[3], double clip[4], double* tx, double* ty) {
+/* Pixel position of a world point (x right, y up), its clip w and whether
+ * it lies inside the frustum. */
+static bool pixel_of(const view_ref* r, const double p[3], double px[2], double* w) {
+  double clip[4];
   for (int row = 0; row < 4; ++row)
     clip[row] = r->M[row] * p[0] + r->M[4 + row] * p[1] + r->M[8 + row] * p[2] + r->M[12 + row];
-  double xv = r->V[0] * p[0] + r->V[4] * p[1] + r->V[8] * p[2] + r->V[12];
-  double yv = r->V[1] * p[0] + r->V[5] * p[1] + r->V[9] * p[2] + r->V[13];
-  double zv = r->V[2] * p[0] + r->V[6] * p[1] + r->V[10] * p[2] + r->V[14];
-  *tx = xv / -zv, *ty = yv / -zv;
+  *w = clip[3];
+  double x = clip[0] / clip[3], y = clip[1] / clip[3], z = clip[2] / clip[3];
+  px[0] = (x + 1) * r->width / 2, px[1] = (y + 1) * r->height / 2;
+  return clip[3] > 0 && fabs(x) <= 1 && fabs(y) <= 1 && fabs(z) <= 1;
 }
 
-/* The true surface (tlod_surface_eval at (u, v)) against the realised
- * triangle of the pattern containing (u, v) (morph NONE, ERROR policy),
- * both projected to pixels. Seven samples a pattern triangle: the edge
- * midpoints, the centroid and the points halfway from it to the corners.
- * The metric bounds world deviation by 4^-l error_bound, projected at the
- * patch's nearest depth; a displacement d at view tangents (tx, ty) moves
- * the projection by at most f |d| sqrt(1 + tx^2 + ty^2) / z, so the bound
- * checked is eps * sqrt(1 + tx^2 + ty^2) * 1.02 (orthographic: eps * 1.02).
- * Patches clamped at the max level are skipped (counted). */
-static void screen_error_suite(tlod_context* ctx, const shape* s, double R, tlod_surface_type type, int cameras,
-                               uint64_t seed, screen_stats* st) {
-  fixture fx;
-  CHECK(fixture_make(&fx, ctx, s, type));
-  const int lmax = 4;
-  tlod_scheduler* sch[3];
-  const float eps_of[3] = {0.75f, 1.0f, 2.0f};
-  for (int k = 0; k < 3; ++k) {
-    sch[k] = new_scheduler(
-        &fx, (tlod_scheduler_desc){
-                 .epsilon_px = eps_of[k], .max_level = lmax, .policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE});
-    CHECK(sch[k]);
-  }
-  static const double bary[7][3] = {{0.5, 0.5, 0},
-                                    {0, 0.5, 0.5},
-                                    {0.5, 0, 0.5},
-                                    {1.0 / 3, 1.0 / 3, 1.0 / 3},
-                                    {2.0 / 3, 1.0 / 6, 1.0 / 6},
-                                    {1.0 / 6, 2.0 / 3, 1.0 / 6},
-                                    {1.0 / 6, 1.0 / 6, 2.0 / 3}};
-  static const int kinds[4] = {0, 2, 4, 1};
-  shape_rng rng = {seed};
-  for (int cam = 0; cam < cameras; ++cam) {
-    camera c = random_camera(&rng, R, kinds[cam % 4], cam % 5 == 4);
+/* (a) tlod_patch_projection_scale against finite differences of the
+ * projection: for random spheres and cameras, at random points of the
+ * sphere inside the frustum, |pixel(p + h d) - pixel(p)| / h over random
+ * directions d and the worst direction (d = R^T (a, -r^2) in view space,
+ * a = (x/z, y/z)) never exceeds the scale; at each point the worst
+ * direction's magnification is (f / z) sqrt(1 + r^2) (to 1e-4, f the
+ * pixel scale: the viewports here have square pixels to 1/64). */
+TEST(test_projection_scale) {
+  shape_rng rng = {4242};
+  uint32_t points = 0;
+  double worst = 0, formula_err = 0, tight_sum = 0;
+  uint32_t tight_n = 0;
+  for (int k = 0; k < 400; ++k) {
+    camera c = random_camera(&rng, 1.0, k % 5, k % 7 == 6);
     tlod_view_desc v = make_view(&c);
     view_ref r = make_ref(&v, &c);
-    int k = cam % 3;
-    double eps = eps_of[k];
-    const tlod_draw_list* dl = plan(&fx, sch[k], &v, 1, 16, 0);
-    CHECK(dl);
-    CHECK(realise(&fx, dl, false));
-    st->cameras++;
-    for (uint32_t p = 0; p < fx.patches; ++p) {
-      int l = dl->levels[p];
-      if (l < 0) continue;
-      if (ldexp(dl->e_max[p], -2 * l) > eps) {
-        st->clamped++;
-        continue;
+    float centre[3];
+    for (int a = 0; a < 3; ++a)
+      centre[a] = (float)shape_rng_range(&rng, -1.2, 1.2);
+    float radius = (float)exp(shape_rng_range(&rng, log(0.005), log(0.8)));
+    double scale = tlod_patch_projection_scale(&v, centre, radius);
+    CHECK_MSG(scale > 0 && isfinite(scale), "camera %d: scale %g", k, scale);
+    double best = 0;
+    for (int t = 0; t < 200; ++t) {
+      double dir[3], p[3];
+      shape_rng_direction(&rng, dir);
+      double rr = radius * cbrt(shape_rng_unit(&rng));
+      for (int a = 0; a < 3; ++a)
+        p[a] = centre[a] + rr * dir[a];
+      double px[2], w;
+      if (!pixel_of(&r, p, px, &w)) continue;
+      /* view space: x, y and depth z = -z_view */
+      double xv = r.V[0] * p[0] + r.V[4] * p[1] + r.V[8] * p[2] + r.V[12];
+      double yv = r.V[1] * p[0] + r.V[5] * p[1] + r.V[9] * p[2] + r.V[13];
+      double zv = -(r.V[2] * p[0] + r.V[6] * p[1] + r.V[10] * p[2] + r.V[14]);
+      double ax = r.ortho ? 0 : xv / zv, ay = r.ortho ? 0 : yv / zv, r2 = ax * ax + ay * ay;
+      double dv[3] = {ax, ay, r.ortho ? 0 : -r2}; /* view-space worst direction (depth axis = -z_view) */
+      double worst_dir[3] = {0, 0, 0};
+      if (r2 > 0) {
+        double n = sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+        for (int a = 0; a < 3; ++a) /* world = R^T (x, y, z_view) with z_view = -depth */
+          worst_dir[a] = (r.V[4 * a + 0] * dv[0] + r.V[4 * a + 1] * dv[1] - r.V[4 * a + 2] * dv[2]) / n;
+      } else {
+        for (int a = 0; a < 3; ++a)
+          worst_dir[a] = r.V[4 * a + 0];
       }
-      st->patches++;
-      tlod_pattern_shape sh = shape_of(&fx, p);
-      uint32_t nidx, count;
-      const uint32_t* idx = tlod_patterns_indices(fx.pat, sh, (uint32_t)l, &nidx);
-      const tlod_pattern_vertex* pv = tlod_patterns_vertices(fx.pat, sh, &count);
-      for (uint32_t t = 0; t < nidx; t += 3) {
-        const float* P[3];
-        for (int q = 0; q < 3; ++q)
-          P[q] = fx.out->positions + 3 * (size_t)(fx.base[p] + idx[t + q]);
-        for (int smp = 0; smp < 7; ++smp) {
-          const double* b = bary[smp];
-          double u = 0, vv = 0, A[3] = {0, 0, 0};
-          for (int q = 0; q < 3; ++q) {
-            u += b[q] * pv[idx[t + q]].u;
-            vv += b[q] * pv[idx[t + q]].v;
-            for (int k3 = 0; k3 < 3; ++k3)
-              A[k3] += b[q] * P[q][k3];
-          }
-          tlod_surface_point sp;
-          tlod_surface_eval(fx.surf, p, (float)u, (float)vv, &sp);
-          double S[3] = {sp.position[0], sp.position[1], sp.position[2]};
-          double cs[4], ca[4], tx, ty, txa, tya;
-          project(&r, S, cs, &tx, &ty);
-          project(&r, A, ca, &txa, &tya);
-          double wmin = r.ortho ? 0.5 : r.znear;
-          if (!(cs[3] >= wmin && ca[3] >= wmin)) continue;
-          double xs = cs[0] / cs[3], ys = cs[1] / cs[3], zs = cs[2] / cs[3];
-          if (fabs(xs) > 1 || fabs(ys) > 1 || fabs(zs) > 1) continue; /* off screen */
-          double dx = (xs - ca[0] / ca[3]) * r.width / 2, dy = (ys - ca[1] / ca[3]) * r.height / 2;
-          double dev = sqrt(dx * dx + dy * dy);
-          double factor = r.ortho ? 1.0 : sqrt(1 + tx * tx + ty * ty);
-          st->worst_raw = fmax(st->worst_raw, dev / eps);
-          st->worst_adjusted = fmax(st->worst_adjusted, dev / (eps * factor));
-          st->samples++;
-          CHECK_MSG(dev <= eps * factor * 1.02,
-                    "%s %s camera %d patch %u level %d (e_max %.4g): deviation %.4g px at (u, v) = (%.4f, %.4f), "
-                    "epsilon %.3g, off-axis factor %.4f",
-                    s->name, type_name(type), cam, p, l, dl->e_max[p], dev, u, vv, eps, factor);
+      for (int d = 0; d < 9; ++d) {
+        double u[3];
+        if (d == 0) {
+          memcpy(u, worst_dir, sizeof u);
+        } else {
+          shape_rng_direction(&rng, u);
         }
+        double h = 1e-6 * (1 + fabs(zv)), q[3] = {p[0] + h * u[0], p[1] + h * u[1], p[2] + h * u[2]};
+        double qx[2], qw, qm[3] = {p[0] - h * u[0], p[1] - h * u[1], p[2] - h * u[2]}, mx[2], mw;
+        pixel_of(&r, q, qx, &qw);
+        pixel_of(&r, qm, mx, &mw);
+        if (!(qw > 0 && mw > 0)) continue;
+        double mag = hypot(qx[0] - mx[0], qx[1] - mx[1]) / (2 * h);
+        worst = fmax(worst, mag / scale);
+        best = fmax(best, mag);
+        CHECK_MSG(mag <= scale * (1 + 1e-4), "camera %d (%s) point %d: magnification %.7g above the scale %.7g", k,
+                  r.ortho ? "ortho" : "perspective", t, mag, scale);
+        if (d == 0) {
+          double f = r.height / 2 * fabs(r.P[5]), want = r.ortho ? f : f / zv * sqrt(1 + r2);
+          double fx = r.width / 2 * fabs(r.P[0]), aniso = fabs(fx - f) / f;
+          formula_err = fmax(formula_err, fabs(mag - want) / want - aniso);
+          CHECK_MSG(fabs(mag - want) <= (1e-4 + aniso) * want,
+                    "camera %d point %d: worst-direction magnification %.7g, (f / z) sqrt(1 + r^2) = %.7g", k, t, mag,
+                    want);
+        }
+        points++;
       }
     }
+    if (best > 0) tight_sum += best / scale, tight_n++;
   }
-  for (int k = 0; k < 3; ++k)
-    tlod_scheduler_destroy(sch[k]);
+  printf("  %u (point, direction) pairs: worst magnification / scale %.5f, mean of the per-sphere best %.3f; the "
+         "worst direction matches (f/z) sqrt(1 + r^2) to %.1g\n",
+         points, worst, tight_sum / fmax(tight_n, 1), formula_err);
+  CHECK(points > 100000);
+}
+
+/* (b) The true on-screen error of the drawn mesh. For random cameras
+ * (ERROR policy, eps 0.5 / 1 / 2 px, morph NONE settled and TIME half-way
+ * through a change of camera), every visible patch not clamped at the max
+ * level, each pattern triangle of the realised frame sampled at 10 points:
+ * the surface point S = tlod_surface_eval(u, v) and the point A of the
+ * drawn triangle at the same barycentrics (the linear interpolation of its
+ * drawn corners: exact surface points when settled, blended ones while
+ * morphing), both projected to pixels with the float matrices in double;
+ * |S - A| in pixels <= eps (1 + 1e-4) wherever S is inside the frustum.
+ * Nothing here reads the error table except to skip patches clamped at the
+ * max level. Cameras: the eye at 0.1 to 10 model diagonals from the bounding
+ * sphere (log-uniform), the look-at point off the centre by up to the half
+ * field of view (off-axis), and one camera in four with its near plane
+ * through the model. */
+typedef struct screen_stats {
+  double worst;    /* measured / eps, over samples */
+  double* ratios;  /* per patch: its worst measured / eps */
+  double* tight;   /* per patch: its worst measured / the projected bound of its blend */
+  uint32_t n, cap; /* ratios, tight */
+  uint64_t samples;
+  uint32_t clamped, cameras, morphing;
+} screen_stats;
+
+static void push_ratio(screen_stats* st, double x, double t) {
+  if (st->n == st->cap) {
+    st->cap = st->cap ? 2 * st->cap : 1024;
+    st->ratios = realloc(st->ratios, sizeof *st->ratios * st->cap);
+    st->tight = realloc(st->tight, sizeof *st->tight * st->cap);
+  }
+  st->tight[st->n] = t;
+  st->ratios[st->n++] = x;
+}
+
+static int cmp_double(const void* a, const void* b) {
+  double x = *(const double*)a, y = *(const double*)b;
+  return x < y ? -1 : x > y;
+}
+
+static double median_of(double* x, uint32_t n) {
+  if (!n) return 0;
+  qsort(x, n, sizeof *x, cmp_double);
+  return x[n / 2];
+}
+
+static camera screen_camera(shape_rng* rng, double R, double dist_diag, int cam) {
+  double dir[3], off[3];
+  shape_rng_direction(rng, dir);
+  shape_rng_direction(rng, off);
+  double dist = R + dist_diag * 2 * R, fovy = shape_rng_range(rng, 30, 90) * DEG;
+  /* off axis: the target moves sideways by up to the half field of view */
+  double side = shape_rng_range(rng, 0, 0.9) * tan(fovy / 2) * dist;
+  double t[3];
+  cross3(dir, off, t);
+  shape_normalize3(t);
+  camera c = look_from(dir[0] * dist, dir[1] * dist, dir[2] * dist, t[0] * side, t[1] * side, t[2] * side);
+  c.fovy = fovy;
+  c.width = 400 + (uint32_t)(shape_rng_next(rng) % 800);
+  c.height = 300 + (uint32_t)(shape_rng_next(rng) % 500);
+  c.aspect = (double)c.width / c.height;
+  c.znear = cam % 4 == 3 ? dist - 0.5 * R : fmin(0.05 * R, 0.5 * (dist - R)); /* 3: the near plane cuts the model */
+  c.zfar = dist + 4 * R;
+  return c;
+}
+
+/* The surface against the drawn pattern triangles of one frame. */
+static void measure_frame(fixture* fx, const tlod_draw_list* dl, const view_ref* r, double eps, int lmax,
+                          const char* what, screen_stats* st) {
+  static const double bary[10][3] = {{0.5, 0.5, 0},
+                                     {0, 0.5, 0.5},
+                                     {0.5, 0, 0.5},
+                                     {1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                     {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                                     {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                                     {1.0 / 6, 1.0 / 6, 2.0 / 3},
+                                     {0.25, 0.75, 0},
+                                     {0, 0.25, 0.75},
+                                     {0.75, 0, 0.25}};
+  CHECK(realise(fx, dl, false));
+  for (uint32_t i = 0; i < dl->instance_count; ++i) {
+    const tlod_draw_instance* in = &dl->instances[i];
+    uint32_t p = in->patch;
+    int l = (int)in->level;
+    double scale = ref_scale(r, &fx->info[p]);
+    if ((double)tlod_patch_error_bound(&fx->info[p], (uint32_t)l) * scale > eps && l == lmax) {
+      st->clamped++;
+      continue;
+    }
+    st->morphing += in->morph < 1;
+    tlod_pattern_shape sh = shape_of(fx, p);
+    uint32_t nidx, count;
+    const uint32_t* idx = tlod_patterns_indices(fx->pat, sh, (uint32_t)l, &nidx);
+    const tlod_pattern_vertex* pv = tlod_patterns_vertices(fx->pat, sh, &count);
+    double patch_worst = -1;
+    for (uint32_t t = 0; t < nidx; t += 3) {
+      const float* P[3];
+      for (int q = 0; q < 3; ++q)
+        P[q] = fx->out->positions + 3 * (size_t)(fx->base[p] + idx[t + q]);
+      for (int smp = 0; smp < 10; ++smp) {
+        const double* b = bary[smp];
+        double u = 0, vv = 0, A[3] = {0, 0, 0};
+        for (int q = 0; q < 3; ++q) {
+          u += b[q] * pv[idx[t + q]].u;
+          vv += b[q] * pv[idx[t + q]].v;
+          for (int k3 = 0; k3 < 3; ++k3)
+            A[k3] += b[q] * P[q][k3];
+        }
+        tlod_surface_point sp;
+        tlod_surface_eval(fx->surf, p, (float)u, (float)vv, &sp);
+        double S[3] = {sp.position[0], sp.position[1], sp.position[2]}, ps[2], pa[2], ws, wa;
+        if (!pixel_of(r, S, ps, &ws)) continue; /* off screen or clipped */
+        pixel_of(r, A, pa, &wa);
+        if (!(wa > 0)) continue;
+        double dev = hypot(ps[0] - pa[0], ps[1] - pa[1]);
+        patch_worst = fmax(patch_worst, dev / eps);
+        st->samples++;
+        CHECK_MSG(dev <= eps * (1 + 1e-4) + 1e-6,
+                  "%s patch %u level %u (blend %.4f): %.5g px at (u, v) = (%.4f, %.4f), "
+                  "eps %.3g",
+                  what, p, in->level, in->morph, dev, u, vv, eps);
+      }
+    }
+    /* the bound of the drawn blend: (1 - a) b_{l-1} + a b_l, projected */
+    double a = in->morph, bl = (double)tlod_patch_error_bound(&fx->info[p], (uint32_t)l) * scale;
+    double bb = l > 0 ? (1 - a) * (double)tlod_patch_error_bound(&fx->info[p], (uint32_t)l - 1) * scale + a * bl : bl;
+    if (patch_worst >= 0) push_ratio(st, patch_worst, bb > 0 ? patch_worst * eps / bb : 0);
+    st->worst = fmax(st->worst, patch_worst);
+  }
+}
+
+static void screen_error_suite(tlod_context* ctx, const shape* s, tlod_surface_type type, int cameras, uint64_t seed,
+                               screen_stats* settled, screen_stats* morphing) {
+  fixture fx;
+  CHECK(fixture_make(&fx, ctx, s, type));
+  double R = 0;
+  for (uint32_t v = 0; v < fx.vertices; ++v)
+    R = fmax(R, len3(fx.vpos[v]));
+  const int lmax = PAT_MAX;
+  const float eps_of[3] = {0.5f, 1.0f, 2.0f}, morph_ms = 200;
+  shape_rng rng = {seed};
+  for (int cam = 0; cam < cameras; ++cam) {
+    int k = cam % 3;
+    double eps = eps_of[k], dd = exp(shape_rng_range(&rng, log(0.1), log(10.0)));
+    camera c = screen_camera(&rng, R, dd, cam);
+    tlod_view_desc v = make_view(&c);
+    view_ref r = make_ref(&v, &c);
+    char what[160];
+    /* settled: NONE */
+    tlod_scheduler* sn = new_scheduler(
+        &fx, (tlod_scheduler_desc){
+                 .epsilon_px = eps_of[k], .max_level = lmax, .policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE});
+    CHECK(sn);
+    const tlod_draw_list* dl = plan(&fx, sn, &v, 1, 16, 0);
+    CHECK(dl);
+    snprintf(what, sizeof what, "%s %s camera %d (%.3g diagonals) settled", s->name, type_name(type), cam, dd);
+    CALL(measure_frame(&fx, dl, &r, eps, lmax, what, settled));
+    settled->cameras++;
+    tlod_scheduler_destroy(sn);
+    /* TIME half-way: settled at a camera twice as far (or half as far: the
+     * levels then fall), then half a morph_ms at this one */
+    tlod_scheduler* st = new_scheduler(&fx, (tlod_scheduler_desc){.epsilon_px = eps_of[k],
+                                                                  .max_level = lmax,
+                                                                  .policy = TLOD_POLICY_ERROR,
+                                                                  .morph = TLOD_MORPH_TIME,
+                                                                  .morph_ms = morph_ms});
+    CHECK(st);
+    camera c0 = c;
+    double g = cam % 2 ? 2.0 : 0.5;
+    for (int a = 0; a < 3; ++a)
+      c0.eye[a] = c.target[a] + g * (c.eye[a] - c.target[a]);
+    tlod_view_desc v0 = make_view(&c0);
+    CHECK(plan(&fx, st, &v0, 1, 1000, 0) && plan(&fx, st, &v0, 1, 1000, 0));
+    dl = plan(&fx, st, &v, 1, morph_ms / 2, 0);
+    CHECK(dl);
+    snprintf(what, sizeof what, "%s %s camera %d (%.3g diagonals) mid-morph from %gx the distance", s->name,
+             type_name(type), cam, dd, g);
+    CALL(measure_frame(&fx, dl, &r, eps, lmax, what, morphing));
+    morphing->cameras++;
+    tlod_scheduler_destroy(st);
+  }
   fixture_free(&fx);
 }
 
 TEST(test_screen_error) {
-  tlod_context* ctx = new_context(1, NULL, NULL);
+  tlod_context* ctx = new_context(2, NULL, NULL);
   CHECK(ctx);
-  shape sph = shape_icosphere(1), qs = shape_quad_sphere(2);
+  shape sph = shape_icosphere(1), qs = shape_quad_sphere(2), cube = shape_cube_soft();
   struct {
     const shape* s;
     tlod_surface_type type;
-  } cases[3] = {{&sph, TLOD_SURFACE_PHONG}, {&sph, TLOD_SURFACE_PN}, {&qs, TLOD_SURFACE_PHONG}};
-  for (int k = 0; k < 3; ++k) {
-    screen_stats st = {0};
-    CALL(screen_error_suite(ctx, cases[k].s, 1.0, cases[k].type, 17, 300 + (uint64_t)k, &st));
-    printf("  %-11s %-5s %u cameras, %u patches, %llu samples: worst deviation %.3f eps (%.3f of eps x off-axis "
-           "factor); %u patches clamped at the max level skipped\n",
-           cases[k].s->name, type_name(cases[k].type), st.cameras, st.patches, (unsigned long long)st.samples,
-           st.worst_raw, st.worst_adjusted, st.clamped);
-    CHECK(st.samples > 10000);
+  } cases[4] = {
+      {&sph, TLOD_SURFACE_PHONG}, {&sph, TLOD_SURFACE_PN}, {&qs, TLOD_SURFACE_PHONG}, {&cube, TLOD_SURFACE_PN}};
+  for (int k = 0; k < 4; ++k) {
+    screen_stats a = {0}, b = {0};
+    CALL(screen_error_suite(ctx, cases[k].s, cases[k].type, 24, 300 + (uint64_t)k, &a, &b));
+    printf("  %-11s %-5s %u cameras: settled %u patches, %llu samples: worst %.3f eps, median over patches %.3f "
+           "(measured / bound: median %.3f); TIME half-way %u patches (%u blending), %llu samples: worst %.3f eps, "
+           "median %.3f (measured / bound %.3f); %u clamped at the max level skipped\n",
+           cases[k].s->name, type_name(cases[k].type), a.cameras, a.n, (unsigned long long)a.samples, a.worst,
+           median_of(a.ratios, a.n), median_of(a.tight, a.n), b.n, b.morphing, (unsigned long long)b.samples, b.worst,
+           median_of(b.ratios, b.n), median_of(b.tight, b.n), a.clamped + b.clamped);
+    CHECK(a.samples > 10000 && b.samples > 10000 && b.morphing > 50);
+    free(a.ratios), free(a.tight);
+    free(b.ratios), free(b.tight);
   }
   shape_free(&sph);
   shape_free(&qs);
+  shape_free(&cube);
   tlod_context_destroy(ctx);
 }
 
@@ -1579,10 +1804,11 @@ TEST(test_monotone_and_budget) {
         CHECK_MSG(dl->level_histogram[0] == fx.patches, "budget %u below the level-0 count %u: %u patches at level 0",
                   budgets[k], level0, dl->level_histogram[0]);
       }
+      view_ref rb = make_ref(&v, &c);
       if (pol == 0) /* ERROR: the levels are the rule's at the effective epsilon */
         for (uint32_t p = 0; p < fx.patches; ++p) {
           bool amb;
-          int want = ref_level(dl->e_max[p], dl->effective_epsilon, PAT_MAX, &amb);
+          int want = ref_table_level(&fx.info[p], ref_scale(&rb, &fx.info[p]), dl->effective_epsilon, PAT_MAX, &amb);
           CHECK_MSG(dl->levels[p] == want || (amb && abs(dl->levels[p] - want) <= 1),
                     "budget %u: patch %u level %d, rule at effective epsilon %g: %d", budgets[k], p, dl->levels[p],
                     dl->effective_epsilon, want);
@@ -2185,6 +2411,7 @@ int main(int argc, char** argv) {
   RUN_SELECTED(test_geomorph_starts_at_coarse_level);
   RUN_SELECTED(test_geomorph_continuity);
   RUN_SELECTED(test_geomorph_continuous);
+  RUN_SELECTED(test_projection_scale);
   RUN_SELECTED(test_screen_error);
   RUN_SELECTED(test_monotone_and_budget);
   RUN_SELECTED(test_frame_time_target);

@@ -317,18 +317,41 @@ typedef struct tlod_surface_desc {
   const char* label;
 } tlod_surface_desc;
 
+/* ---- Per-level error tables (issue #9; maths: docs/design.md "Error tables") ----
+ * Levels 0..TLOD_ERROR_TABLE_LEVELS-1 are measured per patch when the
+ * surface is built or refreshed; above them a rigorous tail decays as 4^-l. */
+#define TLOD_ERROR_TABLE_LEVELS 3
+
 /* Per-patch precomputed data, in kept-face order. */
 typedef struct tlod_patch_info {
   uint32_t corner_count; /* 3 or 4 */
   /* Bound on the distance between the surface and its flat (level 0)
    * patch, world units. The level-l pattern deviates by at most
    * error_bound * 4^-l. PN: max(9/4 * d'_max (Schwarz et al.), the
-   * second-derivative bound); Phong: docs/design.md section 3.5. */
+   * second-derivative bound); Phong: docs/design.md section 3.5.
+   * Superseded by the error table below (tlod_patch_error_bound()). */
   float error_bound;
   float d_max;     /* PN: max tangent control point distance; Phong: alpha-scaled max |d_e| */
   float center[3]; /* bounding sphere of the curved patch */
   float radius;
+  /* -- error tables (superseding error_bound; the scheduler's level rule
+   * reads them through tlod_patch_error_bound()). error_table[l]: upper
+   * bound, world units, of max |S(u,v) - P_l(u,v)| over the patch, P_l the
+   * level-l pattern's piecewise-linear interpolant of the surface (as the
+   * pattern draws it: 4^l triangles, quads 2 * 4^l with the pattern's
+   * diagonal), float evaluation rounding included; non-increasing in l,
+   * and >= every tail value below. */
+  float error_table[TLOD_ERROR_TABLE_LEVELS];
+  float error_tail;  /* level l >= TLOD_ERROR_TABLE_LEVELS: error_tail * 4^-l + error_slack */
+  float error_slack; /* float rounding of the evaluation (included in every value) */
 } tlod_patch_info;
+
+/* The world-space bound on |surface - level-l pattern| of a patch, any level
+ * (0..10, tesslod/lod.h TLOD_MAX_LEVEL): error_table[level], or the tail.
+ * Pure; non-increasing in level, so a level rule is a compare ladder:
+ * the first level whose bound (times the projection scale) meets the
+ * tolerance; no transcendental function is needed (4^-l is a power of two). */
+TLOD_API float tlod_patch_error_bound(const tlod_patch_info* info, uint32_t level);
 
 typedef struct tlod_surface_point {
   float position[3];

@@ -4,10 +4,12 @@
  * WHAT IT DOES
  *   Plans every frame of an adaptively tessellated surface, for one or more
  *   cameras: per mesh vertex the silhouette depth d_i (Boubekeur & Alexa),
- *   per patch the frustum test and the projected error bound e_max at
- *   level 0 (Schwarz, Staginski & Stamminger 2006), then a refinement level
- *   per patch by policy, under an optional triangle budget or frame-time
- *   target, with geomorph state so that level changes blend in over time.
+ *   per patch the frustum test and the projection scale (pixels per world
+ *   unit over the patch's bounding sphere), then a refinement level per
+ *   patch by policy from the patch's per-level error table (tesslod/core.h
+ *   tlod_patch_error_bound(); Schwarz, Staginski & Stamminger 2006),
+ *   under an optional triangle budget or frame-time target, with geomorph
+ *   state so that level changes blend in over time (within epsilon).
  *   The result is a draw list: instances bucketed by (shape, level),
  *   connection strips where neighbouring patches differ, and statistics.
  *   Includes tesslod/patterns.h (the refinement and connection patterns the
@@ -57,7 +59,9 @@ extern "C" {
 
 typedef enum tlod_lod_policy {
   TLOD_POLICY_DEFAULT = 0, /* == HYBRID */
-  /* The smallest l with 4^-l e_max <= epsilon (Schwarz et al.). */
+  /* The smallest l with tlod_patch_error_bound(info, l) * scale <= epsilon,
+   * scale = tlod_patch_projection_scale() (Schwarz et al., with the per-level
+   * tables). Geomorphs included: a blending patch stays within epsilon. */
   TLOD_POLICY_ERROR,
   /* Refine only near contours (Boubekeur & Alexa): d_i is a vertex's desired
    * tessellation factor, segments per edge; the patch takes
@@ -86,9 +90,14 @@ typedef enum tlod_morph_mode {
   TLOD_MORPH_DEFAULT = 0, /* == TIME */
   TLOD_MORPH_NONE,        /* levels switch at once */
   /* A level change blends over morph_ms of frame time (dt), whatever the
-   * frame rate: the patch's continuous level moves 1 per morph_ms. */
+   * frame rate: the patch's continuous level moves 1 per morph_ms. ERROR and
+   * HYBRID never blend below the fractional level of CONTINUOUS (a rising
+   * level may jump there at once), so the blended mesh meets epsilon. */
   TLOD_MORPH_TIME,
-  /* The continuous level is log4(e_max / eps) itself (fractional levels). */
+  /* ERROR and HYBRID: the continuous level is L - 1 + a with the smallest
+   * blend a whose mesh (1 - a) P_{L-1} + a P_L is within epsilon:
+   * (1 - a) b_{L-1} + a b_L = eps, b the projected bounds, L the discrete
+   * level (its ceil). SILHOUETTE: log2 of the segments asked for. */
   TLOD_MORPH_CONTINUOUS,
   TLOD_MORPH_NUM,
   _TLOD_MORPH_FORCE_U32 = 0x7FFFFFFF
@@ -178,8 +187,10 @@ typedef enum tlod_stage {
 
 typedef struct tlod_draw_list {
   uint32_t patch_count;
-  const int8_t* levels;                /* per patch: drawn level, -1 when culled */
-  const float* e_max;                  /* per patch: projected error bound at level 0, pixels */
+  const int8_t* levels; /* per patch: drawn level, -1 when culled */
+  /* per patch: projected error bound at level 0, pixels:
+   * tlod_patch_error_bound(info, 0) * tlod_patch_projection_scale() */
+  const float* e_max;
   const float* vertex_depth;           /* per mesh vertex: d_i */
   const tlod_draw_instance* instances; /* visible patches, bucket by bucket */
   uint32_t instance_count;
@@ -213,12 +224,21 @@ TLOD_API const tlod_draw_list* tlod_scheduler_draw_list(const tlod_scheduler* sc
 TLOD_API void tlod_scheduler_reset(tlod_scheduler* scheduler);
 
 /* Pure helpers (also used by tests as the reference). */
-/* The level rule of TLOD_POLICY_ERROR: 0 when e_max <= eps, else the
- * smallest l with 4^-l e_max <= eps, at most max_level (the scheduler's own
- * rule, not a copy of it). */
+/* The level rule of a patch whose level-l bound is e_max 4^-l (the rule
+ * before the per-level tables): 0 when e_max <= eps, else the smallest l
+ * with 4^-l e_max <= eps, at most max_level (the scheduler's own ladder
+ * run on that table, not a copy of it). */
 TLOD_API uint32_t tlod_level_for_error(float e_max, float epsilon, uint32_t max_level);
 /* Pixels per world unit at view depth z (perspective) or everywhere (orthographic). */
 TLOD_API float tlod_projection_scale(const float proj[16], uint32_t viewport_height, float depth);
+/* Pixels per world unit of any displacement between two points of the
+ * sphere (center, radius) that are in front of the near plane and inside
+ * the frustum (a rigid view): max(W |proj[0]|, H |proj[5]|) / 2 / z *
+ * sqrt(1 + rx^2 + ry^2), z the sphere's nearest view depth (at least the
+ * near plane), rx, ry bounds of |x/z|, |y/z| over the sphere, at most the
+ * frustum's; orthographic: the pixel scale. What the scheduler multiplies
+ * the error table with (docs/design.md 3.6). Pure. */
+TLOD_API float tlod_patch_projection_scale(const tlod_view_desc* view, const float center[3], float radius);
 
 /* ------------------------------------------------------------------------ */
 /* Enum names                                                               */
