@@ -107,17 +107,30 @@ float tlod_patch_error_bound(const tlod_patch_info* info, uint32_t level) {
 #define QWC(a, b) (0.5 * ((b) * (b) - (b)))
 static const double k_quad_w[3][QN] = {QROW(QWA), QROW(QWB), QROW(QWC)};
 
-static double quad_shape_max(const double* A, const double* B, const double* C) {
+/* The squared maximum of |q| on the edges (exact) and at the interior grid
+ * points, the latter into acc[k] (an elementwise maximum). */
+static double quad_shape_m2(const double* A, const double* B, const double* C, double* restrict acc) {
   double hyp[3] = {B[0] - 0.5 * (A[0] + C[0]), B[1] - 0.5 * (A[1] + C[1]), B[2] - 0.5 * (A[2] + C[2])};
-  double m2 = dmax(d3_len2(A) / 64.0, dmax(d3_len2(C) / 64.0, d3_len2(hyp) / 16.0)), l2[QN] = {0};
+  double l2[QN] = {0};
   for (int c = 0; c < 3; c++)
     for (int k = 0; k < QN; k++) {
       double q = k_quad_w[0][k] * A[c] + k_quad_w[1][k] * B[c] + k_quad_w[2][k] * C[c];
       l2[k] += q * q;
     }
   for (int k = 0; k < QN; k++)
-    m2 = dmax(m2, l2[k]);
+    acc[k] = acc[k] > l2[k] ? acc[k] : l2[k];
+  return dmax(d3_len2(A) / 64.0, dmax(d3_len2(C) / 64.0, d3_len2(hyp) / 16.0));
+}
+
+static double quad_shape_finish(double m2, const double* acc) {
+  for (int k = 0; k < QN; k++)
+    m2 = dmax(m2, acc[k]);
   return sqrt(m2) / (1.0 - 1.0 / (QUAD_N * QUAD_N));
+}
+
+static double quad_shape_max(const double* A, const double* B, const double* C) {
+  double acc[QN] = {0};
+  return quad_shape_finish(quad_shape_m2(A, B, C, acc), acc);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -159,10 +172,10 @@ static void cubic_from_net(const double (*b)[3], cubic* out) {
 
 /* Qbar = the largest quad_shape_max of the corner Hessians h[x] = (f_uu, f_uv, f_vv). */
 static double quad_shape_max3(const d3 (*h)[3]) {
-  double m = 0.0;
+  double acc[QN] = {0}, m2 = 0.0;
   for (int x = 0; x < 3; x++)
-    m = dmax(m, quad_shape_max(h[x][0], h[x][1], h[x][2]));
-  return m;
+    m2 = dmax(m2, quad_shape_m2(h[x][0], h[x][1], h[x][2], acc));
+  return quad_shape_finish(m2, acc);
 }
 
 /* Weights of one cell sample (m1, m2): quadratic part (of f_uu, f_uv, f_vv)
@@ -182,18 +195,8 @@ static double quad_shape_max3(const d3 (*h)[3]) {
 #define ROW3(W)                                                                                                        \
   { G3(W, 1, 0), G3(W, 2, 0), G3(W, 0, 1), G3(W, 1, 1), G3(W, 2, 1), G3(W, 0, 2), G3(W, 1, 2), G3(W, 1, 0) }
 static const double k_cell_w[7][NS] = {ROW3(WQA), ROW3(WQB), ROW3(WQC), ROW3(WCA), ROW3(WCB), ROW3(WCC), ROW3(WCD)};
-/* Level 0 is one cell: a CELL0_N = 6 grid (25 samples, one repeated) costs little there. */
+/* Level 0 is one cell, sampled on the CELL0_N = 6 grid (from level 1's cells, cell_acc01). */
 #define CELL0_N 6
-#define NS0 26
-#define G6(W, i, j) W((double)(i) / CELL0_N, (double)(j) / CELL0_N)
-#define ROW6(W)                                                                                                        \
-  {                                                                                                                    \
-    G6(W, 1, 0), G6(W, 2, 0), G6(W, 3, 0), G6(W, 4, 0), G6(W, 5, 0), G6(W, 0, 1), G6(W, 1, 1), G6(W, 2, 1),            \
-        G6(W, 3, 1), G6(W, 4, 1), G6(W, 5, 1), G6(W, 0, 2), G6(W, 1, 2), G6(W, 2, 2), G6(W, 3, 2), G6(W, 4, 2),        \
-        G6(W, 0, 3), G6(W, 1, 3), G6(W, 2, 3), G6(W, 3, 3), G6(W, 0, 4), G6(W, 1, 4), G6(W, 2, 4), G6(W, 0, 5),        \
-        G6(W, 1, 5), G6(W, 1, 0)                                                                                       \
-  }
-static const double k_cell0_w[7][NS0] = {ROW6(WQA), ROW6(WQB), ROW6(WQC), ROW6(WCA), ROW6(WCB), ROW6(WCC), ROW6(WCD)};
 
 /* On a cell with Taylor vertex y0 = (u0, v0), size h, orientation s, the
  * samples' error E(m_k) = (cell point y0 + s h m_k) - (linear interpolant of
@@ -224,6 +227,16 @@ static void cell_basis_init(const cubic* restrict p, cell_basis* restrict b) {
   }
 }
 
+/* A level's base vectors: lo = h^2 a2 + h^3 t (s = 1), up = h^2 a2 - h^3 t. */
+static void cell_bases(const cell_basis* restrict b, double h2, double h3, double (*restrict lo)[NS],
+                       double (*restrict up)[NS]) {
+  for (int c = 0; c < 3; c++)
+    for (int k = 0; k < NS; k++) {
+      lo[c][k] = h2 * b->a2[c][k] + h3 * b->t[c][k];
+      up[c][k] = h2 * b->a2[c][k] - h3 * b->t[c][k];
+    }
+}
+
 /* acc[k] = max(acc[k], |base_k + x0 d0_k + x1 d1_k|^2), x0 = h^2 u0, x1 = h^2 v0. */
 static void cell_acc(const double (*restrict base)[NS], const cell_basis* restrict b, double x0, double x1,
                      double* restrict acc) {
@@ -236,23 +249,55 @@ static void cell_acc(const double (*restrict base)[NS], const cell_basis* restri
   }
 }
 
-/* Level 0: the one cell y0 = (0, 0), h = 1, on the 6-grid. */
-static double cubic_level0(const cubic* restrict p) {
-  const double(*w)[NS0] = k_cell0_w;
-  double l2[NS0] = {0};
-  for (int c = 0; c < 3; c++) {
-    const double h2a = p->h[2][0][c], h2b = p->h[2][1][c], h2c = p->h[2][2][c];
-    const double ta = p->t[0][c], tb = p->t[1][c], tc = p->t[2][c], td = p->t[3][c];
-    for (int k = 0; k < NS0; k++) {
-      double e =
-          w[0][k] * h2a + w[1][k] * h2b + w[2][k] * h2c + w[3][k] * ta + w[4][k] * tb + w[5][k] * tc + w[6][k] * td;
-      l2[k] += e * e;
-    }
-  }
+/* Level 0 (one cell, y0 = (0, 0), h = 1) on the 6-grid, from level 1's
+ * four cells: their 3-grid samples and the three edge midpoints are the
+ * 6-grid, and on a level-1 cell S - P_0 = (S - P_1) + (P_1 - P_0), the last
+ * term linear, equal to E_0 = S - P_0 at the cell's corners (0 at the
+ * patch's corners, E_0 at the midpoints: the one-cell formula). */
+#define BARY(a, b) (1.0 - (a) - (b))
+#define M1(a, b) (a)
+#define M2(a, b) (b)
+static const double k_cell_b[3][NS] = {ROW3(BARY), ROW3(M1), ROW3(M2)};
+#define MID(W)                                                                                                         \
+  { W(0.5, 0.0), W(0.0, 0.5), W(0.5, 0.5) }
+static const double k_mid_w[7][3] = {MID(WQA), MID(WQB), MID(WQC), MID(WCA), MID(WCB), MID(WCC), MID(WCD)};
+
+/* E_0 at the midpoints (1/2, 0), (0, 1/2), (1/2, 1/2): mid[point][component]. */
+static double cubic_midpoints(const cubic* restrict p, d3 mid[3]) {
   double m2 = 0.0;
-  for (int k = 0; k < NS0; k++)
-    m2 = dmax(m2, l2[k]);
-  return sqrt(m2);
+  for (int k = 0; k < 3; k++) {
+    for (int c = 0; c < 3; c++)
+      mid[k][c] = k_mid_w[0][k] * p->h[2][0][c] + k_mid_w[1][k] * p->h[2][1][c] + k_mid_w[2][k] * p->h[2][2][c] +
+                  k_mid_w[3][k] * p->t[0][c] + k_mid_w[4][k] * p->t[1][c] + k_mid_w[5][k] * p->t[2][c] +
+                  k_mid_w[6][k] * p->t[3][c];
+    m2 = dmax(m2, d3_len2(mid[k]));
+  }
+  return m2;
+}
+
+/* A level-1 cell: cell_acc into acc1, and E_1 + the interpolant of the
+ * corner values c0 (at y0), c1, c2 (the cell's m1, m2 corners) into acc0. */
+static void cell_acc01(const double (*restrict base)[NS], const cell_basis* restrict b, double x0, double x1,
+                       const double* c0, const double* c1, const double* c2, double* restrict acc1,
+                       double* restrict acc0) {
+  const double *B0 = k_cell_b[0], *B1 = k_cell_b[1], *B2 = k_cell_b[2];
+  for (int k = 0; k < NS; k++) {
+    double e0 = base[0][k] + x0 * b->d0[0][k] + x1 * b->d1[0][k];
+    double e1 = base[1][k] + x0 * b->d0[1][k] + x1 * b->d1[1][k];
+    double e2 = base[2][k] + x0 * b->d0[2][k] + x1 * b->d1[2][k];
+    double f0 = e0 + B0[k] * c0[0] + B1[k] * c1[0] + B2[k] * c2[0];
+    double f1 = e1 + B0[k] * c0[1] + B1[k] * c1[1] + B2[k] * c2[1];
+    double f2 = e2 + B0[k] * c0[2] + B1[k] * c1[2] + B2[k] * c2[2];
+    double l1 = e0 * e0 + e1 * e1 + e2 * e2, l0 = f0 * f0 + f1 * f1 + f2 * f2;
+    acc1[k] = acc1[k] > l1 ? acc1[k] : l1;
+    acc0[k] = acc0[k] > l0 ? acc0[k] : l0;
+  }
+}
+
+static double acc_max(const double* acc, double m2) {
+  for (int k = 0; k < NS; k++)
+    m2 = dmax(m2, acc[k]);
+  return m2;
 }
 
 static void cubic_table(const double (*net)[3], const _tlod_corners* c, const double (*extra)[3], int extra_n,
@@ -266,29 +311,36 @@ static void cubic_table(const double (*net)[3], const _tlod_corners* c, const do
   double cbar = 0.06416 * (sqrt(d3_len2(p.t[0])) + sqrt(d3_len2(p.t[3]))) +
                 0.07408 * (sqrt(d3_len2(p.t[1])) + sqrt(d3_len2(p.t[2])));
   double e[K + 1];
-  {
-    double hs = 1.0 / CELL0_N;
-    e[0] = dmin(cubic_level0(&p) + hs * hs * qbar + hs * hs * hs * cbar, qbar + cbar);
-  }
   cell_basis b;
   cell_basis_init(&p, &b);
-  for (int l = 1; l <= K; l++) {
+  {
+    /* Levels 0 and 1: h = 1/2, the four cells (0,0), (1/2,0), (0,1/2) lower, (1/2,1/2) upper. */
+    static const double zero[3] = {0.0, 0.0, 0.0};
+    const double h2 = 0.25, h3 = 0.125, g = h2 * 0.5, hs0 = 1.0 / CELL0_N, hs1 = 0.5 / CELL_N;
+    d3 mid[3]; /* E_0 at (1/2,0), (0,1/2), (1/2,1/2) */
+    double m0 = cubic_midpoints(&p, mid), lo[3][NS], up[3][NS], acc1[NS] = {0}, acc0[NS] = {0};
+    cell_bases(&b, h2, h3, lo, up);
+    cell_acc01(lo, &b, 0.0, 0.0, zero, mid[0], mid[1], acc1, acc0);
+    cell_acc01(lo, &b, g, 0.0, mid[0], zero, mid[2], acc1, acc0);
+    cell_acc01(lo, &b, 0.0, g, mid[1], mid[2], zero, acc1, acc0);
+    /* upper: y0 - h m, its m1 corner (0, 1/2), its m2 corner (1/2, 0) */
+    cell_acc01(up, &b, h3, h3, mid[2], mid[1], mid[0], acc1, acc0);
+    e[0] = dmin(sqrt(acc_max(acc0, m0)) + hs0 * hs0 * qbar + hs0 * hs0 * hs0 * cbar, qbar + cbar);
+    e[1] = dmin(sqrt(acc_max(acc1, 0.0)) + hs1 * hs1 * qbar + hs1 * hs1 * hs1 * cbar, h2 * qbar + h3 * cbar);
+  }
+  for (int l = 2; l <= K; l++) {
     double h = 1.0 / (double)(1 << l), hs = h / CELL_N, h2 = h * h, h3 = h2 * h;
     double lo[3][NS], up[3][NS], acc[NS] = {0}; /* h^2 a2 + h^3 t, h^2 a2 - h^3 t */
-    for (int x = 0; x < 3; x++)
-      for (int k = 0; k < NS; k++)
-        lo[x][k] = h2 * b.a2[x][k] + h3 * b.t[x][k], up[x][k] = h2 * b.a2[x][k] - h3 * b.t[x][k];
+    cell_bases(&b, h2, h3, lo, up);
     /* Hull cells: lower at the three corners (y0 = (0,0), (1-h,0), (0,1-h)),
-     * upper next to them ((h,h); level > 1: (1-h,h), (h,1-h)). */
+     * upper next to them ((h,h), (1-h,h), (h,1-h)). */
     double g = h2 * (1.0 - h);
     cell_acc(lo, &b, 0.0, 0.0, acc);
     cell_acc(lo, &b, g, 0.0, acc);
     cell_acc(lo, &b, 0.0, g, acc);
     cell_acc(up, &b, h3, h3, acc);
-    if (l > 1) {
-      cell_acc(up, &b, g, h3, acc);
-      cell_acc(up, &b, h3, g, acc);
-    }
+    cell_acc(up, &b, g, h3, acc);
+    cell_acc(up, &b, h3, g, acc);
     double m2 = 0.0;
     for (int k = 0; k < NS; k++)
       m2 = dmax(m2, acc[k]);
