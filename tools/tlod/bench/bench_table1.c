@@ -269,11 +269,10 @@ static int screen_error_comparison(const char* in, const bench_scene* s, const t
     lv[f] = dl->levels[f] < 0 ? -1 : (int8_t)r_opt.worst_level;
   rule_figures r_uni_opt = rule_measure(&se, lv, stride);
   double ms = cli_now_ms() - t0;
-  printf(
-      "table1err  %s: eps %.2f px, %u visible patches, every %u-th measured (all cells of the patch's level, %d/%d/%d "
-      "samples per cell edge at L0-2/L3-4/L5+; %.0f ms)\n",
-      in, (double)eps, visible, stride, screen_error_segments(0), screen_error_segments(3), screen_error_segments(5),
-      ms);
+  printf("table1err  %s: eps %.2f px, %u visible patches, measured: %s (all cells of the patch's level, %d/%d/%d "
+         "samples per cell edge at L0-2/L3-4/L5+; %.0f ms)\n",
+         in, (double)eps, visible, stride == 1 ? "every patch" : "a subsample", screen_error_segments(0),
+         screen_error_segments(3), screen_error_segments(5), ms);
   rule_print("new rule (tables, scheduler)", &r_new, &r_opt, eps);
   rule_print("previous rule (error_bound 4^-l)", &r_prev, &r_opt, eps);
   if (pn)
