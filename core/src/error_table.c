@@ -15,7 +15,8 @@
  *    so its max over all cells is reached on the <= 6 cells at the hull of
  *    the lattice (the corner cells of each orientation). Those are sampled on
  *    a sub-grid; between samples the sub-cell error is h_s^2 q + s h_s^3 c,
- *    at most h_s^2 Qbar + h_s^3 Cbar.
+ *    at most h_s^2 Qbar + h_s^3 Cbar. Level 0's finer grid is read off
+ *    level 1's four cells (see cell_acc01).
  *  - quads (Phong): a shared sample grid of the patch, all cells, and the
  *    remainder (1/2) M R^2 with M from the tensor net (phong.c).
  *  - every entry adds a slack for the float rounding of the evaluation. */
