@@ -15,7 +15,8 @@
  *    so its max over all cells is reached on the <= 6 cells at the hull of
  *    the lattice (the corner cells of each orientation). Those are sampled on
  *    a sub-grid; between samples the sub-cell error is h_s^2 q + s h_s^3 c,
- *    at most h_s^2 Qbar + h_s^3 Cbar.
+ *    at most h_s^2 Qbar + h_s^3 Cbar. Level 0's finer grid is read off
+ *    level 1's four cells (see cell_acc01).
  *  - quads (Phong): a shared sample grid of the patch, all cells, and the
  *    remainder (1/2) M R^2 with M from the tensor net (phong.c).
  *  - every entry adds a slack for the float rounding of the evaluation. */
@@ -39,7 +40,6 @@ static inline double dmin(double a, double b) { return a < b ? a : b; }
 /* 4^-l, exact. */
 static const double k_pow4[] = {1.0, 0x1p-2, 0x1p-4, 0x1p-6, 0x1p-8, 0x1p-10};
 
-static void d3_axpy(double* o, double s, const double* a) { o[0] += s * a[0], o[1] += s * a[1], o[2] += s * a[2]; }
 static double d3_len2(const double* a) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; }
 
 /* The smallest float >= x (x >= 0). */
@@ -95,19 +95,43 @@ float tlod_patch_error_bound(const tlod_patch_info* info, uint32_t level) {
  * max |q|: on the edges exactly (|A|/8, |C|/8, |B - (A+C)/2|/4 at the
  * midpoints), inside on the N-grid, over (1 - 1/N^2): q minus its linear
  * interpolant on a grid sub-triangle is q itself scaled by 1/N^2. */
-static double quad_shape_max(const double* A, const double* B, const double* C) {
-  double hyp[3] = {B[0] - 0.5 * (A[0] + C[0]), B[1] - 0.5 * (A[1] + C[1]), B[2] - 0.5 * (A[2] + C[2])};
-  double m2 = dmax(d3_len2(A) / 64.0, dmax(d3_len2(C) / 64.0, d3_len2(hyp) / 16.0));
-  for (int i = 1; i < QUAD_N; i++) {
-    for (int j = 1; i + j < QUAD_N; j++) {
-      double a = (double)i / QUAD_N, b = (double)j / QUAD_N;
-      double qa = 0.5 * (a * a - a), qb = a * b, qc = 0.5 * (b * b - b);
-      double q[3] = {0.0, 0.0, 0.0};
-      d3_axpy(q, qa, A), d3_axpy(q, qb, B), d3_axpy(q, qc, C);
-      m2 = dmax(m2, d3_len2(q));
-    }
+/* The interior points (i, j) / QUAD_N, i, j >= 1, i + j < QUAD_N (10). */
+#define QN 10
+#define QP(W, i, j) W((double)(i) / QUAD_N, (double)(j) / QUAD_N)
+#define QROW(W)                                                                                                        \
+  {                                                                                                                    \
+    QP(W, 1, 1), QP(W, 1, 2), QP(W, 1, 3), QP(W, 1, 4), QP(W, 2, 1), QP(W, 2, 2), QP(W, 2, 3), QP(W, 3, 1),            \
+        QP(W, 3, 2), QP(W, 4, 1)                                                                                       \
   }
+#define QWA(a, b) (0.5 * ((a) * (a) - (a)))
+#define QWB(a, b) ((a) * (b))
+#define QWC(a, b) (0.5 * ((b) * (b) - (b)))
+static const double k_quad_w[3][QN] = {QROW(QWA), QROW(QWB), QROW(QWC)};
+
+/* The squared maximum of |q| on the edges (exact) and at the interior grid
+ * points, the latter into acc[k] (an elementwise maximum). */
+static double quad_shape_m2(const double* A, const double* B, const double* C, double* restrict acc) {
+  double hyp[3] = {B[0] - 0.5 * (A[0] + C[0]), B[1] - 0.5 * (A[1] + C[1]), B[2] - 0.5 * (A[2] + C[2])};
+  double l2[QN] = {0};
+  for (int c = 0; c < 3; c++)
+    for (int k = 0; k < QN; k++) {
+      double q = k_quad_w[0][k] * A[c] + k_quad_w[1][k] * B[c] + k_quad_w[2][k] * C[c];
+      l2[k] += q * q;
+    }
+  for (int k = 0; k < QN; k++)
+    acc[k] = acc[k] > l2[k] ? acc[k] : l2[k];
+  return dmax(d3_len2(A) / 64.0, dmax(d3_len2(C) / 64.0, d3_len2(hyp) / 16.0));
+}
+
+static double quad_shape_finish(double m2, const double* acc) {
+  for (int k = 0; k < QN; k++)
+    m2 = dmax(m2, acc[k]);
   return sqrt(m2) / (1.0 - 1.0 / (QUAD_N * QUAD_N));
+}
+
+static double quad_shape_max(const double* A, const double* B, const double* C) {
+  double acc[QN] = {0};
+  return quad_shape_finish(quad_shape_m2(A, B, C, acc), acc);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -147,50 +171,134 @@ static void cubic_from_net(const double (*b)[3], cubic* out) {
   }
 }
 
-/* Weights of one cell sample (m1, m2): quadratic part (of f_uu, f_uv, f_vv)
- * and cubic part (of f_uuu, f_uuv, f_uvv, f_vvv), see cubic_cell. */
-#define CELL_W(a, b)                                                                                                   \
-  {                                                                                                                    \
-    0.5 * ((a) * (a) - (a)), (a) * (b), 0.5 * ((b) * (b) - (b)), ((a) * (a) * (a) - (a)) / 6.0, 0.5 * (a) * (a) * (b), \
-        0.5 * (a) * (b) * (b), ((b) * (b) * (b) - (b)) / 6.0                                                           \
-  }
-#define CW(i, j) CELL_W((double)(i) / CELL_N, (double)(j) / CELL_N)
-/* The CELL_N = 3 grid without the three corners. */
-#define CELL_SAMPLES 7
-static const double k_cell_w[CELL_SAMPLES][7] = {CW(1, 0), CW(2, 0), CW(0, 1), CW(1, 1), CW(2, 1), CW(0, 2), CW(1, 2)};
-/* Level 0 is one cell: a CELL0_N = 6 grid (25 samples) costs little there. */
-#define CELL0_N 6
-#define CELL0_SAMPLES 25
-#define CW6(i, j) CELL_W((double)(i) / CELL0_N, (double)(j) / CELL0_N)
-static const double k_cell0_w[CELL0_SAMPLES][7] = {
-    CW6(1, 0), CW6(2, 0), CW6(3, 0), CW6(4, 0), CW6(5, 0), CW6(0, 1), CW6(1, 1), CW6(2, 1), CW6(3, 1),
-    CW6(4, 1), CW6(5, 1), CW6(0, 2), CW6(1, 2), CW6(2, 2), CW6(3, 2), CW6(4, 2), CW6(0, 3), CW6(1, 3),
-    CW6(2, 3), CW6(3, 3), CW6(0, 4), CW6(1, 4), CW6(2, 4), CW6(0, 5), CW6(1, 5)};
+/* Qbar = the largest quad_shape_max of the corner Hessians h[x] = (f_uu, f_uv, f_vv). */
+static double quad_shape_max3(const d3 (*h)[3]) {
+  double acc[QN] = {0}, m2 = 0.0;
+  for (int x = 0; x < 3; x++)
+    m2 = dmax(m2, quad_shape_m2(h[x][0], h[x][1], h[x][2], acc));
+  return quad_shape_finish(m2, acc);
+}
 
-/* max |E| over the cell's samples, E(m) = h^2 (qa f_uu + qb f_uv + qc f_vv)(y0)
- * + s h^3 (ca f_uuu + cb f_uuv + cc f_uvv + cd f_vvv): the cell's points
- * y0 + s h (m1, m2) minus their linear interpolant (Taylor at y0, exact for
- * a cubic). */
-static double cubic_cell(const cubic* p, double u0, double v0, double h, double s, const double (*weights)[7],
-                         int samples) {
-  double w0 = 1.0 - u0 - v0, h2 = h * h, h3 = s * h2 * h;
-  d3 q[3], t[4];
-  for (int e = 0; e < 3; e++)
-    for (int c = 0; c < 3; c++)
-      q[e][c] = h2 * (u0 * p->h[0][e][c] + v0 * p->h[1][e][c] + w0 * p->h[2][e][c]);
-  for (int e = 0; e < 4; e++)
-    for (int c = 0; c < 3; c++)
-      t[e][c] = h3 * p->t[e][c];
-  double m2 = 0.0;
-  for (int k = 0; k < samples; k++) {
-    const double* w = weights[k];
-    double e[3];
-    for (int c = 0; c < 3; c++)
-      e[c] = w[0] * q[0][c] + w[1] * q[1][c] + w[2] * q[2][c] + w[3] * t[0][c] + w[4] * t[1][c] + w[5] * t[2][c] +
-             w[6] * t[3][c];
-    m2 = dmax(m2, d3_len2(e));
+/* Weights of one cell sample (m1, m2): quadratic part (of f_uu, f_uv, f_vv)
+ * and cubic part (of f_uuu, f_uuv, f_uvv, f_vvv), see cubic_table. Stored
+ * by weight (structure of arrays, samples padded to an even count with a
+ * repeated sample) so the sample loops vectorise. */
+#define WQA(a, b) (0.5 * ((a) * (a) - (a)))
+#define WQB(a, b) ((a) * (b))
+#define WQC(a, b) (0.5 * ((b) * (b) - (b)))
+#define WCA(a, b) (((a) * (a) * (a) - (a)) / 6.0)
+#define WCB(a, b) (0.5 * (a) * (a) * (b))
+#define WCC(a, b) (0.5 * (a) * (b) * (b))
+#define WCD(a, b) (((b) * (b) * (b) - (b)) / 6.0)
+/* The CELL_N = 3 grid without the three corners (7 samples, the first repeated). */
+#define NS 8
+#define G3(W, i, j) W((double)(i) / CELL_N, (double)(j) / CELL_N)
+#define ROW3(W)                                                                                                        \
+  { G3(W, 1, 0), G3(W, 2, 0), G3(W, 0, 1), G3(W, 1, 1), G3(W, 2, 1), G3(W, 0, 2), G3(W, 1, 2), G3(W, 1, 0) }
+static const double k_cell_w[7][NS] = {ROW3(WQA), ROW3(WQB), ROW3(WQC), ROW3(WCA), ROW3(WCB), ROW3(WCC), ROW3(WCD)};
+/* Level 0 is one cell, sampled on the CELL0_N = 6 grid (from level 1's cells, cell_acc01). */
+#define CELL0_N 6
+
+/* On a cell with Taylor vertex y0 = (u0, v0), size h, orientation s, the
+ * samples' error E(m_k) = (cell point y0 + s h m_k) - (linear interpolant of
+ * the cell's corners) = h^2 (qa f_uu + qb f_uv + qc f_vv)(y0) + s h^3 (ca f_uuu
+ * + cb f_uuv + cc f_uvv + cd f_vvv) (Taylor at y0, exact for a cubic). The
+ * Hessian at y0 is u0 H_0 + v0 H_1 + w0 H_2 (corner Hessians), so with
+ * a2 = q_{H_2}(m_k), d0 = q_{H_0} - a2, d1 = q_{H_1} - a2, t = c(m_k)
+ *     E(m_k) = h^2 a2 + s h^3 t + h^2 u0 d0 + h^2 v0 d1:
+ * per level two base vectors, then two terms per cell. [component][sample]. */
+typedef struct cell_basis {
+  double a2[3][NS], d0[3][NS], d1[3][NS], t[3][NS];
+} cell_basis;
+
+static void cell_basis_init(const cubic* restrict p, cell_basis* restrict b) {
+  const double(*w)[NS] = k_cell_w;
+  for (int c = 0; c < 3; c++) {
+    const double h0a = p->h[0][0][c], h0b = p->h[0][1][c], h0c = p->h[0][2][c];
+    const double h1a = p->h[1][0][c], h1b = p->h[1][1][c], h1c = p->h[1][2][c];
+    const double h2a = p->h[2][0][c], h2b = p->h[2][1][c], h2c = p->h[2][2][c];
+    const double ta = p->t[0][c], tb = p->t[1][c], tc = p->t[2][c], td = p->t[3][c];
+    for (int k = 0; k < NS; k++) {
+      double a2 = w[0][k] * h2a + w[1][k] * h2b + w[2][k] * h2c;
+      b->a2[c][k] = a2;
+      b->d0[c][k] = w[0][k] * h0a + w[1][k] * h0b + w[2][k] * h0c - a2;
+      b->d1[c][k] = w[0][k] * h1a + w[1][k] * h1b + w[2][k] * h1c - a2;
+      b->t[c][k] = w[3][k] * ta + w[4][k] * tb + w[5][k] * tc + w[6][k] * td;
+    }
   }
-  return sqrt(m2);
+}
+
+/* A level's base vectors: lo = h^2 a2 + h^3 t (s = 1), up = h^2 a2 - h^3 t. */
+static void cell_bases(const cell_basis* restrict b, double h2, double h3, double (*restrict lo)[NS],
+                       double (*restrict up)[NS]) {
+  for (int c = 0; c < 3; c++)
+    for (int k = 0; k < NS; k++) {
+      lo[c][k] = h2 * b->a2[c][k] + h3 * b->t[c][k];
+      up[c][k] = h2 * b->a2[c][k] - h3 * b->t[c][k];
+    }
+}
+
+/* acc[k] = max(acc[k], |base_k + x0 d0_k + x1 d1_k|^2), x0 = h^2 u0, x1 = h^2 v0. */
+static void cell_acc(const double (*restrict base)[NS], const cell_basis* restrict b, double x0, double x1,
+                     double* restrict acc) {
+  for (int k = 0; k < NS; k++) {
+    double e0 = base[0][k] + x0 * b->d0[0][k] + x1 * b->d1[0][k];
+    double e1 = base[1][k] + x0 * b->d0[1][k] + x1 * b->d1[1][k];
+    double e2 = base[2][k] + x0 * b->d0[2][k] + x1 * b->d1[2][k];
+    double l2 = e0 * e0 + e1 * e1 + e2 * e2;
+    acc[k] = acc[k] > l2 ? acc[k] : l2;
+  }
+}
+
+/* Level 0 (one cell, y0 = (0, 0), h = 1) on the 6-grid, from level 1's
+ * four cells: their 3-grid samples and the three edge midpoints are the
+ * 6-grid, and on a level-1 cell S - P_0 = (S - P_1) + (P_1 - P_0), the last
+ * term linear, equal to E_0 = S - P_0 at the cell's corners (0 at the
+ * patch's corners, E_0 at the midpoints: the one-cell formula). */
+#define BARY(a, b) (1.0 - (a) - (b))
+#define M1(a, b) (a)
+#define M2(a, b) (b)
+static const double k_cell_b[3][NS] = {ROW3(BARY), ROW3(M1), ROW3(M2)};
+#define MID(W)                                                                                                         \
+  { W(0.5, 0.0), W(0.0, 0.5), W(0.5, 0.5) }
+static const double k_mid_w[7][3] = {MID(WQA), MID(WQB), MID(WQC), MID(WCA), MID(WCB), MID(WCC), MID(WCD)};
+
+/* E_0 at the midpoints (1/2, 0), (0, 1/2), (1/2, 1/2): mid[point][component]. */
+static double cubic_midpoints(const cubic* restrict p, d3 mid[3]) {
+  double m2 = 0.0;
+  for (int k = 0; k < 3; k++) {
+    for (int c = 0; c < 3; c++)
+      mid[k][c] = k_mid_w[0][k] * p->h[2][0][c] + k_mid_w[1][k] * p->h[2][1][c] + k_mid_w[2][k] * p->h[2][2][c] +
+                  k_mid_w[3][k] * p->t[0][c] + k_mid_w[4][k] * p->t[1][c] + k_mid_w[5][k] * p->t[2][c] +
+                  k_mid_w[6][k] * p->t[3][c];
+    m2 = dmax(m2, d3_len2(mid[k]));
+  }
+  return m2;
+}
+
+/* A level-1 cell: cell_acc into acc1, and E_1 + the interpolant of the
+ * corner values c0 (at y0), c1, c2 (the cell's m1, m2 corners) into acc0. */
+static void cell_acc01(const double (*restrict base)[NS], const cell_basis* restrict b, double x0, double x1,
+                       const double* c0, const double* c1, const double* c2, double* restrict acc1,
+                       double* restrict acc0) {
+  const double *B0 = k_cell_b[0], *B1 = k_cell_b[1], *B2 = k_cell_b[2];
+  for (int k = 0; k < NS; k++) {
+    double e0 = base[0][k] + x0 * b->d0[0][k] + x1 * b->d1[0][k];
+    double e1 = base[1][k] + x0 * b->d0[1][k] + x1 * b->d1[1][k];
+    double e2 = base[2][k] + x0 * b->d0[2][k] + x1 * b->d1[2][k];
+    double f0 = e0 + B0[k] * c0[0] + B1[k] * c1[0] + B2[k] * c2[0];
+    double f1 = e1 + B0[k] * c0[1] + B1[k] * c1[1] + B2[k] * c2[1];
+    double f2 = e2 + B0[k] * c0[2] + B1[k] * c1[2] + B2[k] * c2[2];
+    double l1 = e0 * e0 + e1 * e1 + e2 * e2, l0 = f0 * f0 + f1 * f1 + f2 * f2;
+    acc1[k] = acc1[k] > l1 ? acc1[k] : l1;
+    acc0[k] = acc0[k] > l0 ? acc0[k] : l0;
+  }
+}
+
+static double acc_max(const double* acc, double m2) {
+  for (int k = 0; k < NS; k++)
+    m2 = dmax(m2, acc[k]);
+  return m2;
 }
 
 static void cubic_table(const double (*net)[3], const _tlod_corners* c, const double (*extra)[3], int extra_n,
@@ -200,29 +308,45 @@ static void cubic_table(const double (*net)[3], const _tlod_corners* c, const do
   /* Qbar: max over the patch of the quadratic shape's max (convex in the
    * Hessian, which is affine: the corners); Cbar: the cubic shape's max,
    * |m1^3 - m1|/6 <= 0.06416, m1^2 m2 / 2 <= 2/27 < 0.07408. */
-  double qbar = 0.0;
-  for (int x = 0; x < 3; x++)
-    qbar = dmax(qbar, quad_shape_max(p.h[x][0], p.h[x][1], p.h[x][2]));
+  double qbar = quad_shape_max3(p.h);
   double cbar = 0.06416 * (sqrt(d3_len2(p.t[0])) + sqrt(d3_len2(p.t[3]))) +
                 0.07408 * (sqrt(d3_len2(p.t[1])) + sqrt(d3_len2(p.t[2])));
   double e[K + 1];
-  for (int l = 0; l <= K; l++) {
-    double h = 1.0 / (double)(1 << l), hs = l == 0 ? 1.0 / CELL0_N : h / CELL_N;
-    const double(*w)[7] = l == 0 ? k_cell0_w : k_cell_w;
-    int n = l == 0 ? CELL0_SAMPLES : CELL_SAMPLES;
-    /* Hull cells: lower at the three corners, upper next to them. */
-    double m = cubic_cell(&p, 0.0, 0.0, h, 1.0, w, n);
-    if (l > 0) {
-      m = dmax(m, cubic_cell(&p, 1.0 - h, 0.0, h, 1.0, w, n));
-      m = dmax(m, cubic_cell(&p, 0.0, 1.0 - h, h, 1.0, w, n));
-      m = dmax(m, cubic_cell(&p, h, h, h, -1.0, w, n));
-    }
-    if (l > 1) {
-      m = dmax(m, cubic_cell(&p, 1.0 - h, h, h, -1.0, w, n));
-      m = dmax(m, cubic_cell(&p, h, 1.0 - h, h, -1.0, w, n));
-    }
-    double sampled = m + hs * hs * qbar + hs * hs * hs * cbar;
-    e[l] = dmin(sampled, h * h * qbar + h * h * h * cbar);
+  cell_basis b;
+  cell_basis_init(&p, &b);
+  {
+    /* Levels 0 and 1: h = 1/2, the four cells (0,0), (1/2,0), (0,1/2) lower, (1/2,1/2) upper. */
+    static const double zero[3] = {0.0, 0.0, 0.0};
+    const double h2 = 0.25, h3 = 0.125, g = h2 * 0.5, hs0 = 1.0 / CELL0_N, hs1 = 0.5 / CELL_N;
+    d3 mid[3]; /* E_0 at (1/2,0), (0,1/2), (1/2,1/2) */
+    double m0 = cubic_midpoints(&p, mid), lo[3][NS], up[3][NS], acc1[NS] = {0}, acc0[NS] = {0};
+    cell_bases(&b, h2, h3, lo, up);
+    cell_acc01(lo, &b, 0.0, 0.0, zero, mid[0], mid[1], acc1, acc0);
+    cell_acc01(lo, &b, g, 0.0, mid[0], zero, mid[2], acc1, acc0);
+    cell_acc01(lo, &b, 0.0, g, mid[1], mid[2], zero, acc1, acc0);
+    /* upper: y0 - h m, its m1 corner (0, 1/2), its m2 corner (1/2, 0) */
+    cell_acc01(up, &b, h3, h3, mid[2], mid[1], mid[0], acc1, acc0);
+    e[0] = dmin(sqrt(acc_max(acc0, m0)) + hs0 * hs0 * qbar + hs0 * hs0 * hs0 * cbar, qbar + cbar);
+    e[1] = dmin(sqrt(acc_max(acc1, 0.0)) + hs1 * hs1 * qbar + hs1 * hs1 * hs1 * cbar, h2 * qbar + h3 * cbar);
+  }
+  for (int l = 2; l <= K; l++) {
+    double h = 1.0 / (double)(1 << l), hs = h / CELL_N, h2 = h * h, h3 = h2 * h;
+    double lo[3][NS], up[3][NS], acc[NS] = {0}; /* h^2 a2 + h^3 t, h^2 a2 - h^3 t */
+    cell_bases(&b, h2, h3, lo, up);
+    /* Hull cells: lower at the three corners (y0 = (0,0), (1-h,0), (0,1-h)),
+     * upper next to them ((h,h), (1-h,h), (h,1-h)). */
+    double g = h2 * (1.0 - h);
+    cell_acc(lo, &b, 0.0, 0.0, acc);
+    cell_acc(lo, &b, g, 0.0, acc);
+    cell_acc(lo, &b, 0.0, g, acc);
+    cell_acc(up, &b, h3, h3, acc);
+    cell_acc(up, &b, g, h3, acc);
+    cell_acc(up, &b, h3, g, acc);
+    double m2 = 0.0;
+    for (int k = 0; k < NS; k++)
+      m2 = dmax(m2, acc[k]);
+    double sampled = sqrt(m2) + hs * hs * qbar + hs * hs * hs * cbar;
+    e[l] = dmin(sampled, h2 * qbar + h3 * cbar);
   }
   /* l > K: h^2 Qbar + h^3 Cbar <= 4^-l (Qbar + 2^-(K+1) Cbar). */
   finish(info, e, qbar + cbar / (double)(1 << (K + 1)), eval_slack(c, extra, extra_n));
