@@ -4,16 +4,16 @@
 // node, sampled at the union of their keyframe times (linear and slerp, as
 // glTF's LINEAR interpolation; STEP and CUBICSPLINE are sampled at their
 // keys only). No exception leaves this file.
-#include <tiny_gltf.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "camera_path_json.h"
+#include "gltf_load.hpp"
 #include "import_error.hpp"
 
 using tlod_import_detail::fail;
@@ -79,28 +79,6 @@ Local local_of(const tinygltf::Node& n) {
 
 Mat matrix_of(const Local& l) { return l.has_matrix ? l.matrix : trs(l.t, l.q, l.s); }
 
-// Float data of an accessor (scalar or vector), bounds-checked.
-std::vector<float> read_floats(const tinygltf::Model& m, int index, int components, const char* what) {
-  if (index < 0 || size_t(index) >= m.accessors.size())
-    fail(TLOD_ERROR_PARSE, format("%s: no accessor %d", what, index));
-  const tinygltf::Accessor& a = m.accessors[size_t(index)];
-  if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.bufferView < 0 ||
-      size_t(a.bufferView) >= m.bufferViews.size())
-    fail(TLOD_ERROR_UNSUPPORTED, format("%s: accessor %d is not float data in a buffer view", what, index));
-  const tinygltf::BufferView& v = m.bufferViews[size_t(a.bufferView)];
-  if (v.buffer < 0 || size_t(v.buffer) >= m.buffers.size()) fail(TLOD_ERROR_PARSE, format("%s: bad buffer", what));
-  const std::vector<unsigned char>& buf = m.buffers[size_t(v.buffer)].data;
-  size_t elem = sizeof(float) * size_t(components), stride = v.byteStride ? v.byteStride : elem;
-  size_t start = v.byteOffset + a.byteOffset;
-  if (a.count == 0 || stride < elem || start + stride * (a.count - 1) + elem > buf.size() ||
-      start + stride * (a.count - 1) + elem > v.byteOffset + v.byteLength)
-    fail(TLOD_ERROR_PARSE, format("%s: accessor %d runs past its buffer", what, index));
-  std::vector<float> out(a.count * size_t(components));
-  for (size_t i = 0; i < a.count; i++)
-    std::memcpy(&out[i * size_t(components)], &buf[start + i * stride], elem);
-  return out;
-}
-
 struct Channel {
   std::vector<float> times, values;
   int components; // 3 translation, 4 rotation
@@ -134,17 +112,33 @@ void sample(const Channel& c, double t, double* out) {
     out[i] /= std::sqrt(len); // nlerp: close to slerp between dense keys
 }
 
-void load_model(const char* path, tinygltf::Model& model) {
-  tinygltf::TinyGLTF loader;
-  std::string err, warn, p = path;
-  bool glb = p.size() > 4 && (p.compare(p.size() - 4, 4, ".glb") == 0 || p.compare(p.size() - 4, 4, ".GLB") == 0);
-  bool ok = glb ? loader.LoadBinaryFromFile(&model, &err, &warn, p) : loader.LoadASCIIFromFile(&model, &err, &warn, p);
-  if (!ok) fail(TLOD_ERROR_PARSE, "cannot read it as glTF: " + err);
+// Through the same hardened loader as the scene importer (gltf_load.hpp),
+// with the same default memory budget.
+void load_model(const char* path, _tlod_import_budget* budget, tinygltf::Model& model) {
+  _tlod_import_job job{};
+  job.path = job.name = path;
+  job.budget = budget;
+  char err[512];
+  job.error = err;
+  job.error_size = sizeof err;
+  unsigned char* bytes = nullptr;
+  size_t size = 0;
+  // The message starts with the path, which the caller adds again: keep what follows it.
+  if (_tlod_import_read_file(&job, &bytes, &size) != TLOD_SUCCESS)
+    fail(TLOD_ERROR_IO, std::strlen(err) > std::strlen(path) + 2 ? err + std::strlen(path) + 2 : err);
+  const std::unique_ptr<unsigned char, void (*)(void*)> hold(bytes, std::free);
+  const std::string p = path;
+  const size_t slash = p.rfind('/');
+  const std::string folder = slash == std::string::npos ? "" : slash == 0 ? "/" : p.substr(0, slash);
+  tlod_import_detail::OutputBase warnings;
+  tlod_gltf::load(bytes, size, _tlod_str_ends_with_nocase(path, ".glb"), folder.c_str(), budget, model, warnings);
 }
 
 void build(const char* path, uint32_t camera, std::vector<camera_path_json_key>& keys) {
+  _tlod_import_budget budget{_tlod_budget_default(0), 0, true};
   tinygltf::Model m;
-  load_model(path, m);
+  load_model(path, &budget, m);
+  const tlod_gltf::Accessors acc(m, &budget);
   if (camera >= m.cameras.size())
     fail(TLOD_ERROR_INVALID_ARGUMENT, format("camera %u: the file has %zu cameras", camera, m.cameras.size()));
   const tinygltf::Camera& cam = m.cameras[camera];
@@ -167,8 +161,8 @@ void build(const char* path, uint32_t camera, std::vector<camera_path_json_key>&
       const tinygltf::AnimationSampler& s = an.samplers[size_t(ch.sampler)];
       Channel* c = ch.target_path == "translation" ? &tr : ch.target_path == "rotation" ? &rot : nullptr;
       if (!c || !c->times.empty()) continue;
-      c->times = read_floats(m, s.input, 1, "animation input");
-      c->values = read_floats(m, s.output, c->components, "animation output");
+      c->times = acc.read_floats(s.input, "animation input", 1);
+      c->values = acc.read_floats(s.output, "animation output", c->components);
       if (s.interpolation == "CUBICSPLINE") { // in-tangent, value, out-tangent per key: keep the values
         std::vector<float> v;
         for (size_t k = 0; k + 1 < c->values.size() / size_t(c->components) / 3 + 1; k++)
@@ -190,6 +184,7 @@ void build(const char* path, uint32_t camera, std::vector<camera_path_json_key>&
   std::sort(times.begin(), times.end());
   times.erase(std::unique(times.begin(), times.end()), times.end());
   if (times.size() < 2) times = {0.0, 1.0}; // a still camera: one second of it
+  acc.take(times.size(), 2 * sizeof(camera_path_json_key), "camera path keys");
   Local base = local_of(m.nodes[size_t(node)]);
   for (double t : times) {
     Local l = base;

@@ -1,25 +1,23 @@
 // gltf_import.cpp -- glTF 2.0 reader: a C shim over tinygltf (C++17, no exception leaves this file).
 // Owned by the import/export layer (tools/import/).
 //
-// tinygltf parses the JSON and fetches the buffers; it does not check that
-// accessors fit their bufferViews, that bufferViews fit their buffers, that
-// indices are in range, that node references exist or that the node graph
-// is a tree, and it does not apply sparse accessors. All of that is done
-// here, before any byte is read. The GLB container is also checked here
-// first: tinygltf 2.7 forgets the 8-byte chunk header when it bounds the BIN
-// chunk and would read past the end of a truncated file.
-#include <tiny_gltf.h>
+// The file comes in through tlod_gltf::load and its accessors through
+// tlod_gltf::Accessors (gltf_load.hpp: container, JSON, references, ranges,
+// memory budget). tinygltf does not check that indices are in range, that
+// node references exist or that the node graph is a tree, and it does not
+// apply sparse accessors: that is done here, before any index is used.
 
 #include <cerrno>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
 
+#include "gltf_load.hpp"
 #include "import_error.hpp"
 #include "import_internal.h"
 #include "import_output.hpp"
@@ -109,114 +107,16 @@ const char* mode_name(int mode) {
   return mode >= 0 && mode <= 6 ? names[mode] : "unknown";
 }
 
-size_t component_size(int type) {
-  switch (type) {
-  case TINYGLTF_COMPONENT_TYPE_BYTE:
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-    return 1;
-  case TINYGLTF_COMPONENT_TYPE_SHORT:
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-    return 2;
-  case TINYGLTF_COMPONENT_TYPE_INT:
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-  case TINYGLTF_COMPONENT_TYPE_FLOAT:
-    return 4;
-  case TINYGLTF_COMPONENT_TYPE_DOUBLE:
-    return 8;
-  default:
-    return 0;
-  }
-}
-
-const char* component_name(int type) {
-  switch (type) {
-  case TINYGLTF_COMPONENT_TYPE_BYTE:
-    return "byte";
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-    return "unsigned byte";
-  case TINYGLTF_COMPONENT_TYPE_SHORT:
-    return "short";
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-    return "unsigned short";
-  case TINYGLTF_COMPONENT_TYPE_INT:
-    return "int";
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    return "unsigned int";
-  case TINYGLTF_COMPONENT_TYPE_FLOAT:
-    return "float";
-  case TINYGLTF_COMPONENT_TYPE_DOUBLE:
-    return "double";
-  default:
-    return "unknown";
-  }
-}
-
-const char* type_name(int type) {
-  switch (type) {
-  case TINYGLTF_TYPE_SCALAR:
-    return "SCALAR";
-  case TINYGLTF_TYPE_VEC2:
-    return "VEC2";
-  case TINYGLTF_TYPE_VEC3:
-    return "VEC3";
-  case TINYGLTF_TYPE_VEC4:
-    return "VEC4";
-  case TINYGLTF_TYPE_MAT2:
-    return "MAT2";
-  case TINYGLTF_TYPE_MAT3:
-    return "MAT3";
-  case TINYGLTF_TYPE_MAT4:
-    return "MAT4";
-  default:
-    return "unknown";
-  }
-}
-
-// Little-endian decoding through bytes: no alignment or aliasing assumptions.
-uint32_t load_u32(const unsigned char* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-
-float load_f32(const unsigned char* p) {
-  const uint32_t u = load_u32(p);
-  float f;
-  std::memcpy(&f, &u, 4);
-  return f;
-}
-
-uint32_t load_index(const unsigned char* p, int component_type) {
-  switch (component_type) {
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-    return p[0];
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-    return uint32_t(p[0]) | uint32_t(p[1]) << 8;
-  default:
-    return load_u32(p);
-  }
-}
-
-bool is_index_type(int t) {
-  return t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
-         t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-}
-
-// An accessor's bytes after every range check: element i starts at
-// base + i * stride. base == nullptr: no bufferView, all zeros (glTF rule).
-struct Span {
-  const unsigned char* base = nullptr;
-  size_t stride = 0;
-  size_t count = 0;
-};
-
 // ---------------------------------------------------------------------------
 
 class Reader {
 public:
-  Reader(const tinygltf::Model& model, Output& out) : m_(model), out_(out) {}
+  Reader(const tinygltf::Model& model, Output& out, _tlod_import_budget* budget)
+      : m_(model), out_(out), acc_(model, budget) {}
 
   void run() {
     check_required_extensions();
-    check_buffer_views();
+    acc_.check_buffer_views();
     const std::vector<Instance> instances = collect_instances();
     for (const Instance& inst : instances)
       add_instance(inst);
@@ -230,6 +130,7 @@ public:
 private:
   const tinygltf::Model& m_;
   Output& out_;
+  tlod_gltf::Accessors acc_;
   int first_line_mode_ = -1; // first POINTS/LINES primitive seen, for the error
   std::string first_line_where_;
   uint32_t lines_skipped_ = 0;
@@ -242,13 +143,6 @@ private:
       if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression")
         fail(TLOD_ERROR_UNSUPPORTED, format("requires extension %s, which this importer does not support", e.c_str()));
     }
-  }
-
-  // All of them, used or not: a bufferView past its buffer is a broken file
-  // (and the message names the real fault, not a later symptom).
-  void check_buffer_views() const {
-    for (size_t i = 0; i < m_.bufferViews.size(); ++i)
-      buffer_view(int(i), "");
   }
 
   Mat4 local_matrix(int index) const {
@@ -428,7 +322,7 @@ private:
     }
     const size_t vcount = check_attribute_counts(prim, where, pos->second);
     PrimitiveData data;
-    data.positions = read_floats(pos->second, where + ": POSITION", 3);
+    data.positions = acc_.read_floats(pos->second, where + ": POSITION", 3);
     check_finite(data.positions, pos->second, where);
     data.normals = read_normals(prim, where, vcount);
     std::vector<uint32_t> idx = read_indices(prim, where, vcount);
@@ -442,10 +336,10 @@ private:
 
   // glTF: every attribute of a primitive has the same count.
   size_t check_attribute_counts(const tinygltf::Primitive& prim, const std::string& where, int position) const {
-    check_accessor_ref(position, where + ": POSITION");
+    acc_.check_ref(position, where + ": POSITION");
     const size_t count = m_.accessors[size_t(position)].count;
     for (const auto& attr : prim.attributes) {
-      check_accessor_ref(attr.second, where + ": " + attr.first);
+      acc_.check_ref(attr.second, where + ": " + attr.first);
       const size_t c = m_.accessors[size_t(attr.second)].count;
       if (c != count)
         fail(TLOD_ERROR_PARSE, format("%s: %s accessor %d has %zu elements, POSITION accessor %d has %zu",
@@ -456,12 +350,6 @@ private:
       fail(TLOD_ERROR_UNSUPPORTED, format("%s: POSITION accessor %d has %zu elements (at most %zu)", where.c_str(),
                                           position, count, size_t(_TLOD_IMPORT_MAX_VERTICES)));
     return count;
-  }
-
-  void check_accessor_ref(int index, const std::string& what) const {
-    if (index < 0 || size_t(index) >= m_.accessors.size())
-      fail(TLOD_ERROR_PARSE,
-           format("%s: accessor %d does not exist (%zu accessors)", what.c_str(), index, m_.accessors.size()));
   }
 
   void check_finite(const std::vector<float>& p, int accessor, const std::string& where) const {
@@ -479,10 +367,10 @@ private:
     if (a.type != TINYGLTF_TYPE_VEC3 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
       // Normals can be recomputed, so a bad format costs shading, not the mesh.
       out_.warn(format("%s: NORMAL accessor %d is %s %s, not float VEC3: normals ignored", where.c_str(), it->second,
-                       component_name(a.componentType), type_name(a.type)));
+                       tlod_gltf::component_name(a.componentType), tlod_gltf::type_name(a.type)));
       return {};
     }
-    std::vector<float> n = read_floats(it->second, where + ": NORMAL", 3);
+    std::vector<float> n = acc_.read_floats(it->second, where + ": NORMAL", 3);
     if (n.size() != vcount * 3) return {}; // cannot happen: counts were checked
     return n;
   }
@@ -490,12 +378,13 @@ private:
   std::vector<uint32_t> read_indices(const tinygltf::Primitive& prim, const std::string& where, size_t vcount) const {
     std::vector<uint32_t> idx;
     if (prim.indices < 0) {
+      acc_.take(vcount, 4, where + ": implicit indices");
       idx.resize(vcount);
       for (size_t i = 0; i < vcount; ++i)
         idx[i] = uint32_t(i);
       return idx;
     }
-    idx = read_index_accessor(prim.indices, where);
+    idx = acc_.read_indices(prim.indices, where);
     for (size_t i = 0; i < idx.size(); ++i)
       if (idx[i] >= vcount)
         fail(TLOD_ERROR_INVALID_MESH,
@@ -518,6 +407,7 @@ private:
     out_.strips_fans_converted++;
     std::vector<uint32_t> tris;
     if (idx.size() < 3) return tris;
+    acc_.take(idx.size() - 2, 12, where + ": triangles");
     tris.reserve((idx.size() - 2) * 3);
     for (size_t i = 0; i + 2 < idx.size(); ++i) {
       if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
@@ -530,159 +420,6 @@ private:
     return tris;
   }
 
-  // -- accessors ------------------------------------------------------------
-
-  // what: the referrer for messages ("" for none).
-  const tinygltf::BufferView& buffer_view(int index, const std::string& what) const {
-    const std::string pre = what.empty() ? "" : what + ": ";
-    if (index < 0 || size_t(index) >= m_.bufferViews.size())
-      fail(TLOD_ERROR_PARSE,
-           format("%sbufferView %d does not exist (%zu bufferViews)", pre.c_str(), index, m_.bufferViews.size()));
-    const tinygltf::BufferView& bv = m_.bufferViews[size_t(index)];
-    if (bv.buffer < 0 || size_t(bv.buffer) >= m_.buffers.size())
-      fail(TLOD_ERROR_PARSE, format("%sbufferView %d: buffer %d does not exist (%zu buffers)", pre.c_str(), index,
-                                    bv.buffer, m_.buffers.size()));
-    const size_t size = m_.buffers[size_t(bv.buffer)].data.size();
-    if (bv.byteOffset > size || bv.byteLength > size - bv.byteOffset)
-      fail(TLOD_ERROR_PARSE, format("%sbufferView %d (offset %zu, length %zu) runs past the end of buffer %d "
-                                    "(%zu bytes)",
-                                    pre.c_str(), index, bv.byteOffset, bv.byteLength, bv.buffer, size));
-    return bv;
-  }
-
-  const unsigned char* view_data(const tinygltf::BufferView& bv) const {
-    return m_.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset;
-  }
-
-  // byteOffset + stride * (count - 1) + element <= bufferView length, in an
-  // order of tests that cannot overflow.
-  Span resolve(int index, const std::string& what, size_t element) const {
-    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
-    Span s;
-    s.count = a.count;
-    if (a.bufferView < 0) {
-      if (a.count > _TLOD_IMPORT_MAX_ZERO_FILLED)
-        fail(TLOD_ERROR_UNSUPPORTED,
-             format("%s: accessor %d has %zu elements and no bufferView", what.c_str(), index, a.count));
-      return s; // zeros, possibly replaced by sparse values
-    }
-    const std::string w = format("%s: accessor %d", what.c_str(), index);
-    const tinygltf::BufferView& bv = buffer_view(a.bufferView, w);
-    s.stride = bv.byteStride ? bv.byteStride : element;
-    if (s.stride < element)
-      fail(TLOD_ERROR_PARSE, format("%s: bufferView %d byteStride %zu is less than the %zu-byte "
-                                    "element",
-                                    w.c_str(), a.bufferView, bv.byteStride, element));
-    const size_t len = bv.byteLength;
-    const bool fits = a.count == 0 || (a.byteOffset <= len && element <= len - a.byteOffset &&
-                                       a.count - 1 <= (len - a.byteOffset - element) / s.stride);
-    if (!fits)
-      fail(TLOD_ERROR_PARSE, format("%s (offset %zu, %zu elements of %zu bytes, stride %zu) runs past the end of "
-                                    "bufferView %d (%zu bytes)",
-                                    w.c_str(), a.byteOffset, a.count, element, s.stride, a.bufferView, len));
-    s.base = view_data(bv) + a.byteOffset;
-    return s;
-  }
-
-  std::vector<float> read_floats(int index, const std::string& what, int components) const {
-    check_accessor_ref(index, what);
-    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != components)
-      fail(TLOD_ERROR_UNSUPPORTED, format("%s: accessor %d is %s %s (float %s required)", what.c_str(), index,
-                                          component_name(a.componentType), type_name(a.type), type_name(components)));
-    const size_t nc = size_t(components);
-    const Span s = resolve(index, what, 4 * nc);
-    std::vector<float> out(s.count * nc, 0.0f);
-    if (s.base)
-      for (size_t i = 0; i < s.count; ++i)
-        for (size_t c = 0; c < nc; ++c)
-          out[i * nc + c] = load_f32(s.base + i * s.stride + 4 * c);
-    apply_sparse_floats(index, what, nc, out);
-    return out;
-  }
-
-  std::vector<uint32_t> read_index_accessor(int index, const std::string& what) const {
-    const std::string w = what + ": indices";
-    check_accessor_ref(index, w);
-    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
-    if (a.type != TINYGLTF_TYPE_SCALAR || !is_index_type(a.componentType))
-      fail(TLOD_ERROR_PARSE, format("%s: accessor %d is %s %s (unsigned byte/short/int SCALAR "
-                                    "required)",
-                                    w.c_str(), index, component_name(a.componentType), type_name(a.type)));
-    const size_t cs = component_size(a.componentType);
-    const Span s = resolve(index, w, cs);
-    if (s.count > _TLOD_IMPORT_MAX_INDICES)
-      fail(TLOD_ERROR_UNSUPPORTED, format("%s: accessor %d has %zu indices", w.c_str(), index, s.count));
-    std::vector<uint32_t> out(s.count, 0u);
-    if (s.base)
-      for (size_t i = 0; i < s.count; ++i)
-        out[i] = load_index(s.base + i * s.stride, a.componentType);
-    apply_sparse_indices(index, w, out);
-    return out;
-  }
-
-  // Sparse substitution: both sparse arrays are tightly packed (glTF), and
-  // every sparse index must address an element of the accessor.
-  struct SparseSpans {
-    const unsigned char* indices;
-    const unsigned char* values;
-    size_t count, index_size;
-    int index_type;
-  };
-
-  SparseSpans resolve_sparse(int index, const std::string& what, size_t element) const {
-    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
-    const std::string w = format("%s: accessor %d: sparse", what.c_str(), index);
-    const int n = a.sparse.count;
-    if (n < 1 || size_t(n) > a.count)
-      fail(TLOD_ERROR_PARSE, format("%s count %d out of range (accessor has %zu elements)", w.c_str(), n, a.count));
-    const int it = a.sparse.indices.componentType;
-    if (!is_index_type(it))
-      fail(TLOD_ERROR_PARSE,
-           format("%s indices are %s (unsigned byte/short/int required)", w.c_str(), component_name(it)));
-    SparseSpans s{nullptr, nullptr, size_t(n), component_size(it), it};
-    s.indices =
-        sparse_range(a.sparse.indices.bufferView, a.sparse.indices.byteOffset, s.count * s.index_size, w + " indices");
-    s.values = sparse_range(a.sparse.values.bufferView, a.sparse.values.byteOffset, s.count * element, w + " values");
-    return s;
-  }
-
-  const unsigned char* sparse_range(int view, int offset, size_t bytes, const std::string& what) const {
-    const tinygltf::BufferView& bv = buffer_view(view, what);
-    if (offset < 0 || size_t(offset) > bv.byteLength || bytes > bv.byteLength - size_t(offset))
-      fail(TLOD_ERROR_PARSE, format("%s (offset %d, %zu bytes) run past the end of bufferView %d (%zu bytes)",
-                                    what.c_str(), offset, bytes, view, bv.byteLength));
-    return view_data(bv) + offset;
-  }
-
-  size_t sparse_target(const SparseSpans& s, size_t i, int index, const std::string& what) const {
-    const size_t count = m_.accessors[size_t(index)].count;
-    const uint32_t t = load_index(s.indices + i * s.index_size, s.index_type);
-    if (t >= count)
-      fail(TLOD_ERROR_PARSE, format("%s: accessor %d: sparse index %zu is %u, out of range (%zu elements)",
-                                    what.c_str(), index, i, t, count));
-    return t;
-  }
-
-  void apply_sparse_floats(int index, const std::string& what, size_t nc, std::vector<float>& out) const {
-    if (!m_.accessors[size_t(index)].sparse.isSparse) return;
-    const SparseSpans s = resolve_sparse(index, what, 4 * nc);
-    for (size_t i = 0; i < s.count; ++i) {
-      const size_t t = sparse_target(s, i, index, what);
-      for (size_t c = 0; c < nc; ++c)
-        out[t * nc + c] = load_f32(s.values + (i * nc + c) * 4);
-    }
-  }
-
-  void apply_sparse_indices(int index, const std::string& what, std::vector<uint32_t>& out) const {
-    const tinygltf::Accessor& a = m_.accessors[size_t(index)];
-    if (!a.sparse.isSparse) return;
-    const size_t cs = component_size(a.componentType);
-    const SparseSpans s = resolve_sparse(index, what, cs);
-    for (size_t i = 0; i < s.count; ++i)
-      out[sparse_target(s, i, index, what)] = load_index(s.values + i * cs, a.componentType);
-  }
-
   // -- output ---------------------------------------------------------------
 
   void append(const Instance& inst, int p, const tinygltf::Primitive& prim, const PrimitiveData& d,
@@ -693,6 +430,9 @@ private:
         out_.indices.size() + d.triangles.size() > _TLOD_IMPORT_MAX_INDICES)
       fail(TLOD_ERROR_UNSUPPORTED, format("%s: the scene has more than %zu vertices or %zu indices", where.c_str(),
                                           size_t(_TLOD_IMPORT_MAX_VERTICES), size_t(_TLOD_IMPORT_MAX_INDICES)));
+    // Output arrays grow by doubling: what they hold, plus what they move.
+    acc_.take(vcount, 3 * 24, where + ": output vertices");
+    acc_.take(d.triangles.size(), 3 * 4, where + ": output indices");
     tlod_import_part part{};
     part_name(inst, p, part.name);
     part.first_vertex = uint32_t(first_vertex);
@@ -792,156 +532,6 @@ private:
   }
 };
 
-// ---------------------------------------------------------------------------
-// Loading through tinygltf.
-
-// Images are not needed for geometry: skip decoding (and its failure modes).
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-  return true;
-}
-
-struct FsState {
-  std::string base_dir;
-};
-
-// Only regular files: a URI naming a device ("../../dev/zero") must not be
-// read until memory runs out.
-bool regular_file(const std::string& path, std::uintmax_t* size) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || ec) return false;
-  const std::uintmax_t n = std::filesystem::file_size(path, ec);
-  if (size) *size = n;
-  return !ec;
-}
-
-// tinygltf also looks for external files in the working folder ("./x.bin");
-// only the model's own folder is accepted, so results do not depend on cwd.
-bool fs_file_exists(const std::string& path, void* user) {
-  const FsState* st = static_cast<const FsState*>(user);
-  if (!st->base_dir.empty() && path.compare(0, 2, "./") == 0) return false;
-  return regular_file(path, nullptr);
-}
-
-std::string fs_expand(const std::string& path, void*) { return path; }
-
-bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-  std::uintmax_t size = 0;
-  if (!regular_file(path, &size) || size > _TLOD_IMPORT_MAX_FILE_BYTES) {
-    if (err)
-      *err +=
-          format("'%s' is not a regular file of at most %zu bytes", path.c_str(), size_t(_TLOD_IMPORT_MAX_FILE_BYTES));
-    return false;
-  }
-  FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) {
-    if (err) *err += format("cannot open '%s': %s", path.c_str(), std::strerror(errno));
-    return false;
-  }
-  out->assign(size_t(size), 0);
-  const size_t got = size ? std::fread(out->data(), 1, out->size(), f) : 0;
-  std::fclose(f);
-  if (got != out->size()) {
-    if (err) *err += format("cannot read '%s'", path.c_str());
-    return false;
-  }
-  return true;
-}
-
-bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-  if (err) *err += "writing is disabled";
-  return false;
-}
-
-// The GLB container, checked completely before tinygltf sees it.
-void check_glb(const unsigned char* d, size_t size) {
-  if (size < 12) fail(TLOD_ERROR_PARSE, format("truncated GLB header (%zu bytes, 12 needed)", size));
-  if (std::memcmp(d, "glTF", 4) != 0) fail(TLOD_ERROR_PARSE, "not a GLB file (bad magic)");
-  const uint32_t version = load_u32(d + 4), length = load_u32(d + 8);
-  if (version != 2) fail(TLOD_ERROR_UNSUPPORTED, format("GLB version %u is not supported (2 expected)", version));
-  if (length != size)
-    fail(TLOD_ERROR_PARSE, format("GLB header length %u does not match the file size %zu", length, size));
-  if (size < 20) fail(TLOD_ERROR_PARSE, "truncated GLB chunk header");
-  const size_t json_len = load_u32(d + 12);
-  if (load_u32(d + 16) != 0x4E4F534Au) fail(TLOD_ERROR_PARSE, "first GLB chunk is not JSON");
-  if (json_len > size - 20)
-    fail(TLOD_ERROR_PARSE, format("GLB JSON chunk (%zu bytes) runs past the end of the file", json_len));
-  const size_t rest = size - 20 - json_len;
-  if (rest == 0) return;
-  if (rest < 8) fail(TLOD_ERROR_PARSE, "truncated GLB chunk header after the JSON chunk");
-  const size_t bin_len = load_u32(d + 20 + json_len);
-  if (load_u32(d + 24 + json_len) != 0x004E4942u) fail(TLOD_ERROR_UNSUPPORTED, "second GLB chunk is not BIN");
-  if (bin_len > rest - 8)
-    fail(TLOD_ERROR_PARSE, format("GLB BIN chunk (%zu bytes) runs past the end of the file", bin_len));
-}
-
-// nlohmann::json and tinygltf's extras conversion recurse once per nesting
-// level: "[[[[..." a few 10^5 deep overflows the stack. Real glTF nests
-// about 8 deep; anything past kMaxJsonDepth is refused before parsing.
-constexpr int kMaxJsonDepth = 256;
-
-void check_json_depth(const unsigned char* s, size_t n) {
-  int depth = 0;
-  bool in_string = false;
-  for (size_t i = 0; i < n; ++i) {
-    const unsigned char c = s[i];
-    if (in_string) {
-      if (c == '\\')
-        ++i; // skip the escaped character
-      else if (c == '"')
-        in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxJsonDepth)
-        fail(TLOD_ERROR_UNSUPPORTED, format("JSON nested deeper than %d levels (byte %zu)", kMaxJsonDepth, i));
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-}
-
-std::string one_line(std::string s) {
-  while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
-    s.pop_back();
-  for (size_t i = 0; (i = s.find('\n', i)) != std::string::npos;)
-    s.replace(i, 1, "; ");
-  return s;
-}
-
-std::string folder_of(const char* path) {
-  const char* slash = std::strrchr(path, '/');
-  return slash ? std::string(path, size_t(slash - path)) : std::string();
-}
-
-void load_model(const _tlod_import_job* job, const std::vector<unsigned char>& file, tinygltf::Model& model,
-                Output& out) {
-  const bool glb =
-      _tlod_str_ends_with_nocase(job->path, ".glb") || (file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0);
-  FsState st{folder_of(job->path)};
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skip_image, nullptr);
-  loader.SetFsCallbacks({fs_file_exists, fs_expand, fs_read, fs_write, &st});
-  std::string err, warn;
-  bool ok;
-  if (glb) {
-    check_glb(file.data(), file.size());
-    check_json_depth(file.data() + 20, load_u32(file.data() + 12));
-    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, file.data(), static_cast<unsigned int>(file.size()),
-                                     st.base_dir);
-  } else {
-    size_t skip = 0;
-    if (file.size() >= 3 && std::memcmp(file.data(), "\xEF\xBB\xBF", 3) == 0) {
-      out.warn("UTF-8 byte order mark skipped (glTF JSON must not have one)");
-      skip = 3;
-    }
-    check_json_depth(file.data() + skip, file.size() - skip);
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(file.data()) + skip,
-                                    static_cast<unsigned int>(file.size() - skip), st.base_dir);
-  }
-  if (!warn.empty()) out.warn("tinygltf: " + one_line(warn));
-  if (!ok) fail(TLOD_ERROR_PARSE, "glTF parse error: " + one_line(err.empty() ? "unknown" : err));
-}
-
 void warn_unused_features(const tinygltf::Model& model, Output& out) {
   for (const tinygltf::Mesh& mesh : model.meshes)
     for (const tinygltf::Primitive& prim : mesh.primitives)
@@ -965,14 +555,12 @@ tlod_result import_gltf(const _tlod_import_job* job) {
   size_t size = 0;
   const tlod_result res = _tlod_import_read_file(job, &bytes, &size);
   if (res != TLOD_SUCCESS) return res;
-  std::vector<unsigned char> file(bytes, bytes + size);
-  std::free(bytes);
-  if (file.size() > 0xFFFFFFFFu) fail(TLOD_ERROR_UNSUPPORTED, "glTF file larger than 4 GiB");
+  const std::unique_ptr<unsigned char, void (*)(void*)> file(bytes, std::free);
   Output out;
   tinygltf::Model model;
-  load_model(job, file, model, out);
+  tlod_gltf::load(bytes, size, _tlod_str_ends_with_nocase(job->path, ".glb"), job->folder, job->budget, model, out);
   warn_unused_features(model, out);
-  Reader(model, out).run();
+  Reader(model, out, job->budget).run();
   return finish(job, out);
 }
 

@@ -44,6 +44,27 @@ bool _tlod_str_ends_with_nocase(const char* s, const char* suffix) {
   return true;
 }
 
+size_t _tlod_budget_default(size_t input_bytes) {
+  size_t share;
+  if (!_tlod_size_mul(input_bytes, TLOD_IMPORT_MEMORY_PER_INPUT_BYTE, &share) ||
+      share > TLOD_IMPORT_MEMORY_CAP - TLOD_IMPORT_MEMORY_BASE)
+    return TLOD_IMPORT_MEMORY_CAP;
+  return TLOD_IMPORT_MEMORY_BASE + share;
+}
+
+void _tlod_budget_add_input(_tlod_import_budget* b, size_t bytes) {
+  if (!b->proportional) return;
+  const size_t inputs = (b->limit - TLOD_IMPORT_MEMORY_BASE) / TLOD_IMPORT_MEMORY_PER_INPUT_BYTE;
+  size_t sum;
+  b->limit = _tlod_size_add(inputs, bytes, &sum) ? _tlod_budget_default(sum) : TLOD_IMPORT_MEMORY_CAP;
+}
+
+bool _tlod_budget_take(_tlod_import_budget* b, size_t bytes) {
+  if (bytes > b->limit - b->used) return false;
+  b->used += bytes;
+  return true;
+}
+
 /* Grows *buf to hold at least need bytes (doubling), capped by the file limit. */
 static bool _tlod_grow(unsigned char** buf, size_t* cap, size_t need) {
   if (need <= *cap) return true;
@@ -57,11 +78,34 @@ static bool _tlod_grow(unsigned char** buf, size_t* cap, size_t need) {
   return true;
 }
 
+static tlod_result _tlod_over_budget(const _tlod_import_job* job) {
+  return _tlod_import_fail(
+      job, TLOD_ERROR_OUT_OF_MEMORY,
+      "the file is larger than the import's memory budget (%zu bytes; tlod_import_desc.memory_limit)",
+      job->budget->limit);
+}
+
+static tlod_result _tlod_copy_memory(const _tlod_import_job* job, unsigned char** data, size_t* size) {
+  _tlod_budget_add_input(job->budget, job->memory_size);
+  if (job->memory_size > _TLOD_IMPORT_MAX_FILE_BYTES)
+    return _tlod_import_fail(job, TLOD_ERROR_UNSUPPORTED, "file larger than %zu bytes",
+                             (size_t)_TLOD_IMPORT_MAX_FILE_BYTES);
+  if (!_tlod_budget_take(job->budget, job->memory_size + 1)) return _tlod_over_budget(job);
+  unsigned char* buf = (unsigned char*)malloc(job->memory_size + 1);
+  if (!buf) return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory reading the file");
+  if (job->memory_size) memcpy(buf, job->memory, job->memory_size);
+  buf[job->memory_size] = 0;
+  *data = buf;
+  *size = job->memory_size;
+  return TLOD_SUCCESS;
+}
+
 /* Reads in chunks rather than trusting ftell: works for pipes, and a folder
  * fails in fread with EISDIR instead of reporting a bogus size. */
 tlod_result _tlod_import_read_file(const _tlod_import_job* job, unsigned char** data, size_t* size) {
   *data = NULL;
   *size = 0;
+  if (job->memory) return _tlod_copy_memory(job, data, size);
   FILE* f = fopen(job->path, "rb");
   if (!f) {
     return _tlod_import_fail(job, TLOD_ERROR_IO, "cannot open '%s': %s", job->path, strerror(errno));
@@ -69,7 +113,12 @@ tlod_result _tlod_import_read_file(const _tlod_import_job* job, unsigned char** 
   unsigned char* buf = NULL;
   size_t cap = 0, len = 0;
   tlod_result res = TLOD_SUCCESS;
+  const _tlod_import_budget* b = job->budget;
   for (;;) {
+    if (!b->proportional && len + 65536 + 1 > b->limit - b->used) {
+      res = _tlod_over_budget(job);
+      break;
+    }
     if (!_tlod_grow(&buf, &cap, len + 65536 + 1)) {
       res = _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory reading the file");
       break;
@@ -91,6 +140,11 @@ tlod_result _tlod_import_read_file(const _tlod_import_job* job, unsigned char** 
   if (res != TLOD_SUCCESS) {
     free(buf);
     return res;
+  }
+  _tlod_budget_add_input(job->budget, len);
+  if (!_tlod_budget_take(job->budget, cap)) {
+    free(buf);
+    return _tlod_over_budget(job);
   }
   buf[len] = 0;
   *data = buf;
@@ -129,8 +183,23 @@ static void _tlod_copy_warnings(char* dst, size_t size, const char* src) {
   memcpy(dst + keep, "...\n", 5);
 }
 
+/* What the result's arrays take: vertex_count x 24 (positions, normals) +
+ * indices + face sizes + parts, overflow-checked (false: does not fit). */
+static bool _tlod_result_bytes(const _tlod_import_data* d, size_t* bytes) {
+  size_t v, i, p, sum;
+  return _tlod_size_mul(d->vertex_count, 24u, &v) && _tlod_size_mul(d->index_count, 4u, &i) &&
+         _tlod_size_mul(d->part_count, sizeof(tlod_import_part), &p) && _tlod_size_add(v, i, &sum) &&
+         _tlod_size_add(sum, p, &sum) && _tlod_size_add(sum, d->face_count + sizeof(tlod_import_result), bytes);
+}
+
 tlod_result _tlod_import_finish(const _tlod_import_job* job, const _tlod_import_data* d) {
   const tlod_allocator* a = &job->allocator;
+  size_t bytes = 0;
+  if (!_tlod_result_bytes(d, &bytes) || !_tlod_budget_take(job->budget, bytes))
+    return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY,
+                             "result: %u vertices and %u indices exceed the import's memory budget (%zu bytes; "
+                             "tlod_import_desc.memory_limit)",
+                             d->vertex_count, d->index_count, job->budget->limit);
   tlod_import_result* r = (tlod_import_result*)a->alloc_fn(sizeof *r, a->user_data);
   if (!r) return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory");
   memset(r, 0, sizeof *r);
@@ -178,34 +247,90 @@ static const char* _tlod_base_name(const char* path) {
   return s ? s + 1 : path;
 }
 
-tlod_result tlod_import_file(const char* path, const tlod_allocator* allocator, tlod_import_result** out, char* error,
-                             size_t error_size) {
-  if (error && error_size) error[0] = 0;
-  if (out) *out = NULL;
-  _tlod_import_job job = {path, path ? _tlod_base_name(path) : "(null)", {0}, out, error, error_size};
-  if (!path || !out) {
-    return _tlod_import_fail(&job, TLOD_ERROR_INVALID_ARGUMENT, "path and out must not be NULL");
-  }
+/* Resolves the options: allocator hooks and the budget's starting limit. */
+static tlod_result _tlod_import_setup(_tlod_import_job* job, const tlod_import_desc* desc,
+                                      _tlod_import_budget* budget) {
+  const tlod_allocator* allocator = desc ? &desc->allocator : NULL;
   if (allocator && (!allocator->alloc_fn) != (!allocator->free_fn)) {
-    return _tlod_import_fail(&job, TLOD_ERROR_INVALID_ARGUMENT,
-                             "allocator needs both alloc_fn and free_fn, or neither");
+    return _tlod_import_fail(job, TLOD_ERROR_INVALID_ARGUMENT, "allocator needs both alloc_fn and free_fn, or neither");
   }
   if (allocator && allocator->alloc_fn) {
-    job.allocator = *allocator;
+    job->allocator = *allocator;
   } else {
-    job.allocator = (tlod_allocator){_tlod_default_alloc, _tlod_default_free, NULL};
+    job->allocator = (tlod_allocator){_tlod_default_alloc, _tlod_default_free, NULL};
   }
-  tlod_result res;
+  const size_t limit = desc ? desc->memory_limit : 0;
+  *budget = (_tlod_import_budget){limit ? limit : _tlod_budget_default(0), 0, limit == 0};
+  job->budget = budget;
+  return TLOD_SUCCESS;
+}
+
+static tlod_result _tlod_import_dispatch(_tlod_import_job* job) {
+  const char* path = job->path;
   if (_tlod_str_ends_with_nocase(path, ".gltf") || _tlod_str_ends_with_nocase(path, ".glb")) {
-    res = _tlod_import_gltf(&job);
+    return _tlod_import_gltf(job);
   } else if (_tlod_str_ends_with_nocase(path, ".obj")) {
-    res = _tlod_import_obj(&job);
+    return _tlod_import_obj(job);
   } else if (_tlod_str_ends_with_nocase(path, ".ply")) {
-    res = _tlod_import_ply(&job);
-  } else {
-    res =
-        _tlod_import_fail(&job, TLOD_ERROR_UNSUPPORTED, "unknown file extension (expected .gltf, .glb, .obj or .ply)");
+    return _tlod_import_ply(job);
   }
-  if (res == TLOD_SUCCESS && error && error_size) error[0] = 0;
+  return _tlod_import_fail(job, TLOD_ERROR_UNSUPPORTED, "unknown file extension (expected .gltf, .glb, .obj or .ply)");
+}
+
+/* The folder part of path ("" for none), in buf. */
+static const char* _tlod_folder_of(const char* path, char* buf, size_t size) {
+  const char* s = strrchr(path, '/');
+  const size_t n = s ? (size_t)(s - path) : 0;
+  if (n >= size) return NULL;
+  memcpy(buf, path, n);
+  buf[n] = 0;
+  if (s && n == 0) snprintf(buf, size, "/");
+  return buf;
+}
+
+static tlod_result _tlod_import_run(_tlod_import_job* job, const tlod_import_desc* desc) {
+  if (job->error && job->error_size) job->error[0] = 0;
+  if (job->out) *job->out = NULL;
+  if (!job->path || !job->out) {
+    return _tlod_import_fail(job, TLOD_ERROR_INVALID_ARGUMENT, "path and out must not be NULL");
+  }
+  _tlod_import_budget budget;
+  tlod_result res = _tlod_import_setup(job, desc, &budget);
+  if (res == TLOD_SUCCESS) res = _tlod_import_dispatch(job);
+  if (res == TLOD_SUCCESS && job->error && job->error_size) job->error[0] = 0;
+  job->budget = NULL; /* lives in this frame only */
   return res;
+}
+
+tlod_result tlod_import_file_desc(const char* path, const tlod_import_desc* desc, tlod_import_result** out, char* error,
+                                  size_t error_size) {
+  char folder[4096];
+  _tlod_import_job job = {path,      path ? _tlod_base_name(path) : "(null)", NULL, NULL, 0, {0}, NULL, out, error,
+                          error_size};
+  job.folder = path ? _tlod_folder_of(path, folder, sizeof folder) : NULL;
+  return _tlod_import_run(&job, desc);
+}
+
+tlod_result tlod_import_file(const char* path, const tlod_allocator* allocator, tlod_import_result** out, char* error,
+                             size_t error_size) {
+  tlod_import_desc desc = {0};
+  if (allocator) desc.allocator = *allocator;
+  return tlod_import_file_desc(path, &desc, out, error, error_size);
+}
+
+tlod_result tlod_import_memory(const char* name, const void* data, size_t size, const tlod_import_desc* desc,
+                               tlod_import_result** out, char* error, size_t error_size) {
+  static const unsigned char empty[1] = {0};
+  _tlod_import_job job = {name,
+                          name ? _tlod_base_name(name) : "(null)",
+                          NULL,
+                          data ? (const unsigned char*)data : empty,
+                          data ? size : 0,
+                          {0},
+                          NULL,
+                          out,
+                          error,
+                          error_size};
+  if (!data && size) return _tlod_import_fail(&job, TLOD_ERROR_INVALID_ARGUMENT, "data is NULL with size %zu", size);
+  return _tlod_import_run(&job, desc);
 }

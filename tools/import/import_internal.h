@@ -48,11 +48,40 @@ typedef struct _tlod_import_data {
   uint32_t warning_count;
 } _tlod_import_data;
 
+/* The import's memory budget (tlod_import_desc.memory_limit): every
+ * allocation whose size comes from the file is taken from it first, so a
+ * small file declaring huge counts fails before it costs memory. Bytes
+ * taken are not given back when freed: the budget bounds what an import
+ * allocates in all, which bounds its peak too. */
+typedef struct _tlod_import_budget {
+  size_t limit;      /* bytes */
+  size_t used;       /* bytes taken so far */
+  bool proportional; /* limit follows the input size (default rule): grows with external files */
+} _tlod_import_budget;
+
+/* The default limit for input_bytes of files (tlod_import.h). */
+size_t _tlod_budget_default(size_t input_bytes);
+
+/* An input file of bytes was found (main file, external buffer): the
+ * default rule's limit grows by its share. */
+void _tlod_budget_add_input(_tlod_import_budget* b, size_t bytes);
+
+/* Takes bytes from the budget; false (nothing taken) when it would exceed the limit. */
+bool _tlod_budget_take(_tlod_import_budget* b, size_t bytes);
+
+/* Overflow-checked size arithmetic: false when the result does not fit size_t. */
+static inline bool _tlod_size_mul(size_t a, size_t b, size_t* out) { return !__builtin_mul_overflow(a, b, out); }
+static inline bool _tlod_size_add(size_t a, size_t b, size_t* out) { return !__builtin_add_overflow(a, b, out); }
+
 /* Where a reader reports to: the caller's allocator, output and error buffer. */
 typedef struct _tlod_import_job {
-  const char* path;         /* as given */
-  const char* name;         /* file name without folders, for messages */
+  const char* path;            /* as given */
+  const char* name;            /* file name without folders, for messages */
+  const char* folder;          /* where external references resolve ("" = cwd); NULL: refuse them (memory import) */
+  const unsigned char* memory; /* non-NULL: the file's bytes (tlod_import_memory), path is only a name */
+  size_t memory_size;
   tlod_allocator allocator; /* resolved: never NULL hooks */
+  _tlod_import_budget* budget;
   tlod_import_result** out;
   char* error;
   size_t error_size;
@@ -66,7 +95,8 @@ tlod_result _tlod_import_fail(const _tlod_import_job* job, tlod_result result, c
     _TLOD_IMPORT_PRINTF(3, 4);
 
 /* Reads a whole file into malloc memory (+1 zero byte past the end so text
- * parsers may stop on it). Fails with TLOD_ERROR_IO naming the file. */
+ * parsers may stop on it; a memory import is copied). Takes its size from
+ * the budget. Fails with TLOD_ERROR_IO naming the file. */
 tlod_result _tlod_import_read_file(const _tlod_import_job* job, unsigned char** data, size_t* size);
 
 /* The readers, one per format. */

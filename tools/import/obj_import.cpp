@@ -15,6 +15,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -24,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "contained_file.h"
 #include "import_error.hpp"
 #include "import_internal.h"
 #include "import_output.hpp"
@@ -122,6 +124,45 @@ bool is_obj_number(const std::string& s) {
   return i == s.size();
 }
 
+// tinyobjloader accumulates an exponent's digits in an int: "0e2147483649"
+// overflows it (undefined behaviour). Floats need at most 2 exponent digits;
+// one with more than 4 significant digits (past leading zeros) is refused.
+constexpr size_t kMaxExponentDigits = 4;
+
+// Does the number-like token s (starts with a digit, sign or '.') have an
+// exponent longer than kMaxExponentDigits?
+bool long_exponent(const std::string& s) {
+  const size_t e = s.find_first_of("eE");
+  if (e == std::string::npos) return false;
+  size_t i = e + 1;
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+  while (i < s.size() && s[i] == '0')
+    ++i;
+  size_t digits = 0;
+  while (i < s.size() && is_digit(s[i]))
+    ++i, ++digits;
+  return digits > kMaxExponentDigits;
+}
+
+bool number_like(const std::string& s) {
+  return !s.empty() && (is_digit(s[0]) || s[0] == '+' || s[0] == '-' || s[0] == '.');
+}
+
+// Every number-like word of a material file, before tinyobjloader parses it.
+void check_mtl_exponents(const std::string& text, const std::string& id) {
+  size_t line = 0;
+  for (size_t i = 0; i < text.size();) {
+    size_t j = text.find_first_of("\r\n", i);
+    if (j == std::string::npos) j = text.size();
+    line++;
+    for (const std::string& w : split_ws(text.substr(i, j - i)))
+      if (number_like(w) && long_exponent(w))
+        fail(TLOD_ERROR_PARSE,
+             format("mtllib '%.200s': line %zu: '%.40s': exponent out of range", id.c_str(), line, w.c_str()));
+    i = j + 1;
+  }
+}
+
 class Scanner {
 public:
   Scan run(const char* data, size_t size) {
@@ -187,6 +228,7 @@ private:
     if (n < min || n > max) error(format("'%s' needs %zu to %zu numbers, has %zu", kKindStatement[kind], min, max, n));
     for (size_t t = 1; t < tok.size(); ++t) {
       if (!is_obj_number(tok[t])) error(format("'%.40s' is not a number", tok[t].c_str()));
+      if (long_exponent(tok[t])) error(format("'%.40s': exponent out of range", tok[t].c_str()));
       // Finite as a float, since the mesh stores floats: 1e39 is rejected too.
       const float f = std::strtof(tok[t].c_str(), nullptr);
       if (!std::isfinite(f)) error(format("'%.40s' is not a finite float", tok[t].c_str()));
@@ -400,19 +442,28 @@ private:
   }
 };
 
-// Material files are read here, size-capped, and handed to tinyobjloader's
-// LoadMtl as text: its own reader opens whatever path a file names and
-// reads it whole (think "mtllib /dev/zero").
+// Material files are read here under the containment rule
+// (contained_file.h), within the budget, and handed to tinyobjloader's
+// LoadMtl as text: its own reader opens whatever path a file names and reads
+// it whole (think "mtllib /dev/zero", a FIFO, or "../../secret"). A missing
+// file is a warning (default colour); a refused one fails the import after
+// LoadObj returns (no exception is thrown through tinyobjloader).
 class MaterialReader final : public tinyobj::MaterialReader {
 public:
-  explicit MaterialReader(std::string folder) : folder_(std::move(folder)) {}
+  MaterialReader(const char* folder, _tlod_import_budget* budget) : folder_(folder), budget_(budget) {}
 
   bool operator()(const std::string& id, std::vector<tinyobj::material_t>* materials, std::map<std::string, int>* map,
                   std::string* warn, std::string* err) override {
-    const std::string path = folder_.empty() ? id : folder_ + "/" + id;
+    if (refused_.code != TLOD_SUCCESS) return false;
     std::string text;
-    if (!read_small(path, &text)) {
-      if (warn) *warn += "material file '" + id + "' not read: default colour used\n";
+    try {
+      if (!read(id, &text)) {
+        if (warn) *warn += "material file '" + id + "' not found: default colour used\n";
+        return false;
+      }
+      check_mtl_exponents(text, id);
+    } catch (const ImportError& e) {
+      refused_ = e;
       return false;
     }
     std::istringstream in(text);
@@ -420,27 +471,34 @@ public:
     return true;
   }
 
-private:
-  std::string folder_;
-  static constexpr size_t kMaxBytes = size_t(16) << 20;
+  // The first refusal, if any (code TLOD_SUCCESS: none).
+  const ImportError& refused() const { return refused_; }
 
-  static bool read_small(const std::string& path, std::string* out) {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return false;
-    char buf[65536];
-    size_t got;
-    while ((got = std::fread(buf, 1, sizeof buf, f)) > 0 && out->size() <= kMaxBytes)
-      out->append(buf, got);
-    const bool ok = !std::ferror(f) && std::feof(f) && out->size() <= kMaxBytes;
-    std::fclose(f);
-    return ok;
+private:
+  const char* folder_;
+  _tlod_import_budget* budget_;
+  ImportError refused_{TLOD_SUCCESS, ""};
+
+  // false: not found; throws on a refusal.
+  bool read(const std::string& id, std::string* out) const {
+    const std::string where = format("mtllib '%.200s'", id.c_str());
+    if (!folder_) fail(TLOD_ERROR_IO, where + ": refused: an external file of a model imported from memory");
+    const size_t room = budget_->limit > budget_->used ? budget_->limit - budget_->used : 0;
+    unsigned char* data = nullptr;
+    size_t size = 0;
+    const _tlod_contained_status st = _tlod_contained_read(folder_, id.c_str(), room / 3, &data, &size);
+    if (st == _TLOD_CONTAINED_NOT_FOUND) return false;
+    if (st != _TLOD_CONTAINED_OK)
+      fail(st == _TLOD_CONTAINED_TOO_LARGE ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_IO,
+           where + ": " + _tlod_contained_message(st));
+    // Ours, the string, the stream's copy.
+    const bool ok = _tlod_budget_take(budget_, 3 * size);
+    if (ok) out->assign(reinterpret_cast<const char*>(data), size);
+    std::free(data);
+    if (!ok) fail(TLOD_ERROR_OUT_OF_MEMORY, where + ": " + _tlod_contained_message(_TLOD_CONTAINED_TOO_LARGE));
+    return true;
   }
 };
-
-std::string folder_of(const char* path) {
-  const char* slash = std::strrchr(path, '/');
-  return slash ? std::string(path, size_t(slash - path)) : std::string();
-}
 
 std::string one_line(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ' || s.back() == '.'))
@@ -459,6 +517,24 @@ tlod_result finish(const _tlod_import_job* job, const Output& out) {
   return _tlod_import_finish(job, &d);
 }
 
+// What tinyobjloader and the builder allocate, from the scan's counts, taken
+// from the budget before either runs (the file is only text: a few bytes
+// per corner become tens of bytes, but never more than this).
+void take_estimate(_tlod_import_budget* budget, const Scan& scan) {
+  size_t corners = 0;
+  for (size_t c : scan.face_corners)
+    corners += c;
+  // Per v: position + colour, twice (growth); vt, vn likewise; per corner: tinyobj's
+  // index, our sort key, an output vertex (position, normal: up to 3x for growth),
+  // fan indices; per face: its size, material and smoothing ids.
+  const double bytes = double(scan.counts[0]) * 48 + double(scan.counts[1]) * 16 + double(scan.counts[2]) * 24 +
+                       double(corners) * 160 + double(scan.face_lines.size()) * 24 + double(scan.text.size()) * 2;
+  if (bytes >= double(SIZE_MAX) || !_tlod_budget_take(budget, size_t(bytes)))
+    fail(TLOD_ERROR_OUT_OF_MEMORY, format("%zu vertices and %zu face corners: need about %.0f bytes, beyond the "
+                                          "import's memory budget (%zu bytes; tlod_import_desc.memory_limit)",
+                                          scan.counts[0], corners, bytes, budget->limit));
+}
+
 tlod_result import_obj(const _tlod_import_job* job) {
   unsigned char* bytes = nullptr;
   size_t size = 0;
@@ -475,6 +551,7 @@ tlod_result import_obj(const _tlod_import_job* job) {
   if (scan.face_lines.empty())
     fail(TLOD_ERROR_INVALID_MESH,
          format("no faces (%zu vertices, %zu ignored elements)", scan.counts[0], scan.ignored_elements));
+  take_estimate(job->budget, scan);
   Output out;
   if (scan.ignored_elements)
     out.warn(format("line %zu: '%s' and %zu other non-polygon statement(s) ignored", scan.first_ignored_line,
@@ -484,9 +561,10 @@ tlod_result import_obj(const _tlod_import_job* job) {
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
   std::istringstream in(scan.text);
-  MaterialReader mtl(folder_of(job->path));
+  MaterialReader mtl(job->folder, job->budget);
   const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &mtl,
                                    /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (mtl.refused().code != TLOD_SUCCESS) throw mtl.refused();
   if (!ok) fail(TLOD_ERROR_PARSE, "tinyobjloader: " + one_line(err));
   if (!warn.empty()) out.warn("tinyobjloader: " + one_line(warn));
   Builder(attrib, materials, scan, out).run(shapes);

@@ -24,7 +24,28 @@
  *     mesh comes in its bind pose);
  *   - trust the file: every offset, count and index is range-checked before
  *     it is read, and a malformed file gives an error naming the file and
- *     the element at fault, never a crash.
+ *     the element at fault, never a crash, a hang or unbounded memory;
+ *   - decode images (glTF images are never decoded nor opened).
+ *
+ * SECURITY RULE (docs/security.md)
+ *   A model file is untrusted input. An import
+ *     - reads only files inside the model's folder: an external reference (glTF
+ *       buffer URI, OBJ mtllib) is percent-decoded, refused if absolute or with
+ *       a scheme ("/x", "file:", "http:"), resolved with symlinks (realpath)
+ *       and refused unless the result lies inside the realpath of the model's
+ *       folder; it is opened non-blocking and read only if fstat says it is a
+ *       regular file (never a FIFO, device or socket), at most the remaining
+ *       memory budget in size. A refusal names the reference as written in the
+ *       file, never the size or the bytes of what it resolved to;
+ *     - allocates at most its memory budget (tlod_import_desc.memory_limit):
+ *       every size the file declares is checked against it, with overflow-
+ *       checked arithmetic, before anything is allocated; past it the import
+ *       fails with TLOD_ERROR_OUT_OF_MEMORY naming the element that asked;
+ *     - refuses, before any parser sees them, JSON nested deeper than 256
+ *       levels, GLB chunks that do not fit the file, and integer fields of
+ *       glTF (offsets, strides, counts, indices into arrays) that are not
+ *       non-negative JSON integers, and OBJ numbers with exponents of more
+ *       than 4 digits.
  *
  * STEP BY STEP
  *   1. char err[256];
@@ -41,7 +62,8 @@
  *   No global state: calls on different files may run on different threads.
  *   The result and its arrays come from the given allocator (NULL: malloc),
  *   which the result keeps so that tlod_import_free() needs no arguments;
- *   temporary parsing memory comes from malloc / operator new. Errors are
+ *   temporary parsing memory comes from malloc / operator new, within the
+ *   memory budget (which counts the result too). Errors are
  *   written to the caller's buffer (truncated to fit, always terminated;
  *   NULL or size 0: no message) as "<file>: <element>: <problem>".
  */
@@ -91,6 +113,22 @@ typedef struct tlod_import_result {
   tlod_allocator _allocator;                /* private: the allocator the arrays came from */
 } tlod_import_result;
 
+/* Memory budget, default rule: an import may allocate
+ *   TLOD_IMPORT_MEMORY_BASE + TLOD_IMPORT_MEMORY_PER_INPUT_BYTE x (bytes of the
+ *   file and of the external buffers it reads, at their real size),
+ * at most TLOD_IMPORT_MEMORY_CAP. Allocations are counted in all, not at
+ * their peak; parser-internal memory (tinygltf's model and JSON trees) is
+ * counted by a documented estimate (docs/security.md). */
+#define TLOD_IMPORT_MEMORY_BASE ((size_t)64 << 20)
+#define TLOD_IMPORT_MEMORY_PER_INPUT_BYTE ((size_t)64)
+#define TLOD_IMPORT_MEMORY_CAP ((size_t)8 << 30)
+
+/* Options of an import; zero is the default for every field. */
+typedef struct tlod_import_desc {
+  tlod_allocator allocator; /* result memory; both hooks NULL: malloc/free */
+  size_t memory_limit;      /* bytes the import may allocate in all; 0: the default rule above */
+} tlod_import_desc;
+
 /* Reads a mesh file; the format comes from the extension (.gltf .glb .obj
  * .ply, case-insensitive; anything else: TLOD_ERROR_UNSUPPORTED).
  *   path       file to read; external glTF buffers resolve relative to it
@@ -105,6 +143,17 @@ typedef struct tlod_import_result {
  * TLOD_ERROR_INVALID_ARGUMENT. */
 TLOD_API tlod_result tlod_import_file(const char* path, const tlod_allocator* allocator, tlod_import_result** out,
                                       char* error, size_t error_size);
+
+/* tlod_import_file() with options (desc NULL: all defaults). */
+TLOD_API tlod_result tlod_import_file_desc(const char* path, const tlod_import_desc* desc, tlod_import_result** out,
+                                           char* error, size_t error_size);
+
+/* Reads a mesh from memory: name gives the format (its extension) and the
+ * file name in messages; nothing is read from the file system, so external
+ * references (glTF buffer URIs, OBJ mtllib) are refused (a missing mtllib
+ * is a warning, as for files). data is not kept after the call. */
+TLOD_API tlod_result tlod_import_memory(const char* name, const void* data, size_t size, const tlod_import_desc* desc,
+                                        tlod_import_result** out, char* error, size_t error_size);
 
 /* Frees a result and its arrays; NULL is a no-op. */
 TLOD_API void tlod_import_free(tlod_import_result* r);
