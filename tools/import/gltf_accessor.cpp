@@ -197,9 +197,11 @@ Span Accessors::resolve(int index, const std::string& what, size_t element) cons
 std::vector<float> Accessors::read_floats(int index, const std::string& what, int components) const {
   check_ref(index, what);
   const tinygltf::Accessor& a = m_.accessors[size_t(index)];
-  if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != components)
+  // tinygltf's VEC2..VEC4 are 2..4, SCALAR is 64 + 1.
+  const int type = components == 1 ? TINYGLTF_TYPE_SCALAR : components;
+  if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != type)
     fail(TLOD_ERROR_UNSUPPORTED, format("%s: accessor %d is %s %s (float %s required)", what.c_str(), index,
-                                        component_name(a.componentType), type_name(a.type), type_name(components)));
+                                        component_name(a.componentType), type_name(a.type), type_name(type)));
   const size_t nc = size_t(components);
   const Span s = resolve(index, what, 4 * nc);
   take(s.count, 4 * nc, format("%s: accessor %d", what.c_str(), index));

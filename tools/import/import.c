@@ -321,6 +321,7 @@ tlod_result tlod_import_file(const char* path, const tlod_allocator* allocator, 
 tlod_result tlod_import_memory(const char* name, const void* data, size_t size, const tlod_import_desc* desc,
                                tlod_import_result** out, char* error, size_t error_size) {
   static const unsigned char empty[1] = {0};
+  if (out) *out = NULL;
   _tlod_import_job job = {name,
                           name ? _tlod_base_name(name) : "(null)",
                           NULL,

@@ -149,9 +149,9 @@ TLOD_API tlod_result tlod_import_file_desc(const char* path, const tlod_import_d
                                            char* error, size_t error_size);
 
 /* Reads a mesh from memory: name gives the format (its extension) and the
- * file name in messages; nothing is read from the file system, so external
- * references (glTF buffer URIs, OBJ mtllib) are refused (a missing mtllib
- * is a warning, as for files). data is not kept after the call. */
+ * file name in messages; nothing is read from the file system, so an
+ * external reference (glTF buffer URI, OBJ mtllib) fails the import with
+ * TLOD_ERROR_IO naming it. data is not kept after the call. */
 TLOD_API tlod_result tlod_import_memory(const char* name, const void* data, size_t size, const tlod_import_desc* desc,
                                         tlod_import_result** out, char* error, size_t error_size);
 
