@@ -44,8 +44,8 @@
  *     - refuses, before any parser sees them, JSON nested deeper than 256
  *       levels, GLB chunks that do not fit the file, and integer fields of
  *       glTF (offsets, strides, counts, indices into arrays) that are not
- *       non-negative JSON integers, and OBJ numbers with exponents of more
- *       than 4 digits.
+ *       non-negative JSON integers, and OBJ numbers whose exponent has
+ *       more than 4 significant digits (tinyobjloader would overflow an int).
  *
  * STEP BY STEP
  *   1. char err[256];
