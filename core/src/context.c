@@ -42,7 +42,7 @@ static uint32_t online_cpus(void) {
 /* Resolves every default of the desc in one place. */
 static tlod_context_desc context_desc_defaults(const tlod_context_desc* in) {
   tlod_context_desc d = in ? *in : (tlod_context_desc){0};
-  /* Only both or neither reach here (check_allocator). */
+  /* Only both or neither reach here (check_desc). */
   if (!d.allocator.alloc_fn) {
     d.allocator.alloc_fn = default_alloc;
     d.allocator.free_fn = default_free;
@@ -59,27 +59,39 @@ static tlod_context_desc context_desc_defaults(const tlod_context_desc* in) {
   return d;
 }
 
-/* One hook without the other would pair the caller's memory with malloc's:
- * refused, naming the missing hook. There is no context yet to hold the
- * message, so it goes to the desc's logger. */
-static tlod_result check_allocator(const tlod_context_desc* desc) {
-  const tlod_allocator* a = &desc->allocator;
-  if (!a->alloc_fn == !a->free_fn) return TLOD_SUCCESS;
+/* There is no context yet to hold a refusal: it goes to the desc's logger. */
+static tlod_result refuse_desc(const tlod_context_desc* desc, const char* fmt, ...) _TLOD_PRINTF(2, 3);
+static tlod_result refuse_desc(const tlod_context_desc* desc, const char* fmt, ...) {
   if (desc->logger.func) {
     char msg[256];
-    snprintf(msg, sizeof(msg),
-             "[%.63s] tlod_context_create: allocator.%s is NULL but the other hook is set (give both hooks or "
-             "neither)",
-             desc->label ? desc->label : "tesslod", a->alloc_fn ? "free_fn" : "alloc_fn");
+    int n = snprintf(msg, sizeof(msg), "[%.63s] tlod_context_create: ", desc->label ? desc->label : "tesslod");
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg + n, sizeof(msg) - (size_t)n, fmt, ap);
+    va_end(ap);
     desc->logger.func(TLOD_LOG_ERROR, msg, desc->logger.user_data);
   }
   return TLOD_ERROR_INVALID_ARGUMENT;
 }
 
+/* One allocator hook without the other would pair the caller's memory with
+ * malloc's; a worker count past TLOD_MAX_WORKERS would have every
+ * parallel stage allocate per-worker scratch without a useful bound. */
+static tlod_result check_desc(const tlod_context_desc* desc) {
+  const tlod_allocator* a = &desc->allocator;
+  if (!a->alloc_fn != !a->free_fn)
+    return refuse_desc(desc, "allocator.%s is NULL but the other hook is set (give both hooks or neither)",
+                       a->alloc_fn ? "free_fn" : "alloc_fn");
+  if (desc->parallel_for.func && desc->parallel_for.worker_count > TLOD_MAX_WORKERS)
+    return refuse_desc(desc, "parallel_for.worker_count %u is above TLOD_MAX_WORKERS (%u)",
+                       desc->parallel_for.worker_count, (unsigned)TLOD_MAX_WORKERS);
+  return TLOD_SUCCESS;
+}
+
 tlod_result tlod_context_create(const tlod_context_desc* desc, tlod_context** out) {
   if (!out) return TLOD_ERROR_INVALID_ARGUMENT;
   *out = NULL;
-  if (desc && check_allocator(desc) != TLOD_SUCCESS) return TLOD_ERROR_INVALID_ARGUMENT;
+  if (desc && check_desc(desc) != TLOD_SUCCESS) return TLOD_ERROR_INVALID_ARGUMENT;
   tlod_context_desc d = context_desc_defaults(desc);
   tlod_context* ctx = d.allocator.alloc_fn(sizeof(*ctx), d.allocator.user_data);
   if (!ctx) return TLOD_ERROR_OUT_OF_MEMORY;

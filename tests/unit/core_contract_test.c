@@ -81,6 +81,25 @@ TEST(allocator_hooks_all_or_none) {
   CHECK(tlod_context_create(&quiet, &ctx) == TLOD_ERROR_INVALID_ARGUMENT && ctx == NULL);
 }
 
+static void null_parallel_for(tlod_task_fn fn, void* task_data, uint32_t count, void* user_data) {
+  (void)user_data;
+  fn(task_data, 0, count, 0);
+}
+
+TEST(worker_count_bounded) {
+  log_capture log = {0};
+  tlod_context_desc d = {.logger = {capture_log, &log}, .parallel_for = {null_parallel_for, TLOD_MAX_WORKERS + 1}};
+  tlod_context* ctx = (tlod_context*)(uintptr_t)1;
+  CHECK(tlod_context_create(&d, &ctx) == TLOD_ERROR_INVALID_ARGUMENT && ctx == NULL);
+  CHECK_MSG(strstr(log.last, "parallel_for.worker_count 1025") != NULL, "message: '%s'", log.last);
+  d.parallel_for.worker_count = UINT32_MAX;
+  CHECK(tlod_context_create(&d, &ctx) == TLOD_ERROR_INVALID_ARGUMENT && ctx == NULL);
+  d.parallel_for.worker_count = TLOD_MAX_WORKERS;
+  CHECK(tlod_context_create(&d, &ctx) == TLOD_SUCCESS);
+  CHECK(tlod_context_worker_count(ctx) == TLOD_MAX_WORKERS);
+  tlod_context_destroy(ctx);
+}
+
 TEST(context_create_out_of_memory) {
   counting_allocator counter = {.fail_at = 0};
   tlod_context_desc d = {.thread_count = 4, .allocator = {counting_alloc, counting_free, &counter}};
@@ -330,6 +349,7 @@ TEST(null_handles) {
 
 int main(void) {
   RUN(allocator_hooks_all_or_none);
+  RUN(worker_count_bounded);
   RUN(context_create_out_of_memory);
   RUN(position_limit_at_create);
   RUN(position_limit_at_update);

@@ -41,8 +41,8 @@
  *   same result for any thread count. Every allocation goes through the
  *   desc's allocator. Messages go to the desc's logger.
  *
- * CONTRACT: WHAT IS CHECKED, WHAT IS UNDEFINED (lod.h, patterns.h,
- * backend.h and cpu.h follow the same policy; each lists its own checks)
+ * CONTRACT: WHAT IS CHECKED, WHAT IS UNDEFINED (lod.h, patterns.h and
+ * backend.h follow the same policy; each lists its own checks)
  *   Checked, in every function of this header:
  *   - NULL handles: create, update, refresh, eval and records calls return
  *     TLOD_ERROR_INVALID_ARGUMENT; destroy(NULL) is a no-op; queries return a
@@ -58,8 +58,9 @@
  *     tlod_surface_eval_grid() and tlod_surface_patch_records() return
  *     TLOD_ERROR_INVALID_ARGUMENT and write nothing (eval: *out zeroed).
  *     Enums outside their range, strides below an element, non-finite or
- *     negative parameters, an allocator with one hook of the two:
- *     TLOD_ERROR_INVALID_ARGUMENT naming the field.
+ *     negative parameters, an allocator with one hook of the two, more
+ *     than TLOD_MAX_WORKERS workers: TLOD_ERROR_INVALID_ARGUMENT naming the
+ *     field.
  *   - Mesh data: an index >= vertex_count, a position not finite or beyond
  *     TLOD_POSITION_LIMIT, a non-finite alpha: TLOD_ERROR_INVALID_MESH
  *     naming the face or vertex. Zero-length or non-finite normals,
@@ -164,7 +165,9 @@ typedef struct tlod_logger {
 typedef void (*tlod_task_fn)(void* task_data, uint32_t begin, uint32_t end, uint32_t worker);
 
 /* An engine's job system: run fn over [0, count) split in chunks of any size,
- * return when every chunk has run. worker ids must stay below worker_count. */
+ * return when every chunk has run. worker ids must stay below worker_count
+ * (0 == 1; above TLOD_MAX_WORKERS: refused, each worker has scratch memory). */
+#define TLOD_MAX_WORKERS 1024u
 typedef struct tlod_parallel_for {
   void (*func)(tlod_task_fn fn, void* task_data, uint32_t count, void* user_data);
   uint32_t worker_count;
@@ -183,7 +186,8 @@ typedef struct tlod_context_desc {
 
 /* Creates a context. desc may be NULL (all defaults). Fails with
  * TLOD_ERROR_INVALID_ARGUMENT (out NULL, one allocator hook without the
- * other) or TLOD_ERROR_OUT_OF_MEMORY; there is no context to hold a last
+ * other, parallel_for.worker_count > TLOD_MAX_WORKERS) or
+ * TLOD_ERROR_OUT_OF_MEMORY; there is no context to hold a last
  * error then, so the message goes to desc->logger. */
 TLOD_API tlod_result tlod_context_create(const tlod_context_desc* desc, tlod_context** out);
 /* Destroys a context; NULL is a no-op. Every object made from it must be
