@@ -42,7 +42,8 @@ static uint32_t online_cpus(void) {
 /* Resolves every default of the desc in one place. */
 static tlod_context_desc context_desc_defaults(const tlod_context_desc* in) {
   tlod_context_desc d = in ? *in : (tlod_context_desc){0};
-  if (!d.allocator.alloc_fn || !d.allocator.free_fn) {
+  /* Only both or neither reach here (check_desc). */
+  if (!d.allocator.alloc_fn) {
     d.allocator.alloc_fn = default_alloc;
     d.allocator.free_fn = default_free;
     d.allocator.user_data = NULL;
@@ -58,9 +59,39 @@ static tlod_context_desc context_desc_defaults(const tlod_context_desc* in) {
   return d;
 }
 
+/* There is no context yet to hold a refusal: it goes to the desc's logger. */
+static tlod_result refuse_desc(const tlod_context_desc* desc, const char* fmt, ...) _TLOD_PRINTF(2, 3);
+static tlod_result refuse_desc(const tlod_context_desc* desc, const char* fmt, ...) {
+  if (desc->logger.func) {
+    char msg[256];
+    int n = snprintf(msg, sizeof(msg), "[%.63s] tlod_context_create: ", desc->label ? desc->label : "tesslod");
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg + n, sizeof(msg) - (size_t)n, fmt, ap);
+    va_end(ap);
+    desc->logger.func(TLOD_LOG_ERROR, msg, desc->logger.user_data);
+  }
+  return TLOD_ERROR_INVALID_ARGUMENT;
+}
+
+/* One allocator hook without the other would pair the caller's memory with
+ * malloc's; a worker count past TLOD_MAX_WORKERS would have every
+ * parallel stage allocate per-worker scratch without a useful bound. */
+static tlod_result check_desc(const tlod_context_desc* desc) {
+  const tlod_allocator* a = &desc->allocator;
+  if (!a->alloc_fn != !a->free_fn)
+    return refuse_desc(desc, "allocator.%s is NULL but the other hook is set (give both hooks or neither)",
+                       a->alloc_fn ? "free_fn" : "alloc_fn");
+  if (desc->parallel_for.func && desc->parallel_for.worker_count > TLOD_MAX_WORKERS)
+    return refuse_desc(desc, "parallel_for.worker_count %u is above TLOD_MAX_WORKERS (%u)",
+                       desc->parallel_for.worker_count, (unsigned)TLOD_MAX_WORKERS);
+  return TLOD_SUCCESS;
+}
+
 tlod_result tlod_context_create(const tlod_context_desc* desc, tlod_context** out) {
   if (!out) return TLOD_ERROR_INVALID_ARGUMENT;
   *out = NULL;
+  if (desc && check_desc(desc) != TLOD_SUCCESS) return TLOD_ERROR_INVALID_ARGUMENT;
   tlod_context_desc d = context_desc_defaults(desc);
   tlod_context* ctx = d.allocator.alloc_fn(sizeof(*ctx), d.allocator.user_data);
   if (!ctx) return TLOD_ERROR_OUT_OF_MEMORY;
@@ -90,6 +121,7 @@ tlod_context_desc tlod_context_query_desc(const tlod_context* ctx) { return ctx 
 const char* tlod_context_last_error(const tlod_context* ctx) { return ctx ? ctx->last_error : ""; }
 
 void* tlod_context_alloc(const tlod_context* ctx, size_t size) {
+  if (!ctx) return NULL;
   if (size == 0) size = 1;
   return ctx->desc.allocator.alloc_fn(size, ctx->desc.allocator.user_data);
 }
@@ -103,11 +135,11 @@ void* tlod_context_calloc(const tlod_context* ctx, size_t count, size_t size) {
 }
 
 void tlod_context_free(const tlod_context* ctx, void* ptr) {
-  if (ptr) ctx->desc.allocator.free_fn(ptr, ctx->desc.allocator.user_data);
+  if (ctx && ptr) ctx->desc.allocator.free_fn(ptr, ctx->desc.allocator.user_data);
 }
 
 static void vlog(const tlod_context* ctx, tlod_log_level level, const char* fmt, va_list ap) {
-  if (!ctx->desc.logger.func) return;
+  if (!ctx || !ctx->desc.logger.func) return;
   char msg[640];
   int n = snprintf(msg, sizeof(msg), "[%s] ", ctx->label);
   if (n < 0) n = 0;
@@ -132,11 +164,13 @@ void tlod_context_log(const tlod_context* ctx, tlod_log_level level, const char*
   va_end(ap);
 }
 
-uint32_t tlod_context_worker_count(const tlod_context* ctx) { return ctx->desc.thread_count; }
+uint32_t tlod_context_worker_count(const tlod_context* ctx) { return ctx ? ctx->desc.thread_count : 1u; }
 
 void tlod_context_parallel_for(const tlod_context* ctx, tlod_task_fn fn, void* data, uint32_t count) {
   if (count == 0) return;
-  if (ctx->desc.parallel_for.func) {
+  if (!ctx) {
+    fn(data, 0, count, 0); /* no context: on the caller, as one worker */
+  } else if (ctx->desc.parallel_for.func) {
     ctx->desc.parallel_for.func(fn, data, count, ctx->desc.parallel_for.user_data);
   } else if (ctx->pool) {
     _tlod_pool_run(ctx->pool, fn, data, count);

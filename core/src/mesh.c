@@ -163,15 +163,30 @@ static tlod_result check_indices(tlod_context* ctx, const mesh_plan* p) {
   return TLOD_SUCCESS;
 }
 
+/* Positions are finite and within TLOD_POSITION_LIMIT, so that the float
+ * maths downstream (PN control points, squared lengths, projections) cannot
+ * overflow (docs/design.md "Coordinate range"). what: "" or "update: ". */
+static tlod_result check_position(tlod_context* ctx, const char* label, const char* what, uint32_t v,
+                                  const float x[3]) {
+  for (int c = 0; c < 3; c++) {
+    if (!isfinite(x[c]))
+      return _tlod_fail(ctx, TLOD_ERROR_INVALID_MESH, "mesh '%s': %svertex %u: position.%c is %g (not finite)", label,
+                        what, v, component_name[c], (double)x[c]);
+    if (fabsf(x[c]) > TLOD_POSITION_LIMIT)
+      return _tlod_fail(ctx, TLOD_ERROR_INVALID_MESH,
+                        "mesh '%s': %svertex %u: position.%c is %g (outside +-%g, TLOD_POSITION_LIMIT)", label, what, v,
+                        component_name[c], (double)x[c], (double)TLOD_POSITION_LIMIT);
+  }
+  return TLOD_SUCCESS;
+}
+
 static tlod_result check_vertices(tlod_context* ctx, const mesh_plan* p) {
   const tlod_mesh_desc* d = &p->d;
   for (uint32_t v = 0; v < d->vertex_count; v++) {
     float x[3];
     load3(d->positions, d->position_stride, v, x);
-    for (int c = 0; c < 3; c++)
-      if (!isfinite(x[c]))
-        return _tlod_fail(ctx, TLOD_ERROR_INVALID_MESH, "mesh '%s': vertex %u: position.%c is %g (not finite)",
-                          p->label, v, component_name[c], (double)x[c]);
+    tlod_result r = check_position(ctx, p->label, "", v, x);
+    if (r != TLOD_SUCCESS) return r;
     if (d->alphas && !isfinite(load1(d->alphas, d->alpha_stride, v)))
       return _tlod_fail(ctx, TLOD_ERROR_INVALID_MESH, "mesh '%s': vertex %u: alpha is %g (not finite)", p->label, v,
                         (double)load1(d->alphas, d->alpha_stride, v));
@@ -294,6 +309,13 @@ static bool face_degenerate(tlod_mesh* m, uint32_t f, const uint32_t* idx, uint3
   return zero;
 }
 
+/* The mesh is freed on failure: its refusal names a face from the findings. */
+static const char* first_degenerate(const tlod_mesh* m) {
+  for (uint32_t i = 0; i < m->info.finding_count; i++)
+    if (m->findings[i].kind == TLOD_FINDING_DEGENERATE_FACE) return m->findings[i].message;
+  return "face 0 first; findings full";
+}
+
 static tlod_result copy_faces(tlod_mesh* m, const mesh_plan* p) {
   const tlod_context* ctx = m->ctx;
   uint32_t nf = p->input_faces;
@@ -323,7 +345,8 @@ static tlod_result copy_faces(tlod_mesh* m, const mesh_plan* p) {
   m->face_count = kept;
   m->info.face_count = kept;
   if (kept == 0)
-    return _tlod_fail(m->ctx, TLOD_ERROR_INVALID_MESH, "mesh '%s': all %u faces are degenerate", m->label, nf);
+    return _tlod_fail(m->ctx, TLOD_ERROR_INVALID_MESH, "mesh '%s': all %u faces are degenerate (%s)", m->label, nf,
+                      first_degenerate(m));
   return TLOD_SUCCESS;
 }
 
@@ -526,11 +549,8 @@ static tlod_result check_update(tlod_mesh* m, const float* positions, uint32_t p
   for (uint32_t v = 0; positions && v < n; v++) {
     float x[3];
     load3(positions, ps, v, x);
-    for (int c = 0; c < 3; c++)
-      if (!isfinite(x[c]))
-        return _tlod_fail(m->ctx, TLOD_ERROR_INVALID_MESH,
-                          "mesh '%s': update: vertex %u: position.%c is %g (not finite)", m->label, v,
-                          component_name[c], (double)x[c]);
+    tlod_result r = check_position(m->ctx, m->label, "update: ", v, x);
+    if (r != TLOD_SUCCESS) return r;
   }
   for (uint32_t v = 0; normals && v < n; v++) {
     float x[3], u[3];

@@ -1,6 +1,7 @@
 /* tesslod::core -- surfaces: per-patch precomputation and the evaluation
  * entry point that routes corners, edges and interiors (docs/design.md
  * invariants 1 and 2). */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -230,9 +231,9 @@ tlod_result tlod_surface_refresh(tlod_surface* s, uint32_t* updated) {
   return TLOD_SUCCESS;
 }
 
-tlod_surface_desc tlod_surface_query_desc(const tlod_surface* s) { return s->desc; }
-const tlod_mesh* tlod_surface_mesh(const tlod_surface* s) { return s->mesh; }
-uint32_t tlod_surface_patch_count(const tlod_surface* s) { return s->patch_count; }
+tlod_surface_desc tlod_surface_query_desc(const tlod_surface* s) { return s ? s->desc : (tlod_surface_desc){0}; }
+const tlod_mesh* tlod_surface_mesh(const tlod_surface* s) { return s ? s->mesh : NULL; }
+uint32_t tlod_surface_patch_count(const tlod_surface* s) { return s ? s->patch_count : 0; }
 
 tlod_patch_info tlod_surface_patch(const tlod_surface* s, uint32_t patch) {
   if (!s || patch >= s->patch_count) return (tlod_patch_info){0};
@@ -321,7 +322,12 @@ void _tlod_patch_edge_point(const tlod_surface* s, uint32_t patch, uint32_t edge
     _tlod_edge_eval(s, b, a, 1.0f - t_end, pos, nrm);
 }
 
-void tlod_surface_eval(const tlod_surface* s, uint32_t patch, float u, float v, tlod_surface_point* out) {
+tlod_result tlod_surface_eval(const tlod_surface* s, uint32_t patch, float u, float v, tlod_surface_point* out) {
+  /* No last error: this runs on many threads at once (tesslod/core.h). */
+  if (!s || !out || patch >= s->patch_count || !isfinite(u) || !isfinite(v)) {
+    if (out) memset(out, 0, sizeof(*out));
+    return TLOD_ERROR_INVALID_ARGUMENT;
+  }
   _tlod_patch_eval(s, patch, u, v, out);
   uint32_t edge;
   float t_end, normal[3];
@@ -330,4 +336,5 @@ void tlod_surface_eval(const tlod_surface* s, uint32_t patch, float u, float v, 
     float* nrm = s->desc.shading_normal == TLOD_SHADING_NORMAL_TRUE ? normal : out->normal;
     _tlod_patch_edge_point(s, patch, edge, t_end, out->position, nrm);
   }
+  return TLOD_SUCCESS;
 }

@@ -26,7 +26,14 @@ static uint32_t quad_kind(uint32_t nn, uint32_t i, uint32_t j, uint32_t* param) 
   return TLOD_GRID_INTERIOR;
 }
 
+static bool on_grid(uint32_t corner_count, uint32_t grid_log2, uint32_t i, uint32_t j) {
+  if (grid_log2 > TLOD_GRID_MAX_LOG2 || (corner_count != 3 && corner_count != 4)) return false;
+  uint32_t nn = 1u << grid_log2; /* i, j < 2^32 and nn <= 2^15: the sum cannot wrap in 64 bits */
+  return corner_count == 4 ? i <= nn && j <= nn : (uint64_t)i + j <= nn;
+}
+
 uint32_t tlod_grid_point_kind(uint32_t corner_count, uint32_t grid_log2, uint32_t i, uint32_t j, uint32_t* param) {
+  if (!on_grid(corner_count, grid_log2, i, j)) return TLOD_GRID_OFF;
   uint32_t nn = 1u << grid_log2;
   return corner_count == 4 ? quad_kind(nn, i, j, param) : triangle_kind(nn, i, j, param);
 }
@@ -49,8 +56,23 @@ static void eval_point(const tlod_surface* s, uint32_t patch, const _tlod_corner
   }
 }
 
-void tlod_surface_eval_grid(const tlod_surface* s, uint32_t patch, uint32_t grid_log2, const uint16_t* ij,
-                            size_t ij_stride, uint32_t count, float* positions, float* normals) {
+/* Every point on the grid, before anything is written. */
+static bool grid_valid(uint32_t corners, uint32_t grid_log2, const uint16_t* ij, size_t ij_stride, uint32_t count) {
+  const char* at = (const char*)ij;
+  for (uint32_t k = 0; k < count; k++, at += ij_stride) {
+    uint16_t point[2];
+    memcpy(point, at, sizeof(point));
+    if (!on_grid(corners, grid_log2, point[0], point[1])) return false;
+  }
+  return true;
+}
+
+tlod_result tlod_surface_eval_grid(const tlod_surface* s, uint32_t patch, uint32_t grid_log2, const uint16_t* ij,
+                                   size_t ij_stride, uint32_t count, float* positions, float* normals) {
+  if (!s || patch >= s->patch_count || grid_log2 > TLOD_GRID_MAX_LOG2) return TLOD_ERROR_INVALID_ARGUMENT;
+  if (count == 0) return TLOD_SUCCESS;
+  if (!ij || !positions || !grid_valid(s->mesh->face_corners[patch], grid_log2, ij, ij_stride, count))
+    return TLOD_ERROR_INVALID_ARGUMENT;
   _tlod_corners c;
   _tlod_patch_corners(s, patch, &c);
   const char* at = (const char*)ij;
@@ -60,4 +82,5 @@ void tlod_surface_eval_grid(const tlod_surface* s, uint32_t patch, uint32_t grid
     memcpy(point, at, sizeof(point));
     eval_point(s, patch, &c, grid_log2, point, positions + 3 * (size_t)k, normals ? normals + 3 * (size_t)k : unused);
   }
+  return TLOD_SUCCESS;
 }

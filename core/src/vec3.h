@@ -28,10 +28,18 @@ static inline v3 v3_mix2(v3 a, float s, v3 b, float t) { return v3_add(v3_scale(
 static inline v3 v3_mix3(v3 a, float s, v3 b, float t, v3 c, float r) {
   return v3_add(v3_add(v3_scale(a, s), v3_scale(b, t)), v3_scale(c, r));
 }
-/* Unit vector; a zero vector stays zero (callers fall back on a valid normal). */
+/* Unit vector; a zero vector stays zero (callers fall back on a valid normal).
+ * Where the squared length under- or overflows (a cross product of tangents
+ * on a tiny or huge patch), the vector is first divided by its largest
+ * component, so the result is unit there too; in between, one rounding
+ * order as always. */
 static inline v3 v3_normalize(v3 a) {
   float len = v3_length(a);
-  return len > 0.0f ? v3_scale(a, 1.0f / len) : a;
+  if (len > 1e-18f && len < 1e18f) return v3_scale(a, 1.0f / len);
+  float m = fmaxf(fabsf(a.x), fmaxf(fabsf(a.y), fabsf(a.z)));
+  if (!(m > 0.0f) || !isfinite(m)) return a;
+  v3 b = {a.x / m, a.y / m, a.z / m};
+  return v3_scale(b, 1.0f / v3_length(b));
 }
 /* Phong projection of q onto the tangent plane of (p, n). */
 static inline v3 v3_project(v3 q, v3 p, v3 n) { return v3_sub(q, v3_scale(n, v3_dot(v3_sub(q, p), n))); }

@@ -256,6 +256,7 @@ uint32_t tlod_patterns_max_level(const tlod_patterns* patterns) { return pattern
  * are such grid points, so there is one classification, core's. */
 uint32_t tlod_pattern_vertex_kind(tlod_pattern_shape shape, uint32_t max_level, uint32_t i, uint32_t j,
                                   uint32_t* param) {
+  if (!shape_valid(shape)) return TLOD_PATTERN_KIND_OFF;
   return tlod_grid_point_kind(shape == TLOD_PATTERN_TRIANGLE ? 3u : 4u, max_level, i, j, param);
 }
 

@@ -110,9 +110,12 @@ void tlod_scheduler_destroy(tlod_scheduler* s) {
   tlod_context_free(s->ctx, s);
 }
 
-tlod_scheduler_desc tlod_scheduler_query_desc(const tlod_scheduler* s) { return s->desc; }
+tlod_scheduler_desc tlod_scheduler_query_desc(const tlod_scheduler* s) {
+  return s ? s->desc : (tlod_scheduler_desc){0};
+}
 
 void tlod_scheduler_reset(tlod_scheduler* s) {
+  if (!s) return;
   for (uint32_t v = 0; v < s->view_count; v++)
     s->views[v].has_history = false;
   s->eps_scale = 1.0f;

@@ -178,6 +178,48 @@ void tlod_device_destroy_surface(tlod_device* dev, tlod_device_surface* ds) {
 
 /* The draw list fits the surface and the device's patterns (a level past the
  * patterns would index past the pattern buffers). */
+/* The arrays a backend reads: present wherever their count says so. */
+static tlod_result check_draw_arrays(tlod_device* dev, uint32_t k, const tlod_draw_list* dl) {
+  const char* missing = NULL;
+  if (!dl->levels && dl->patch_count > 0) missing = "levels";
+  if (!dl->instances && dl->instance_count > 0) missing = "instances";
+  if (!dl->buckets && dl->bucket_count > 0) missing = "buckets";
+  if (!dl->strips && dl->strip_count > 0) missing = "strips";
+  if (!missing) return TLOD_SUCCESS;
+  return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_device_draw: item %u: draw list %s is NULL", k,
+                           missing);
+}
+
+/* Levels are -1 (culled) or the patterns'; instances name patches of the
+ * surface; strips name edges of their patches. */
+static tlod_result check_draw_refs(tlod_device* dev, uint32_t k, const tlod_device_surface* ds,
+                                   const tlod_draw_list* dl) {
+  const char* fn = "tlod_device_draw";
+  for (uint32_t f = 0; f < dl->patch_count; f++) {
+    if (dl->levels[f] < -1 || dl->levels[f] > (int)dev->max_level)
+      return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                               "%s: item %u: patch %u: level %d outside [-1, %u] (the device's patterns)", fn, k, f,
+                               dl->levels[f], dev->max_level);
+  }
+  for (uint32_t i = 0; i < dl->instance_count; i++) {
+    const tlod_draw_instance* in = &dl->instances[i];
+    if (in->patch >= dl->patch_count || in->level > dev->max_level)
+      return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                               "%s: item %u: instance %u (patch %u, level %u) outside surface '%s' (%u patches) or "
+                               "the device's patterns (max level %u)",
+                               fn, k, i, in->patch, in->level, ds->label, dl->patch_count, dev->max_level);
+  }
+  tlod_mesh_view mv = tlod_mesh_query_view(tlod_surface_mesh(ds->surface));
+  for (uint32_t s = 0; s < dl->strip_count; s++) {
+    const tlod_draw_strip* st = &dl->strips[s];
+    if (st->edge_a >= mv.face_corners[st->patch_a] || st->edge_b >= mv.face_corners[st->patch_b])
+      return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                               "%s: item %u: strip %u: edge %u of patch %u or edge %u of patch %u does not exist", fn,
+                               k, s, st->edge_a, st->patch_a, st->edge_b, st->patch_b);
+  }
+  return TLOD_SUCCESS;
+}
+
 static tlod_result check_draw_list(tlod_device* dev, uint32_t k, const tlod_device_surface* ds,
                                    const tlod_draw_list* dl) {
   const char* fn = "tlod_device_draw";
@@ -185,6 +227,8 @@ static tlod_result check_draw_list(tlod_device* dev, uint32_t k, const tlod_devi
     return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
                              "%s: item %u: draw list of %u patches for surface '%s' of %u", fn, k, dl->patch_count,
                              ds->label, ds->patch_count);
+  tlod_result r = check_draw_arrays(dev, k, dl);
+  if (r != TLOD_SUCCESS) return r;
   for (uint32_t b = 0; b < dl->bucket_count; b++) {
     const tlod_draw_bucket* bk = &dl->buckets[b];
     if (bk->level > dev->max_level || (uint32_t)bk->shape >= TLOD_PATTERN_SHAPE_NUM || bk->first > dl->instance_count ||
@@ -203,7 +247,7 @@ static tlod_result check_draw_list(tlod_device* dev, uint32_t k, const tlod_devi
                                "device's patterns (max level %u)",
                                fn, k, s, st->patch_a, st->patch_b, st->level_a, st->level_b, dev->max_level);
   }
-  return TLOD_SUCCESS;
+  return check_draw_refs(dev, k, ds, dl);
 }
 
 static tlod_result check_draw(tlod_device* dev, const tlod_draw_desc* d) {

@@ -41,6 +41,49 @@
  *   same result for any thread count. Every allocation goes through the
  *   desc's allocator. Messages go to the desc's logger.
  *
+ * CONTRACT: WHAT IS CHECKED, WHAT IS UNDEFINED (lod.h, patterns.h and
+ * backend.h follow the same policy; each lists its own checks)
+ *   Checked, in every function of this header:
+ *   - NULL handles: create, update, refresh, eval and records calls return
+ *     TLOD_ERROR_INVALID_ARGUMENT; destroy(NULL) is a no-op; queries return a
+ *     value that is no data (0, NULL, "", a zeroed struct, UINT32_MAX for an
+ *     index, TLOD_FINDING_NUM). The plumbing at the end with a NULL context:
+ *     alloc gives NULL, free and log do nothing, parallel_for runs on the
+ *     caller as worker 0.
+ *   - NULL out pointers, a NULL mesh desc: TLOD_ERROR_INVALID_ARGUMENT; *out
+ *     is set to NULL first whenever out is not NULL. A NULL context or
+ *     surface desc means all defaults.
+ *   - Ranges: a face, vertex, edge, finding or patch index past the end
+ *     gives the query's no-data value; tlod_surface_eval(),
+ *     tlod_surface_eval_grid() and tlod_surface_patch_records() return
+ *     TLOD_ERROR_INVALID_ARGUMENT and write nothing (eval: *out zeroed).
+ *     Enums outside their range, strides below an element, non-finite or
+ *     negative parameters, an allocator with one hook of the two, more
+ *     than TLOD_MAX_WORKERS workers: TLOD_ERROR_INVALID_ARGUMENT naming the
+ *     field.
+ *   - Mesh data: an index >= vertex_count, a position not finite or beyond
+ *     TLOD_POSITION_LIMIT, a non-finite alpha: TLOD_ERROR_INVALID_MESH
+ *     naming the face or vertex. Zero-length or non-finite normals,
+ *     degenerate faces (repeated or coincident corners, zero area) and
+ *     alphas outside [0, 1] are repaired and counted (tlod_mesh_info).
+ *   A failure is recorded in tlod_context_last_error() (and logged), except
+ *   with no context to hold it (a NULL context; tlod_context_create's
+ *   refusals go to the desc's logger) and in the two eval calls, which may
+ *   run on many threads at once.
+ *   Undefined (not checked):
+ *   - an object used after its destroy, a context destroyed before its
+ *     objects, a mesh destroyed before its surfaces, objects of two contexts
+ *     mixed in one call;
+ *   - arrays shorter than their counts and strides say (input arrays, out
+ *     buffers such as eval_grid's 3 floats per point);
+ *   - calls on one context or its objects from two threads at once, apart
+ *     from the const queries and evals named under THREADING (and those
+ *     while tlod_mesh_update() or tlod_surface_refresh() runs);
+ *   - hooks that break their contract: an allocator returning unaligned or
+ *     shared memory, a parallel_for that skips or repeats a chunk;
+ *   - NULL pointers given to the pure helpers (tlod_patch_error_bound(),
+ *     tlod_grid_point_kind()'s param).
+ *
  * PARAMETERS (u, v)
  *   Triangle (i, j, k): p(u, v) has barycentric weight u on i, v on j and
  *   w = 1 - u - v on k. Quad (0, 1, 2, 3): bilinear weights (1-u)(1-v),
@@ -93,8 +136,10 @@ TLOD_API const char* tlod_result_string(tlod_result result);
 
 typedef struct tlod_context tlod_context;
 
-/* Allocator hooks. Both NULL: malloc/free. alloc returns memory aligned to
- * at least 16 bytes or NULL; free accepts NULL. */
+/* Allocator hooks. Both NULL: malloc/free; one without the other:
+ * tlod_context_create() refuses (TLOD_ERROR_INVALID_ARGUMENT, the desc's
+ * logger names the missing hook). alloc returns memory aligned to at least
+ * 16 bytes or NULL; free accepts NULL. */
 typedef struct tlod_allocator {
   void* (*alloc_fn)(size_t size, void* user_data);
   void (*free_fn)(void* ptr, void* user_data);
@@ -120,7 +165,9 @@ typedef struct tlod_logger {
 typedef void (*tlod_task_fn)(void* task_data, uint32_t begin, uint32_t end, uint32_t worker);
 
 /* An engine's job system: run fn over [0, count) split in chunks of any size,
- * return when every chunk has run. worker ids must stay below worker_count. */
+ * return when every chunk has run. worker ids must stay below worker_count
+ * (0 == 1; above TLOD_MAX_WORKERS: refused, each worker has scratch memory). */
+#define TLOD_MAX_WORKERS 1024u
 typedef struct tlod_parallel_for {
   void (*func)(tlod_task_fn fn, void* task_data, uint32_t count, void* user_data);
   uint32_t worker_count;
@@ -137,7 +184,11 @@ typedef struct tlod_context_desc {
   const char* label;              /* shows up in log messages; default "tesslod" */
 } tlod_context_desc;
 
-/* Creates a context. desc may be NULL (all defaults). */
+/* Creates a context. desc may be NULL (all defaults). Fails with
+ * TLOD_ERROR_INVALID_ARGUMENT (out NULL, one allocator hook without the
+ * other, parallel_for.worker_count > TLOD_MAX_WORKERS) or
+ * TLOD_ERROR_OUT_OF_MEMORY; there is no context to hold a last
+ * error then, so the message goes to desc->logger. */
 TLOD_API tlod_result tlod_context_create(const tlod_context_desc* desc, tlod_context** out);
 /* Destroys a context; NULL is a no-op. Every object made from it must be
  * destroyed first. */
@@ -174,8 +225,15 @@ typedef enum tlod_normal_mode {
   _TLOD_NORMALS_FORCE_U32 = 0x7FFFFFFF
 } tlod_normal_mode;
 
+/* Largest |coordinate| of a position, world units: mesh create and update
+ * refuse a vertex outside it (TLOD_ERROR_INVALID_MESH naming the vertex).
+ * Chosen so that float maths on positions cannot overflow: PN control points
+ * lie within 5.2x this of the origin (Euclidean), so squared distances
+ * between them stay below 1.1e38 < FLT_MAX (3.4e38). */
+#define TLOD_POSITION_LIMIT 1e18f
+
 typedef struct tlod_mesh_desc {
-  const float* positions;   /* required: xyz per vertex */
+  const float* positions;   /* required: xyz per vertex, finite, |x| <= TLOD_POSITION_LIMIT */
   uint32_t position_stride; /* bytes; 0 == 12 */
   const float* normals;     /* optional: xyz per vertex */
   uint32_t normal_stride;   /* bytes; 0 == 12 */
@@ -373,8 +431,12 @@ TLOD_API tlod_patch_info tlod_surface_patch(const tlod_surface* surface, uint32_
  * (may be NULL). */
 TLOD_API tlod_result tlod_surface_refresh(tlod_surface* surface, uint32_t* updated);
 
-/* Evaluates patch at (u, v): see PARAMETERS above. Thread-safe. */
-TLOD_API void tlod_surface_eval(const tlod_surface* surface, uint32_t patch, float u, float v, tlod_surface_point* out);
+/* Evaluates patch at (u, v): see PARAMETERS above. Thread-safe. NULL
+ * surface or out, patch >= the patch count, or u, v not finite:
+ * TLOD_ERROR_INVALID_ARGUMENT and *out (if any) zeroed; no last error is
+ * recorded (the call may run on many threads at once). */
+TLOD_API tlod_result tlod_surface_eval(const tlod_surface* surface, uint32_t patch, float u, float v,
+                                       tlod_surface_point* out);
 
 /* ------------------------------------------------------------------------ */
 /* Enum names                                                               */
@@ -491,9 +553,12 @@ TLOD_API tlod_result tlod_surface_patch_records(const tlod_surface* surface, uin
  * quads: 0 <= i, j <= 2^g): 0..3 a corner (triangle i, j, k; quad 0..3),
  * TLOD_GRID_EDGE + e on edge e (from corner e to corner (e + 1) % n;
  * *param = the end corner's weight times 2^g), TLOD_GRID_INTERIOR inside
- * (*param untouched). Pure. */
+ * (*param untouched); TLOD_GRID_OFF for a point off the grid or grid_log2 >
+ * TLOD_GRID_MAX_LOG2 (15: coordinates are uint16_t). Pure. */
 #define TLOD_GRID_EDGE 4u
 #define TLOD_GRID_INTERIOR 8u
+#define TLOD_GRID_OFF 16u
+#define TLOD_GRID_MAX_LOG2 15u
 TLOD_API uint32_t tlod_grid_point_kind(uint32_t corner_count, uint32_t grid_log2, uint32_t i, uint32_t j,
                                        uint32_t* param);
 
@@ -503,10 +568,14 @@ TLOD_API uint32_t tlod_grid_point_kind(uint32_t corner_count, uint32_t grid_log2
  * vertices exactly, edge points come from the canonical edge function
  * (bitwise equal on both patches of a smooth edge), interior points from the
  * patch's formula with its corners gathered once. positions and normals
- * receive 3 floats per point; normals may be NULL. Thread-safe. */
-TLOD_API void tlod_surface_eval_grid(const tlod_surface* surface, uint32_t patch, uint32_t grid_log2,
-                                     const uint16_t* ij, size_t ij_stride, uint32_t count, float* positions,
-                                     float* normals);
+ * receive 3 floats per point; normals may be NULL. Thread-safe.
+ * TLOD_ERROR_INVALID_ARGUMENT, nothing written and no last error recorded:
+ * NULL surface, patch >= the patch count, grid_log2 > 15, ij or positions
+ * NULL with count > 0, or a point off the grid (i + j > 2^g for triangles,
+ * i or j > 2^g for quads). */
+TLOD_API tlod_result tlod_surface_eval_grid(const tlod_surface* surface, uint32_t patch, uint32_t grid_log2,
+                                            const uint16_t* ij, size_t ij_stride, uint32_t count, float* positions,
+                                            float* normals);
 
 #ifdef __cplusplus
 }

@@ -42,6 +42,20 @@
  *   allocator: per view arrays on the first update with that many views,
  *   and the strip array when a frame needs more strips than any before;
  *   otherwise an update does not allocate.
+ *
+ * CONTRACT (the policy of tesslod/core.h; what this header checks)
+ *   - NULL handles: create and update return TLOD_ERROR_INVALID_ARGUMENT,
+ *     destroy and reset do nothing, the queries return zero / NULL; a NULL
+ *     surface, patterns or out pointer at create: TLOD_ERROR_INVALID_ARGUMENT.
+ *   - Every desc field outside its documented range, and a max_level above
+ *     the patterns': TLOD_ERROR_INVALID_ARGUMENT naming the field.
+ *   - Frames: NULL or no views, dt_ms negative or not finite, a view with
+ *     non-finite matrices, proj[5] == 0 or an empty viewport:
+ *     TLOD_ERROR_INVALID_ARGUMENT naming the view; nothing is planned.
+ *   - tlod_scheduler_draw_list() of a view the last update did not plan: NULL.
+ *   Undefined: frame.views shorter than view_count; the surface or patterns
+ *   destroyed before the scheduler; a draw list read after the next update;
+ *   NULL pointers given to the pure helpers below.
  */
 #ifndef TESSLOD_LOD_H
 #define TESSLOD_LOD_H

@@ -33,6 +33,16 @@
  *   once. The pure functions (counts, tlod_pattern_vertex_kind) need no
  *   patterns object.
  *
+ * CONTRACT (the policy of tesslod/core.h; what this header checks)
+ *   - tlod_patterns_create(): NULL ctx or out, max_level > TLOD_MAX_LEVEL:
+ *     TLOD_ERROR_INVALID_ARGUMENT (desc NULL: defaults).
+ *   - Queries: NULL patterns, a shape outside the enum, a level above the
+ *     set's max level, an edge >= the shape's corner count: NULL / 0, and
+ *     *count / *index_count / *triangle_count set to 0; nothing written.
+ *     The pure counts return 0 for a bad shape or a level > TLOD_MAX_LEVEL.
+ *   Undefined: tlod_patterns_edge()'s out shorter than 2^level + 1; the
+ *   patterns destroyed while a scheduler or device uses them.
+ *
  * ORIENTATION
  *   Triangles are counter-clockwise in (u, v) for the triangle (u=1 at corner
  *   i, v=1 at corner j, w=1 at corner k), and for the quad (0,0) (1,0) (1,1)
@@ -97,9 +107,11 @@ TLOD_API uint32_t tlod_patterns_edge(const tlod_patterns* patterns, tlod_pattern
                                      uint32_t edge, uint32_t* out);
 /* Where pattern vertex (i, j) (grid coordinates over 2^max_level) lies on its
  * patch: tlod_grid_point_kind() of tesslod/core.h for the shape's corner
- * count, kept under this name for the backends. */
+ * count, kept under this name for the backends; TLOD_PATTERN_KIND_OFF for a
+ * bad shape, a point off the grid or max_level > TLOD_GRID_MAX_LOG2. */
 #define TLOD_PATTERN_KIND_EDGE TLOD_GRID_EDGE
 #define TLOD_PATTERN_KIND_INTERIOR TLOD_GRID_INTERIOR
+#define TLOD_PATTERN_KIND_OFF TLOD_GRID_OFF
 TLOD_API uint32_t tlod_pattern_vertex_kind(tlod_pattern_shape shape, uint32_t max_level, uint32_t i, uint32_t j,
                                            uint32_t* param);
 /* Bytes held by the nested set, and (out) the bytes separate per-level

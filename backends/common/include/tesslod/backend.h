@@ -50,6 +50,22 @@
  *   the item: "tlod_device_draw: item 3: surface 'cow' belongs to another
  *   device". Nothing is drawn then.
  *
+ * CONTRACT (the policy of tesslod/core.h; what this header checks)
+ *   - NULL handles: create, update, draw and read calls return
+ *     TLOD_ERROR_INVALID_ARGUMENT, destroy calls do nothing, queries return
+ *     "" / zero / NULL; NULL out pointers and descs are refused by name.
+ *   - A draw list "fits" when its patch count is the surface's, its level,
+ *     instance, bucket and strip arrays are there for their counts, every
+ *     level is -1 or one of the device's patterns, every instance names a
+ *     patch of the surface at a level of the patterns, every bucket lies
+ *     within the instances, and every strip names two patches, an edge of
+ *     each and levels of the patterns. Any other list is refused naming the
+ *     item and the patch, instance, bucket or strip. Matrices must be finite.
+ *   - Item indices of the queries past the last draw: zero / NULL.
+ *   Undefined: a tlod_surface destroyed before its device surface; the
+ *   patterns destroyed before the device; "gl" calls without the device's GL
+ *   context current.
+ *
  * THREADING AND ALLOCATION
  *   A device and its surfaces belong to the thread of its context (and, for
  *   "gl", to the thread the GL context is current on). Every allocation goes
