@@ -667,6 +667,55 @@ TEST(test_bad_api_use) {
 /* 9. Allocation                                                            */
 /* ------------------------------------------------------------------------ */
 
+/* A hand-made draw list is checked like a device's: strips must name edges
+ * of drawn patches, arrays must be present where their counts say so. */
+static tlod_result tessellate_list(fixture* fx, const tlod_draw_list* dl, bool* out_cleared) {
+  tlod_cpu_mesh* out = (tlod_cpu_mesh*)fx; /* must be overwritten with NULL on failure */
+  tlod_result r = tlod_cpu_tessellate(fx->ctx, fx->surf, fx->pat, &(tlod_cpu_tessellate_desc){.draw_list = dl}, &out);
+  printf("  %s \"%s\"\n", tlod_result_string(r), r ? tlod_context_last_error(fx->ctx) : "");
+  *out_cleared = r == TLOD_SUCCESS || out == NULL;
+  if (r == TLOD_SUCCESS) tlod_cpu_mesh_destroy(fx->ctx, out);
+  return r;
+}
+
+/* Refused as an invalid argument, with the output pointer cleared. */
+static bool refused(fixture* fx, const tlod_draw_list* dl) {
+  bool cleared = false;
+  return tessellate_list(fx, dl, &cleared) == TLOD_ERROR_INVALID_ARGUMENT && cleared;
+}
+
+TEST(test_bad_draw_list) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  shape sph = shape_icosphere(1);
+  fixture fx;
+  CHECK(ctx && fixture_make(&fx, ctx, &sph, TLOD_SURFACE_PHONG));
+  uint32_t patches = tlod_surface_patch_count(fx.surf);
+  int8_t* levels = random_levels(patches, 7, 2);
+  tlod_draw_strip strip = {.patch_a = 0, .edge_a = 0, .patch_b = 1, .edge_b = 0};
+  tlod_draw_list dl = {.patch_count = patches, .levels = levels, .strips = &strip, .strip_count = 1};
+  bool cleared = false;
+  CHECK(tessellate_list(&fx, &dl, &cleared) == TLOD_SUCCESS);
+  strip.edge_b = 3; /* a triangle has edges 0..2 */
+  CHECK(refused(&fx, &dl));
+  CHECK(strstr(tlod_context_last_error(ctx), "strip 0") != NULL);
+  strip.edge_b = 0;
+  strip.patch_b = patches; /* past the surface */
+  CHECK(refused(&fx, &dl));
+  strip.patch_b = 1;
+  levels[1] = -1; /* a culled patch has no polyline */
+  CHECK(refused(&fx, &dl));
+  levels[1] = 0;
+  dl.strips = NULL;
+  CHECK(refused(&fx, &dl));
+  dl.strip_count = 0;
+  dl.instance_count = 3; /* instances NULL */
+  CHECK(refused(&fx, &dl));
+  free(levels);
+  fixture_free(&fx);
+  shape_free(&sph);
+  tlod_context_destroy(ctx);
+}
+
 TEST(test_allocations_balanced) {
   counting_allocator counter = {.fail_at = -1};
   tlod_context* ctx = new_context(1, &counter, NULL);
@@ -755,6 +804,7 @@ int main(void) {
   RUN(test_thread_independence);
   RUN(test_no_normals);
   RUN(test_bad_api_use);
+  RUN(test_bad_draw_list);
   RUN(test_allocations_balanced);
   RUN(test_failing_allocator);
   TEST_END();

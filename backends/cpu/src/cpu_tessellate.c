@@ -416,12 +416,31 @@ void tlod_cpu_mesh_destroy(tlod_context* ctx, tlod_cpu_mesh* mesh) {
   tlod_context_free(ctx, mesh);
 }
 
+/* Strips name edges of drawn patches: stitch() walks their polylines. */
+static tlod_result check_strips(const tess* t, const tlod_draw_list* dl) {
+  if (dl->strip_count > 0 && !dl->strips)
+    return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: draw list strips is NULL");
+  for (uint32_t s = 0; s < dl->strip_count; s++) {
+    const tlod_draw_strip* st = &dl->strips[s];
+    bool ok = st->patch_a < t->m.face_count && st->patch_b < t->m.face_count;
+    ok = ok && st->edge_a < t->m.face_corners[st->patch_a] && st->edge_b < t->m.face_corners[st->patch_b];
+    if (!ok || level_of(t, st->patch_a) < 0 || level_of(t, st->patch_b) < 0)
+      return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                               "tlod_cpu_tessellate: draw list strip %u: edge %u of patch %u or edge %u of patch %u is "
+                               "not an edge of a drawn patch",
+                               s, st->edge_a, st->patch_a, st->edge_b, st->patch_b);
+  }
+  return TLOD_SUCCESS;
+}
+
 static tlod_result take_draw_list(tess* t) {
   const tlod_draw_list* dl = t->d.draw_list;
   if (dl->patch_count != t->m.face_count)
     return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
                              "tlod_cpu_tessellate: draw list of %u patches for a surface of %u", dl->patch_count,
                              t->m.face_count);
+  if (dl->instance_count > 0 && !dl->instances)
+    return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: draw list instances is NULL");
   t->morph = tlod_context_alloc(t->ctx, sizeof(*t->morph) * (t->m.face_count + 1u));
   if (!t->morph) return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
   for (uint32_t f = 0; f < t->m.face_count; f++)
@@ -435,7 +454,7 @@ static tlod_result take_draw_list(tess* t) {
     t->morph[in->patch][0] = in->morph;
     memcpy(&t->morph[in->patch][1], in->edge_morph, sizeof(float) * 4);
   }
-  return TLOD_SUCCESS;
+  return check_strips(t, dl);
 }
 
 static tlod_result resolve_levels(tess* t) {
