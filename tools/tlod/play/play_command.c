@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "common/strict_number.h"
 #include "play_run.h"
 #include "play_run_folder.h"
 #include "tool_names.h"
@@ -48,11 +49,25 @@ static void catch_sigint(struct sigaction* old) {
   sigaction(SIGINT, &sa, old);
 }
 
+/* "gltf" or "gltf:N": true, with the camera in *camera; CLI_USAGE in *rc for a bad N. */
+static bool gltf_path(const char* path, uint32_t* camera, int* rc) {
+  *camera = 0;
+  if (!strcmp(path, "gltf")) return true;
+  if (strncmp(path, "gltf:", 5)) return false;
+  number_status s = number_parse_u32(path + 5, NULL, 0, UINT32_MAX, camera);
+  if (s != NUMBER_OK)
+    *rc = cli_error(CLI_USAGE, "--path: %s: %s", path,
+                    s == NUMBER_RANGE ? "camera out of range 0..4294967295" : "expected gltf or gltf:N");
+  return true;
+}
+
 /* --path FILE.json or gltf[:N] (the built-ins need the scene bounds: later). */
 static int load_path(const play_options* o, camera_path* path) {
-  char err[1024], tail;
-  unsigned gltf_camera = 0;
-  bool gltf = !strcmp(o->path, "gltf") || sscanf(o->path, "gltf:%u%c", &gltf_camera, &tail) == 1;
+  char err[1024];
+  uint32_t gltf_camera = 0;
+  int rc = CLI_OK;
+  bool gltf = gltf_path(o->path, &gltf_camera, &rc);
+  if (rc != CLI_OK) return rc;
   if (gltf && (!o->scene || !strncmp(o->scene, "demo:", 5)))
     return cli_error(CLI_USAGE, "--path %s: the scene must be a .gltf or .glb file with cameras", o->path);
   if (gltf && !camera_path_load_gltf(o->scene, gltf_camera, path, err, sizeof(err)))
