@@ -13,6 +13,8 @@ enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
 
 /* Prints "tlod: error: ..." to stderr; returns code. */
 int cli_error(int code, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
+/* The message of the last cli_error ("" before the first). */
+const char* cli_last_error(void);
 
 /* Parses a whole string as a number in [lo, hi] (common/strict_number.h:
  * nothing wraps, no trailing text, finite); false with one error line
