@@ -1,6 +1,7 @@
 /* tlod play -- the frame loop of one mode: a fixed time step along the
  * camera path, a scheduler update per object and one device draw of every
  * object, every figure recorded in the trace. */
+#include <errno.h>
 #include <string.h>
 
 #include "cli.h"
@@ -180,7 +181,9 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
   if (rc == CLI_OK) rc = draw_objects(r, &view, n, run_start, os);
   fr->frame_ms = cli_now_ms() - f0;
   if (rc != CLI_OK) return rc; /* the failed frame is not a record */
-  if (!play_trace_commit_frame(t)) return cli_error(CLI_FAILED, "out of memory after %u frames", t->frame_count);
+  if (!play_trace_commit_frame(t))
+    return cli_error(CLI_FAILED, "cannot write the frame digests in '%s': %s", r->run_dir,
+                     strerror(errno ? errno : EIO));
   sample_resources(r, t);
   if (r->o->screenshot_every && n % r->o->screenshot_every == 0 && (rc = play_screenshot(r, fr, run_start)) != CLI_OK)
     return rc;
@@ -192,7 +195,9 @@ int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
   int rc = create_schedulers(r, m, t);
   if (rc != CLI_OK) return rc;
   char err[PLAY_PATH_MAX + 512];
-  if (!play_trace_files_open(t, r->run_dir, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
+  if (!play_trace_digests_open(t, r->run_dir, err, sizeof(err)) ||
+      !play_trace_files_open(t, r->run_dir, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "%s", err);
   r->first_draw = tlod_device_query_stats(r->scene->device).draws + 1;
 #if TLOD_HAS_GL
   if (r->platform) tlod_platform_bind(r->platform);

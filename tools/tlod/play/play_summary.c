@@ -11,37 +11,30 @@ static int compare_double(const void* a, const void* b) {
   return x < y ? -1 : (x > y ? 1 : 0);
 }
 
-double play_percentile(const double* values, uint32_t n, double p) {
-  if (!n) return 0.0;
-  double* v = malloc(sizeof(double) * n);
-  if (!v) return NAN;
-  memcpy(v, values, sizeof(double) * n);
-  qsort(v, n, sizeof(double), compare_double);
+/* Nearest rank of p percent in n sorted values. */
+static double rank_of(const double* sorted, uint32_t n, double p) {
   double rank = ceil(p / 100.0 * n);
   uint32_t i = rank < 1.0 ? 0 : (uint32_t)rank - 1;
-  double r = v[i < n ? i : n - 1];
-  free(v);
-  return r;
+  return sorted[i < n ? i : n - 1];
 }
 
-/* Distribution of one field of the digests (a copy: percentiles sort). */
+/* Distribution of one field of every frame's digest (NaN when it cannot be read). */
 static distribution distribution_of(const play_trace* t, size_t field) {
-  distribution d = {0};
   uint32_t n = t->frame_count;
-  double* v = n ? malloc(sizeof(double) * n) : NULL;
-  if (!v) return d;
-  for (uint32_t i = 0; i < n; i++)
-    v[i] = *(const double*)((const char*)&t->digests[i] + field);
-  d.min = d.max = v[0];
-  for (uint32_t i = 0; i < n; i++) {
-    d.mean += v[i];
-    d.min = v[i] < d.min ? v[i] : d.min;
-    d.max = v[i] > d.max ? v[i] : d.max;
+  distribution d = {NAN, NAN, NAN, NAN, NAN, NAN};
+  double* v = malloc(sizeof(double) * n);
+  if (!v || !play_trace_digest_field(t, field, v)) {
+    free(v);
+    return d;
   }
+  qsort(v, n, sizeof(double), compare_double);
+  d = (distribution){.min = v[0], .max = v[n - 1]};
+  for (uint32_t i = 0; i < n; i++)
+    d.mean += v[i];
   d.mean /= n;
-  d.p50 = play_percentile(v, n, 50);
-  d.p95 = play_percentile(v, n, 95);
-  d.p99 = play_percentile(v, n, 99);
+  d.p50 = rank_of(v, n, 50);
+  d.p95 = rank_of(v, n, 95);
+  d.p99 = rank_of(v, n, 99);
   free(v);
   return d;
 }
@@ -68,5 +61,5 @@ void play_summarize(const play_trace* t, run_summary* r) {
   r->backend_cpu_ms = distribution_of(t, offsetof(play_digest, backend_cpu_ms));
   r->backend_wall_ms = distribution_of(t, offsetof(play_digest, backend_wall_ms));
   r->triangles = distribution_of(t, offsetof(play_digest, triangles));
-  r->first_frame_ms = t->digests[0].frame_ms;
+  r->first_frame_ms = t->first_frame_ms;
 }

@@ -1,9 +1,14 @@
 /* tlod play -- the records of a playback: a window of frames with their
  * per-object figures, and what the summary keeps of every frame. */
+#define _POSIX_C_SOURCE 200809L /* mkstemp, fdopen */
 #include "play_trace.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+#include "play_run_folder.h"
 
 /* Room for one more frame in the window (at most PLAY_TRACE_WINDOW). */
 static bool reserve_window(play_trace* t) {
@@ -43,25 +48,47 @@ static void add_sums(play_sums* s, const play_frame_totals* tot) {
   if (tot->backend_gpu_ms >= 0.0) s->gpu_ms += tot->backend_gpu_ms, s->gpu_frames++;
 }
 
-bool play_trace_commit_frame(play_trace* t) {
-  if (t->frame_count == t->digest_capacity) {
-    uint32_t cap = t->digest_capacity ? 2 * t->digest_capacity : 256;
-    play_digest* d = realloc(t->digests, sizeof(play_digest) * cap);
-    if (!d) return false;
-    t->digests = d;
-    t->digest_capacity = cap;
+bool play_trace_digests_open(play_trace* t, const char* dir, char* error, size_t error_size) {
+  char path[PLAY_PATH_MAX + 64];
+  play_path_join(path, sizeof(path), dir, ".digests.XXXXXX");
+  int fd = mkstemp(path);
+  if (fd >= 0) unlink(path); /* gone with the process, whatever happens */
+  if (fd < 0 || !(t->digests = fdopen(fd, "w+b"))) {
+    snprintf(error, error_size, "cannot create '%s': %s", path, strerror(errno));
+    if (fd >= 0) close(fd);
+    return false;
   }
+  return true;
+}
+
+bool play_trace_commit_frame(play_trace* t) {
   play_frame_totals tot;
   play_frame_totals_of(t, t->window_count, &tot);
-  t->digests[t->frame_count] = (play_digest){.frame_ms = t->frames[t->window_count].frame_ms,
-                                             .scheduler_ms = tot.scheduler_ms,
-                                             .backend_cpu_ms = tot.backend_cpu_ms,
-                                             .backend_wall_ms = tot.backend_wall_ms,
-                                             .triangles = (double)(tot.pattern_triangles + tot.strip_triangles)};
+  play_digest d = {.frame_ms = t->frames[t->window_count].frame_ms,
+                   .scheduler_ms = tot.scheduler_ms,
+                   .backend_cpu_ms = tot.backend_cpu_ms,
+                   .backend_wall_ms = tot.backend_wall_ms,
+                   .triangles = (double)(tot.pattern_triangles + tot.strip_triangles)};
+  errno = 0;
+  if (fwrite(&d, sizeof(d), 1, t->digests) != 1) return false;
+  if (!t->frame_count) t->first_frame_ms = d.frame_ms;
   add_sums(&t->sums, &tot);
   t->frame_count++;
   t->window_count++;
   return true;
+}
+
+bool play_trace_digest_field(const play_trace* t, size_t field, double* v) {
+  if (!t->digests || fflush(t->digests) != 0 || fseek(t->digests, 0, SEEK_SET) != 0) return false;
+  play_digest chunk[256];
+  for (uint32_t i = 0; i < t->frame_count;) {
+    uint32_t want = t->frame_count - i < 256 ? t->frame_count - i : 256;
+    if (fread(chunk, sizeof(play_digest), want, t->digests) != want) return false;
+    for (uint32_t k = 0; k < want; k++)
+      memcpy(&v[i + k], (const char*)&chunk[k] + field, sizeof(double));
+    i += want;
+  }
+  return fseek(t->digests, 0, SEEK_END) == 0; /* further frames append */
 }
 
 bool play_trace_window_full(const play_trace* t) { return t->window_count >= PLAY_TRACE_WINDOW; }
@@ -70,11 +97,11 @@ void play_trace_free(play_trace* t) {
   if (t->files) play_trace_files_close(t, false, NULL, 0);
   free(t->frames);
   free(t->stats);
-  free(t->digests);
+  if (t->digests) fclose(t->digests);
   t->frames = NULL;
   t->stats = NULL;
   t->digests = NULL;
-  t->frame_count = t->window_count = t->capacity = t->digest_capacity = 0;
+  t->frame_count = t->window_count = t->capacity = 0;
 }
 
 const play_object_stats* play_trace_object(const play_trace* t, uint32_t i, uint32_t object) {

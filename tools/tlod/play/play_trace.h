@@ -60,7 +60,9 @@ typedef struct play_object_info {
  * memory does not grow with its frames (docs/play.md, "Memory"). */
 #define PLAY_TRACE_WINDOW 1024u
 
-/* What the summary keeps of every frame (its percentiles need them all): 40 bytes. */
+/* What the summary keeps of every frame (its percentiles need them all):
+ * 40 bytes a frame, appended to an unlinked temporary file in the run
+ * folder rather than kept in memory (play_trace_digests_open). */
 typedef struct play_digest {
   double frame_ms, scheduler_ms, backend_cpu_ms, backend_wall_ms, triangles;
 } play_digest;
@@ -113,8 +115,8 @@ typedef struct play_trace {
   play_frame* frames;
   play_object_stats* stats; /* window_count * object_count, frame by frame */
   uint32_t window_first, window_count, capacity;
-  play_digest* digests; /* every frame */
-  uint32_t digest_capacity;
+  FILE* digests; /* every frame's play_digest, in order; NULL before play_trace_digests_open */
+  double first_frame_ms;
   play_sums sums;
   play_resources samples[PLAY_MAX_SAMPLES];
   uint32_t sample_count;
@@ -125,8 +127,14 @@ typedef struct play_trace {
  * records) at the end of the window; NULL when out of memory. The window
  * must not be full (play_trace_window_full: flush first). */
 play_frame* play_trace_add_frame(play_trace* t, play_object_stats** objects);
-/* The slot becomes frame frame_count: summed up and counted; false when out of memory. */
+/* The file of the frames' digests: an unlinked temporary in folder dir. */
+bool play_trace_digests_open(play_trace* t, const char* dir, char* error, size_t error_size);
+/* The slot becomes frame frame_count: summed up, digested and counted;
+ * false when the digest cannot be written (the error is in errno). */
 bool play_trace_commit_frame(play_trace* t);
+/* Reads field (offsetof(play_digest, x)) of every frame's digest into v
+ * (frame_count doubles); false on a read error. */
+bool play_trace_digest_field(const play_trace* t, size_t field, double* v);
 bool play_trace_window_full(const play_trace* t);
 void play_trace_free(play_trace* t);
 /* The figures of one object in window frame i. */
@@ -159,8 +167,5 @@ bool play_write_summary_json(const play_trace* const* runs, uint32_t run_count, 
 bool play_write_summary_text(const play_trace* const* runs, uint32_t run_count, const char* out_dir, const char* path,
                              char* error, size_t error_size);
 void play_print_summary(FILE* f, const play_trace* const* runs, uint32_t run_count, const char* out_dir);
-
-/* Nearest-rank percentile (p in [0, 100]) of n values; sorts a copy. */
-double play_percentile(const double* values, uint32_t n, double p);
 
 #endif
