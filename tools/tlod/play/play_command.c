@@ -171,6 +171,11 @@ static int close_traces(play_trace* t) {
   return CLI_OK;
 }
 
+/* The first error of the session goes into summary.json. */
+static void note_failure(play_session* p, int rc) {
+  if (rc != CLI_OK && !p->failure[0]) snprintf(p->failure, sizeof(p->failure), "%s", cli_last_error());
+}
+
 /* Mode k into its trace and files. */
 static int play_one_mode(play_session* p, play_run* run, uint32_t k) {
   const play_mode* m = &p->o.modes[k];
@@ -181,12 +186,12 @@ static int play_one_mode(play_session* p, play_run* run, uint32_t k) {
   run->run_dir = p->run_dirs[k];
   run->index = k;
   rc = play_mode_run(run, m, t);
+  note_failure(p, rc);
   p->done[p->run_count++] = t;
   int wrc = close_traces(t);
   if (wrc != CLI_OK) t->stopped = "error"; /* the summary must not claim a complete run */
-  rc = rc == CLI_OK ? wrc : rc;
-  if (rc != CLI_OK && !p->failure[0]) snprintf(p->failure, sizeof(p->failure), "%s", cli_last_error());
-  return rc;
+  note_failure(p, wrc);
+  return rc == CLI_OK ? wrc : rc;
 }
 
 static int play_modes(play_session* p) {
@@ -216,8 +221,7 @@ static int write_summary(play_session* p, int rc) {
   char path[PLAY_PATH_MAX + 64], err[PLAY_PATH_MAX + 512];
   play_path_join(path, sizeof(path), p->out_dir, "summary.txt");
   if (!play_write_summary_text(p->done, p->run_count, p->out_dir, path, err, sizeof(err))) {
-    rc = cli_error(CLI_FAILED, "%s", err);
-    if (!p->failure[0]) snprintf(p->failure, sizeof(p->failure), "%s", cli_last_error());
+    note_failure(p, rc = cli_error(CLI_FAILED, "%s", err));
   }
   play_outcome outcome = {.status = rc == CLI_OK ? "ok" : "failed", .error = p->failure};
   play_path_join(path, sizeof(path), p->out_dir, "summary.json");
@@ -239,7 +243,7 @@ static void session_free(play_session* p) {
 }
 
 static int finish(play_session* p, int rc) {
-  if (rc != CLI_OK && !p->failure[0]) snprintf(p->failure, sizeof(p->failure), "%s", cli_last_error());
+  note_failure(p, rc);
   if (play_interrupted && !p->o.quiet)
     fprintf(stderr, "tlod: interrupted: wrote the %u frames played so far\n",
             p->run_count ? p->done[p->run_count - 1]->frame_count : 0);
