@@ -97,15 +97,13 @@ s = load_json(os.path.join(out("ok"), "summary.json"))
 check("a good run: summary.json says ok with no error",
       rc == 0 and isinstance(s, dict) and s.get("status") == "ok" and s.get("error") == "", s)
 
-# --stats onto something that is not a regular file: refused, the thing left alone (as root the rename
-# used to replace it: /dev/full would have become a file).
+# --stats onto something that is not a regular file: refused, the thing left alone (the rename used to
+# replace it: as root, --stats /dev/full made /dev/full a file; a FIFO shows the same without the risk).
 fifo = out("stats.fifo")
 os.mkfifo(fifo)
 rc, so, se = run("tessellate", "demo:cow", "--level", "1", "-o", out("cow.obj"), "--stats", fifo)
 check("--stats FIFO: exit 1 'not a regular file', the FIFO still a FIFO",
       rc == 1 and "not a regular file" in se and os.path.exists(fifo) and not os.path.isfile(fifo), (rc, se))
-rc, so, se = run("tessellate", "demo:cow", "--level", "1", "-o", out("cow.obj"), "--stats", "/dev/full")
-check("--stats /dev/full: exit 1 'not a regular file'", rc == 1 and "not a regular file" in se, (rc, se))
 if BUILT_WITH_GL:
     d = out("shots")
     rc, so, se = run_limited(3000, "play", "--backend", "gl", "--size", "256x256", "--frames", "3",
@@ -183,7 +181,10 @@ rc, so, se = run("play", *SMALL, "--path", huge, "--frames", "5", "--out", out("
 s = load_json(os.path.join(out("huge5"), "summary.json"))
 check("path of 3e38 s with --frames 5: plays 5 frames", rc == 0 and isinstance(s, dict) and s["runs"][0]["frames"] == 5,
       (rc, se))
-rc, so, se = run("play", *SMALL, "--duration", "1000000", "--fps", "1000", "--out", out("long"))
+try:
+    rc, so, se = run("play", *SMALL, "--duration", "1000000", "--fps", "1000", "--out", out("long"), timeout=30)
+except subprocess.TimeoutExpired:
+    rc, se = None, "still playing after 30 s"
 check("--duration 1e6 at 1000 fps: refused (exit 2) naming --duration and the cap",
       rc == 2 and "--duration" in se and "1000000" in se, se)
 

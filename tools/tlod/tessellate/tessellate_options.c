@@ -29,7 +29,7 @@ void tessellate_usage(FILE* f) {
           "Adaptive (view-dependent) when a camera is given:\n"
           "  --eye X,Y,Z         camera position\n"
           "  --target X,Y,Z      point looked at (default: the mesh's bounding-box centre)\n"
-          "  --up X,Y,Z          up direction (default 0,1,0)\n"
+          "  --up X,Y,Z          up direction (default 0,1,0; not along the view direction)\n"
           "  --fovy DEG          vertical field of view (default 45; 0: orthographic, see --ortho-height)\n"
           "  --ortho-height H    orthographic view height in world units\n"
           "  --size WxH          viewport in pixels (default 1280x720)\n"
