@@ -7,7 +7,7 @@ does not grow with frames.
 Usage: hardening_test.py TLOD DATA_DIR WORK_DIR [gl|nogl]"""
 import json, os, resource, shutil, signal, subprocess, sys, time
 
-from tlod_cli import check, finish, init, one_error_line, run
+from tlod_cli import check, finish, init, load_json, one_error_line, run
 
 TLOD, DATA, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
 BUILT_WITH_GL = (sys.argv[4] if len(sys.argv) > 4 else "gl") == "gl"
@@ -16,14 +16,6 @@ shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 SMALL = ["--backend", "cpu", "--size", "64x64", "-q"]
 BOX = os.path.join(DATA, "glTF-Sample-Models", "Box", "Box.gltf")
-
-
-def load_json(path):
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except (OSError, ValueError) as e:
-        return e
 
 
 def out(name):

@@ -6,7 +6,7 @@ no-argument default run.
 Usage: play_test.py TLOD DATA_DIR WORK_DIR"""
 import glob, json, os, shutil, signal, struct, subprocess, sys, time, zlib
 
-from tlod_cli import check, finish, init, one_error_line, run
+from tlod_cli import check, finish, init, load_json, one_error_line, run
 
 TLOD, DATA, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
 # "gl": the build has the GL backend, and a GL context must work (a failure, never a skip);
@@ -17,14 +17,6 @@ shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 SIZE = (640, 360)  # small: keeps the gl runs and the PNG decoding quick
 SIZE_ARG = "%dx%d" % SIZE
-
-
-def load_json(path):
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except (OSError, ValueError) as e:
-        return e
 
 
 # ---- the documented schema (docs/play.md) -----------------------------------
