@@ -23,8 +23,21 @@ static int chmod_as_fopen(int fd) {
   return fchmod(fd, 0666 & ~mask);
 }
 
+/* The rename would replace a folder's entry or a device node (as root:
+ * /dev/null, /dev/full): only a regular file or nothing may be there. */
+static int target_error(const char* path) {
+  struct stat st;
+  if (lstat(path, &st) != 0 || S_ISREG(st.st_mode)) return 0;
+  if (S_ISLNK(st.st_mode) && (stat(path, &st) != 0 || S_ISREG(st.st_mode))) return 0; /* the link is replaced */
+  return S_ISDIR(st.st_mode) ? EISDIR : EINVAL;
+}
+
 bool tlod_atomic_file_begin(tlod_atomic_file* a, const char* path, char* error, size_t error_size) {
   memset(a, 0, sizeof(*a));
+  int target = target_error(path);
+  if (target == EISDIR) return fail(error, error_size, target, "cannot write '%s'%s", path, "");
+  if (target && error && error_size) snprintf(error, error_size, "cannot write '%s': not a regular file", path);
+  if (target) return false;
   size_t n = strlen(path);
   if (!(a->tmp = malloc(n + sizeof(".tmp.XXXXXX"))))
     return fail(error, error_size, ENOMEM, "cannot write '%s'", path, "");

@@ -12,6 +12,9 @@
  * or, with a function that writes the contents, tlod_atomic_file_write().
  *
  * ERRORS
+ *   begin refuses a target that exists and is not a regular file (or a link
+ *   to one): "cannot write 'out': Is a directory", "cannot write
+ *   '/dev/full': not a regular file" -- the rename would replace it.
  *   Every write error is sticky in the FILE (ferror) and is checked at the
  *   end together with fflush, fsync (when asked) and fclose; the message
  *   names the file and the errno text: "cannot write 'out/trace.json': No

@@ -6,7 +6,7 @@ no-argument default run.
 Usage: play_test.py TLOD DATA_DIR WORK_DIR"""
 import glob, json, os, shutil, signal, struct, subprocess, sys, time, zlib
 
-from tlod_cli import check, finish, init, one_error_line, run
+from tlod_cli import check, finish, init, load_json, one_error_line, run
 
 TLOD, DATA, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
 # "gl": the build has the GL backend, and a GL context must work (a failure, never a skip);
@@ -17,14 +17,6 @@ shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 SIZE = (640, 360)  # small: keeps the gl runs and the PNG decoding quick
 SIZE_ARG = "%dx%d" % SIZE
-
-
-def load_json(path):
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except (OSError, ValueError) as e:
-        return e
 
 
 # ---- the documented schema (docs/play.md) -----------------------------------
@@ -62,8 +54,11 @@ RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level
            "scheduler_ms": DIST, "stage_ms_mean": obj({s: NUM for s in STAGES}), "backend_cpu_ms": DIST,
            "backend_wall_ms": DIST, "backend_gpu_ms_mean": NUM, "backend_gpu_frames": INT, "triangles": DIST,
            "pattern_triangles_mean": NUM, "strip_triangles_mean": NUM, "drawn_triangles_mean": NUM,
-           "culled_mean": NUM, "effective_epsilon_mean": NUM, "level_histogram_mean": vec(LEVELS)})
-SUMMARY = obj({"schema": STR, "tool": STR, "scene": STR, "backend": STR, "renderer": STR, "surface": STR, "path": STR,
+           "culled_mean": NUM, "effective_epsilon_mean": NUM, "level_histogram_mean": vec(LEVELS),
+           "resources": ("list", obj({"frame": INT, "peak_rss_kib": INT, "rss_kib": INT}))})
+GL_OBJECTS = obj({k: INT for k in ("buffers", "textures", "renderbuffers", "framebuffers", "vertex_arrays", "programs",
+                                   "shaders", "queries")})
+SUMMARY = obj({"schema": STR, "status": STR, "error": STR, "tool": STR, "scene": STR, "backend": STR, "renderer": STR, "surface": STR, "path": STR,
                "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN)})
 
 
@@ -116,9 +111,13 @@ def validate(value, schema, where="$"):
 def validate_summary(s):
     if not isinstance(s, dict) or not isinstance(s.get("runs"), list):
         return ["not a summary"]
+    problems = []
     for r in s["runs"]:
         r.pop("relative_to_first", None)
-    return validate(s, SUMMARY)
+        for k, sample in enumerate(r.get("resources", [])):  # gl_objects: gl runs only
+            if isinstance(sample, dict) and "gl_objects" in sample:
+                problems += validate(sample.pop("gl_objects"), GL_OBJECTS, "$.runs[].resources[%d]" % k)
+    return problems + validate(s, SUMMARY)
 
 
 # ---- PNG ---------------------------------------------------------------------

@@ -2,7 +2,7 @@
 play_test.py): running it, one "ok"/"FAIL" line per check, the one-line
 error rule, and the closing "N passed, N failed" line and exit code.
 Call init(TLOD) before run()."""
-import os, subprocess, sys
+import json, os, subprocess, sys
 
 TLOD = None
 passed = failed = 0
@@ -28,6 +28,15 @@ def check(name, cond, detail=""):
         failed += 1
         print("FAIL " + name + (": " + str(detail)[:2000] if detail else ""))
     return cond
+
+
+def load_json(path):
+    """The parsed file, or the exception that reading it raised."""
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        return e
 
 
 def one_error_line(err):

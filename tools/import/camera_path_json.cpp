@@ -4,6 +4,7 @@
 #include "camera_path_json.h"
 
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
 
 #include <cerrno>
 #include <cfloat>
@@ -103,6 +104,11 @@ extern "C" bool camera_path_json_load(const char* path, camera_path_json_key** k
     return false;
   }
   try {
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) { // ifstream opens a folder, then reads nothing
+      put_error(error, error_size, std::string(path) + ": cannot open: " + std::strerror(EISDIR));
+      return false;
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
       put_error(error, error_size, std::string(path) + ": cannot open: " + std::strerror(errno));

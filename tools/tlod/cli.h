@@ -13,11 +13,19 @@ enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
 
 /* Prints "tlod: error: ..." to stderr; returns code. */
 int cli_error(int code, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
+/* The message of the last cli_error ("" before the first). */
+const char* cli_last_error(void);
 
-/* Parses a whole string as a number in [lo, hi]; false (with an error
- * printed naming the option) otherwise. */
+/* Parses a whole string as a number in [lo, hi] (common/strict_number.h:
+ * nothing wraps, no trailing text, finite); false with one error line
+ * "<option>: <text>: <problem>" printed otherwise, e.g.
+ * "--size: 4294967297x720: width out of range 1..16384". */
 bool cli_parse_float(const char* option, const char* text, double lo, double hi, float* out);
 bool cli_parse_uint(const char* option, const char* text, uint32_t lo, uint32_t hi, uint32_t* out);
+/* "WxH", each in 1..max. */
+bool cli_parse_size(const char* option, const char* text, uint32_t max, uint32_t* w, uint32_t* h);
+/* "X,Y,Z", each a finite number that fits a float. */
+bool cli_parse_vec3(const char* option, const char* text, float v[3]);
 /* Index of text in names (NULL-terminated), or -1 with an error printed. */
 int cli_parse_enum(const char* option, const char* text, const char* const* names);
 /* The value of an option that takes one: argv[*i + 1]; advances *i. */

@@ -2,7 +2,6 @@
 #include "camera.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 static void normalize3(double v[3]) {
@@ -15,6 +14,17 @@ static void cross3(const double a[3], const double b[3], double out[3]) {
   out[0] = a[1] * b[2] - a[2] * b[1];
   out[1] = a[2] * b[0] - a[0] * b[2];
   out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+const char* camera_view_problem(const float eye[3], const float target[3], const float up[3]) {
+  double f[3] = {(double)target[0] - eye[0], (double)target[1] - eye[1], (double)target[2] - eye[2]};
+  double u[3] = {up[0], up[1], up[2]}, s[3];
+  double lf = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]), lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  if (!(lf > 0.0) || !isfinite(lf)) return "eye and target are the same point";
+  cross3(f, u, s);
+  /* sin of the angle between up and the view direction: below 1e-6 the side vector is noise */
+  if (!(sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) > 1e-6 * lf * lu)) return "up is parallel to the view direction";
+  return NULL;
 }
 
 void camera_look_at(const float eye[3], const float target[3], const float up[3], float view[16]) {
@@ -82,10 +92,4 @@ void camera_fit_planes(const float eye[3], const float bmin[3], const float bmax
   }
   *near_z = (float)(diag > 0 ? diag * 1e-3 : 1e-3);
   *far_z = (float)(far * 1.5 + diag);
-}
-
-bool camera_parse_vec3(const char* text, float v[3]) {
-  char tail;
-  if (!text || sscanf(text, "%f,%f,%f%c", &v[0], &v[1], &v[2], &tail) != 3) return false;
-  return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
 }

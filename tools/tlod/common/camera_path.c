@@ -27,11 +27,10 @@ double camera_path_duration(const camera_path* p) {
   return p->count >= 2 ? p->keys[p->count - 1].time - p->keys[0].time : 0.0;
 }
 
-uint32_t camera_path_frames(const camera_path* p, double fps) {
+double camera_path_frames(const camera_path* p, double fps) {
   double n = camera_path_duration(p) * fps;
   double frames = p->closed ? floor(n + 0.5) : floor(n + 1e-9) + 1.0;
-  if (frames < 1.0) frames = 1.0;
-  return frames > 1e7 ? 10000000u : (uint32_t)frames;
+  return frames < 1.0 ? 1.0 : frames;
 }
 
 /* Values every path must satisfy (files and built-ins alike). */

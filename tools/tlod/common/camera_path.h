@@ -43,8 +43,9 @@ void camera_path_free(camera_path* p);
 /* Seconds from the first keyframe to the last. */
 double camera_path_duration(const camera_path* p);
 /* Frames of one pass at fps: closed paths round(duration * fps) (the end is
- * the start again), open paths floor(duration * fps) + 1 (both ends). */
-uint32_t camera_path_frames(const camera_path* p, double fps);
+ * the start again), open paths floor(duration * fps) + 1 (both ends); at
+ * least 1, not capped (a path of 3e38 s gives about 1.8e40: callers bound it). */
+double camera_path_frames(const camera_path* p, double fps);
 /* The camera at t seconds from the path's start: past the end the path
  * starts over (loop) or stays at its last keyframe. Writes eye, target, up
  * and fovy_deg of cam (the rest is left as it was). */

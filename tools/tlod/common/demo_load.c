@@ -7,6 +7,7 @@
 #include "demo_mesh.h"
 #include "demo_shapes.h"
 #include "mesh_load.h"
+#include "strict_number.h"
 
 static void* dup_array(const void* src, size_t bytes) {
   void* p = malloc(bytes ? bytes : 1);
@@ -41,15 +42,21 @@ static int from_demo_mesh(const tlod_demo_mesh* d, cli_mesh* m) {
 
 const char* cli_demo_names(void) { return "demo:cow, demo:cylinder, demo:torus, demo:torus-NxM"; }
 
-/* "torus" or "torus-NxM" (N, M >= 3, at most 50M quads); false otherwise. */
-static bool torus_size(const char* name, uint32_t* rings, uint32_t* segs) {
-  char tail;
-  if (!strcmp(name, "torus")) {
-    *rings = 48, *segs = 24;
-    return true;
-  }
-  return sscanf(name, "torus-%ux%u%c", rings, segs, &tail) == 2 && *rings >= 3 && *segs >= 3 &&
-         (uint64_t)*rings * *segs <= 50000000u;
+enum { TORUS_MAX_QUADS = 50000000 };
+
+/* "torus" or "torus-NxM" (N, M >= 3, at most 50M quads): NULL, or what is wrong. */
+static const char* torus_size(const char* name, uint32_t* rings, uint32_t* segs) {
+  *rings = 48, *segs = 24;
+  if (!strcmp(name, "torus")) return NULL;
+  const char* x = NULL;
+  number_status s =
+      strncmp(name, "torus-", 6) ? NUMBER_SYNTAX : number_parse_u32(name + 6, &x, 3, TORUS_MAX_QUADS, rings);
+  if (s == NUMBER_OK && *x != 'x') s = NUMBER_SYNTAX;
+  if (s == NUMBER_RANGE) return "rings out of range 3..50000000";
+  if (s == NUMBER_OK) s = number_parse_u32(x + 1, NULL, 3, TORUS_MAX_QUADS, segs);
+  if (s == NUMBER_RANGE) return "segments out of range 3..50000000";
+  if (s != NUMBER_OK) return "unknown demo mesh";
+  return (uint64_t)*rings * *segs > TORUS_MAX_QUADS ? "more than 50000000 quads" : NULL;
 }
 
 int cli_load_demo(const char* name, cli_mesh* m) {
@@ -60,8 +67,9 @@ int cli_load_demo(const char* name, cli_mesh* m) {
     if (!demo_cylinder(32, &s)) return cli_error(CLI_FAILED, "out of memory");
     return from_shape(&s, m);
   }
-  if (!torus_size(name, &rings, &segs))
-    return cli_error(CLI_FAILED, "unknown demo mesh 'demo:%s' (built-in: %s; torus-NxM with N, M >= 3)", name,
+  const char* problem = torus_size(name, &rings, &segs);
+  if (problem)
+    return cli_error(CLI_FAILED, "demo:%s: %s (built-in: %s; torus-NxM with N, M >= 3)", name, problem,
                      cli_demo_names());
   if (!demo_torus(rings, segs, &s)) return cli_error(CLI_FAILED, "out of memory");
   return from_shape(&s, m);

@@ -6,10 +6,12 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
 #include "commands.h"
+#include "common/strict_number.h"
 #include "play_run.h"
 #include "play_run_folder.h"
 #include "tool_names.h"
@@ -29,6 +31,9 @@ typedef struct play_session {
   const play_trace* done[PLAY_MAX_MODES];
   char run_dirs[PLAY_MAX_MODES][PLAY_PATH_MAX + 32];
   uint32_t run_count;
+  uint32_t frames;    /* of every mode */
+  int lock_fd;        /* the run folder's lock (play_run_folder.h); -1: not held */
+  char failure[1024]; /* the first error of a run that was played: summary.json's "error" */
 } play_session;
 
 static void on_sigint(int sig) {
@@ -48,11 +53,25 @@ static void catch_sigint(struct sigaction* old) {
   sigaction(SIGINT, &sa, old);
 }
 
+/* "gltf" or "gltf:N": true, with the camera in *camera; CLI_USAGE in *rc for a bad N. */
+static bool gltf_path(const char* path, uint32_t* camera, int* rc) {
+  *camera = 0;
+  if (!strcmp(path, "gltf")) return true;
+  if (strncmp(path, "gltf:", 5)) return false;
+  number_status s = number_parse_u32(path + 5, NULL, 0, UINT32_MAX, camera);
+  if (s != NUMBER_OK)
+    *rc = cli_error(CLI_USAGE, "--path: %s: %s", path,
+                    s == NUMBER_RANGE ? "camera out of range 0..4294967295" : "expected gltf or gltf:N");
+  return true;
+}
+
 /* --path FILE.json or gltf[:N] (the built-ins need the scene bounds: later). */
 static int load_path(const play_options* o, camera_path* path) {
-  char err[1024], tail;
-  unsigned gltf_camera = 0;
-  bool gltf = !strcmp(o->path, "gltf") || sscanf(o->path, "gltf:%u%c", &gltf_camera, &tail) == 1;
+  char err[1024];
+  uint32_t gltf_camera = 0;
+  int rc = CLI_OK;
+  bool gltf = gltf_path(o->path, &gltf_camera, &rc);
+  if (rc != CLI_OK) return rc;
   if (gltf && (!o->scene || !strncmp(o->scene, "demo:", 5)))
     return cli_error(CLI_USAGE, "--path %s: the scene must be a .gltf or .glb file with cameras", o->path);
   if (gltf && !camera_path_load_gltf(o->scene, gltf_camera, path, err, sizeof(err)))
@@ -62,29 +81,48 @@ static int load_path(const play_options* o, camera_path* path) {
   return CLI_OK;
 }
 
+/* --frames, else --duration * fps, else one pass of the path: more than
+ * PLAY_MAX_FRAMES is refused, never cut short in silence (docs/play.md). */
+static int frame_count(play_session* p) {
+  const play_options* o = &p->o;
+  if (o->frames) {
+    p->frames = o->frames;
+    return CLI_OK;
+  }
+  bool by_duration = o->duration > 0.0f;
+  double n = by_duration ? fmax(1.0, floor((double)o->duration * o->fps + 0.5)) : camera_path_frames(&p->path, o->fps);
+  if (n <= PLAY_MAX_FRAMES) {
+    p->frames = (uint32_t)n;
+    return CLI_OK;
+  }
+  if (by_duration)
+    return cli_error(CLI_USAGE, "--duration: %g s at %g fps is %.0f frames, more than the cap of %u",
+                     (double)o->duration, (double)o->fps, n, PLAY_MAX_FRAMES);
+  return cli_error(CLI_USAGE,
+                   "--path %s: %g s at %g fps is %.3g frames, more than the cap of %u (give --frames N or --duration S "
+                   "to play part of it)",
+                   o->path, camera_path_duration(&p->path), (double)o->fps, n, PLAY_MAX_FRAMES);
+}
+
 /* Everything that can fail on bad input happens before the run folder exists. */
 static int set_up(play_session* p) {
   const play_options* o = &p->o;
-  int rc = load_path(o, &p->path);
+  struct stat st;
+  /* An --out in use fails before the scene is loaded (a new folder is locked as it is made). */
+  int rc = o->out && stat(o->out, &st) == 0 && S_ISDIR(st.st_mode) ? play_lock_run_folder(o->out, &p->lock_fd) : CLI_OK;
+  if (rc == CLI_OK) rc = load_path(o, &p->path);
   if (rc == CLI_OK) rc = play_scene_load(o, &p->scene);
   if (rc == CLI_OK && camera_path_is_builtin(o->path) &&
       !camera_path_builtin(o->path, p->scene.bmin, p->scene.bmax, &p->path))
     rc = cli_error(CLI_FAILED, "cannot build the %s path", o->path);
+  if (rc == CLI_OK) rc = frame_count(p);
   p->backend = o->backend ? o->backend : "gl";
   if (rc == CLI_OK && !strcmp(p->backend, "gl")) p->platform = play_platform_open(o, &rc, &p->backend);
   if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, o->surface);
   if (rc == CLI_OK && o->screenshot_every && !(p->pixels = malloc((size_t)o->width * o->height * 4)))
     rc = cli_error(CLI_FAILED, "out of memory for %ux%u screenshots", o->width, o->height);
-  if (rc == CLI_OK) rc = play_make_run_folder(o, p->out_dir, sizeof(p->out_dir));
+  if (rc == CLI_OK) rc = play_make_run_folder(o, p->out_dir, sizeof(p->out_dir), &p->lock_fd);
   return rc;
-}
-
-static uint32_t frame_count(const play_session* p) {
-  const play_options* o = &p->o;
-  uint32_t frames = o->frames;
-  if (!frames && o->duration > 0.0f) frames = (uint32_t)fmax(1.0, floor((double)o->duration * o->fps + 0.5));
-  if (!frames) frames = camera_path_frames(&p->path, o->fps);
-  return frames > PLAY_MAX_FRAMES ? PLAY_MAX_FRAMES : frames;
 }
 
 static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t frames) {
@@ -125,15 +163,17 @@ static int make_mode_folder(play_session* p, uint32_t k) {
   return CLI_OK;
 }
 
-static int write_traces(const play_trace* t, const char* dir) {
-  char path[PLAY_PATH_MAX + 64], err[PLAY_PATH_MAX + 512];
-  play_path_join(path, sizeof(path), dir, "trace.json");
-  if (!play_write_trace_json(t, path, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
-  play_path_join(path, sizeof(path), dir, "trace.csv");
-  if (!play_write_trace_csv(t, path, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
-  play_path_join(path, sizeof(path), dir, "chrome_trace.json");
-  if (!play_write_chrome_trace(t, path, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
+/* The trace files' last window and tails (opened by play_mode_run; a write
+ * error mid-run has closed them already). */
+static int close_traces(play_trace* t) {
+  char err[PLAY_PATH_MAX + 512];
+  if (t->files && !play_trace_files_close(t, true, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
   return CLI_OK;
+}
+
+/* The first error of the session goes into summary.json. */
+static void note_failure(play_session* p, int rc) {
+  if (rc != CLI_OK && !p->failure[0]) snprintf(p->failure, sizeof(p->failure), "%s", cli_last_error());
 }
 
 /* Mode k into its trace and files. */
@@ -146,9 +186,11 @@ static int play_one_mode(play_session* p, play_run* run, uint32_t k) {
   run->run_dir = p->run_dirs[k];
   run->index = k;
   rc = play_mode_run(run, m, t);
+  note_failure(p, rc);
   p->done[p->run_count++] = t;
-  int wrc = write_traces(t, p->run_dirs[k]);
+  int wrc = close_traces(t);
   if (wrc != CLI_OK) t->stopped = "error"; /* the summary must not claim a complete run */
+  note_failure(p, wrc);
   return rc == CLI_OK ? wrc : rc;
 }
 
@@ -162,7 +204,7 @@ static int play_modes(play_session* p) {
                   .path = &p->path,
                   .platform = p->platform,
                   .backend = p->backend,
-                  .frames = frame_count(p),
+                  .frames = p->frames,
                   .pixels = p->pixels,
                   .count = o->mode_count,
                   .tty = !o->quiet && isatty(STDERR_FILENO)};
@@ -172,14 +214,18 @@ static int play_modes(play_session* p) {
   return rc;
 }
 
-/* summary.json and summary.txt; a failed write fails the run. */
-static int write_summary(const play_session* p, int rc) {
+/* summary.txt, then summary.json, which says whether everything before it
+ * was written ("status": "failed" with the first error); a failed write
+ * fails the run. */
+static int write_summary(play_session* p, int rc) {
   char path[PLAY_PATH_MAX + 64], err[PLAY_PATH_MAX + 512];
-  play_path_join(path, sizeof(path), p->out_dir, "summary.json");
-  if (!play_write_summary_json(p->done, p->run_count, p->out_dir, path, err, sizeof(err)) && rc == CLI_OK)
-    rc = cli_error(CLI_FAILED, "%s", err);
   play_path_join(path, sizeof(path), p->out_dir, "summary.txt");
-  if (!play_write_summary_text(p->done, p->run_count, p->out_dir, path, err, sizeof(err)) && rc == CLI_OK)
+  if (!play_write_summary_text(p->done, p->run_count, p->out_dir, path, err, sizeof(err))) {
+    note_failure(p, rc = cli_error(CLI_FAILED, "%s", err));
+  }
+  play_outcome outcome = {.status = rc == CLI_OK ? "ok" : "failed", .error = p->failure};
+  play_path_join(path, sizeof(path), p->out_dir, "summary.json");
+  if (!play_write_summary_json(p->done, p->run_count, p->out_dir, &outcome, path, err, sizeof(err)))
     rc = cli_error(CLI_FAILED, "%s", err);
   return rc;
 }
@@ -192,10 +238,12 @@ static void session_free(play_session* p) {
   free(p->pixels);
   play_scene_free(&p->scene);
   camera_path_free(&p->path);
+  play_unlock_run_folder(p->out_dir[0] ? p->out_dir : p->o.out, p->lock_fd);
   free(p);
 }
 
 static int finish(play_session* p, int rc) {
+  note_failure(p, rc);
   if (play_interrupted && !p->o.quiet)
     fprintf(stderr, "tlod: interrupted: wrote the %u frames played so far\n",
             p->run_count ? p->done[p->run_count - 1]->frame_count : 0);
@@ -207,6 +255,7 @@ static int finish(play_session* p, int rc) {
 int cmd_play(int argc, char** argv) {
   play_session* p = calloc(1, sizeof(*p));
   if (!p) return cli_error(CLI_FAILED, "out of memory");
+  p->lock_fd = -1;
   int rc = play_parse(argc, argv, &p->o);
   if (rc != CLI_OK) {
     free(p);

@@ -1,11 +1,13 @@
 /* tlod play -- the frame loop of one mode: a fixed time step along the
  * camera path, a scheduler update per object and one device draw of every
  * object, every figure recorded in the trace. */
+#include <errno.h>
 #include <string.h>
 
 #include "cli.h"
 #include "common/camera.h"
 #include "play_run.h"
+#include "play_run_folder.h"
 #include "tool_names.h"
 
 #if TLOD_HAS_GL
@@ -148,21 +150,41 @@ static bool present(const play_run* r) {
 #endif
 }
 
+/* A full window goes to the trace files before the next frame (between
+ * frames: no frame's time includes it). */
+static int make_room(play_trace* t) {
+  char err[PLAY_PATH_MAX + 512];
+  if (play_trace_window_full(t) && !play_trace_files_flush(t, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "%s", err);
+  return CLI_OK;
+}
+
+/* After frame 1, 10, 100, ...: the soak test's samples. */
+static void sample_resources(const play_run* r, play_trace* t) {
+  uint32_t n = t->frame_count;
+  while (n % 10 == 0)
+    n /= 10;
+  if (n == 1) play_resources_sample(t, r->platform != NULL);
+}
+
 /* Frame n: CLI_OK, or CLI_FAILED with t->stopped set ("window closed" stops with CLI_OK). */
 static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t, bool* stop) {
   play_object_stats* os = NULL;
+  int rc = make_room(t);
+  if (rc != CLI_OK) return rc;
   play_frame* fr = play_trace_add_frame(t, &os);
   if (!fr) return cli_error(CLI_FAILED, "out of memory after %u frames", t->frame_count);
   tlod_view_desc view = frame_view(r, n, fr);
   const double f0 = cli_now_ms();
   fr->at_ms = f0 - run_start;
-  int rc = update_objects(r, &view, n, run_start, os);
+  rc = update_objects(r, &view, n, run_start, os);
   if (rc == CLI_OK) rc = draw_objects(r, &view, n, run_start, os);
   fr->frame_ms = cli_now_ms() - f0;
-  if (rc != CLI_OK) {
-    t->frame_count--; /* the failed frame is not a record */
-    return rc;
-  }
+  if (rc != CLI_OK) return rc; /* the failed frame is not a record */
+  if (!play_trace_commit_frame(t))
+    return cli_error(CLI_FAILED, "cannot write the frame digests in '%s': %s", r->run_dir,
+                     strerror(errno ? errno : EIO));
+  sample_resources(r, t);
   if (r->o->screenshot_every && n % r->o->screenshot_every == 0 && (rc = play_screenshot(r, fr, run_start)) != CLI_OK)
     return rc;
   if (present(r)) t->stopped = "window closed", *stop = true;
@@ -172,6 +194,10 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
 int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
   int rc = create_schedulers(r, m, t);
   if (rc != CLI_OK) return rc;
+  char err[PLAY_PATH_MAX + 512];
+  if (!play_trace_digests_open(t, r->run_dir, err, sizeof(err)) ||
+      !play_trace_files_open(t, r->run_dir, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "%s", err);
   r->first_draw = tlod_device_query_stats(r->scene->device).draws + 1;
 #if TLOD_HAS_GL
   if (r->platform) tlod_platform_bind(r->platform);
@@ -196,6 +222,8 @@ int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
     }
   }
   t->wall_s = (cli_now_ms() - run_start) * 1e-3;
+  if (!t->sample_count || t->samples[t->sample_count - 1].frame != t->frame_count)
+    play_resources_sample(t, r->platform != NULL);
   if (!r->o->quiet) play_progress(r, m, t->frame_count, 0.0, true);
   return rc;
 }

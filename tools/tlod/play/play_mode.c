@@ -2,30 +2,35 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "common/strict_number.h"
 #include "play_options.h"
 
-bool play_mode_parse(const char* text, play_mode* m) {
+#define STR_OF2(x) #x
+#define STR_OF(x) STR_OF2(x)
+
+const char* play_mode_parse(const char* text, play_mode* m) {
   memset(m, 0, sizeof(*m));
-  char tail;
-  unsigned level = 0;
+  uint32_t level = 0;
+  number_status s = NUMBER_SYNTAX;
   if (!strcmp(text, "adaptive")) {
     m->kind = MODE_ADAPTIVE;
     snprintf(m->name, sizeof(m->name), "adaptive");
   } else if (!strcmp(text, "flat")) {
     m->kind = MODE_FLAT;
     snprintf(m->name, sizeof(m->name), "flat");
-  } else if (!strncmp(text, "uniform:", 8) && text[8] >= '0' && text[8] <= '9' &&
-             sscanf(text + 8, "%u%c", &level, &tail) == 1 && level <= TLOD_MAX_LEVEL) {
+  } else if (!strncmp(text, "uniform:", 8) &&
+             (s = number_parse_u32(text + 8, NULL, 0, TLOD_MAX_LEVEL, &level)) == NUMBER_OK) {
     m->kind = MODE_UNIFORM;
     m->level = level;
     snprintf(m->name, sizeof(m->name), "uniform:%u", level);
   } else {
-    return false;
+    return s == NUMBER_RANGE ? "level out of range 0.." STR_OF(TLOD_MAX_LEVEL)
+                             : "expected adaptive, uniform:L (L = 0.." STR_OF(TLOD_MAX_LEVEL) ") or flat";
   }
   snprintf(m->dir, sizeof(m->dir), "%s", m->name);
   char* colon = strchr(m->dir, ':');
   if (colon) *colon = '-';
-  return true;
+  return NULL;
 }
 
 /* uniform:L uses the UNIFORM policy (every visible patch at L; culling

@@ -42,9 +42,8 @@ void play_usage(FILE* f) {
       cli_demo_names(), tlod_backend_names(), TLOD_MAX_LEVEL, TLOD_MAX_LEVEL);
 }
 
-static int mode_error(const char* option, const char* text) {
-  return cli_error(CLI_USAGE, "%s: expected adaptive, uniform:L (L = 0..%d) or flat, got '%s'", option, TLOD_MAX_LEVEL,
-                   text);
+static int mode_error(const char* option, const char* text, const char* problem) {
+  return cli_error(CLI_USAGE, "%s: %s: %s", option, text, problem);
 }
 
 static int parse_compare(const char* text, play_options* o) {
@@ -54,7 +53,8 @@ static int parse_compare(const char* text, play_options* o) {
   for (char *save = NULL, *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
     if (o->mode_count == PLAY_MAX_MODES) return cli_error(CLI_USAGE, "--compare: at most %d modes", PLAY_MAX_MODES);
     play_mode* m = &o->modes[o->mode_count];
-    if (!play_mode_parse(tok, m)) return mode_error("--compare", tok);
+    const char* problem = play_mode_parse(tok, m);
+    if (problem) return mode_error("--compare", tok, problem);
     for (uint32_t k = 0; k < o->mode_count; k++)
       if (!strcmp(o->modes[k].name, m->name)) return cli_error(CLI_USAGE, "--compare: mode '%s' given twice", m->name);
     o->mode_count++;
@@ -62,12 +62,6 @@ static int parse_compare(const char* text, play_options* o) {
   if (o->mode_count < 2)
     return cli_error(CLI_USAGE, "--compare: expected two or more modes separated by commas, got '%s'", text);
   return CLI_OK;
-}
-
-static bool parse_size(const char* v, uint32_t* w, uint32_t* h) {
-  char tail;
-  if (!v || strspn(v, "0123456789x") != strlen(v) || sscanf(v, "%ux%u%c", w, h, &tail) != 2) return false;
-  return *w >= 1 && *h >= 1 && *w <= 16384 && *h <= 16384;
 }
 
 static int parse_flag(const char* a, play_options* o) {
@@ -88,7 +82,8 @@ static int parse_modes(int argc, char** argv, int* i, play_options* o) {
   const char* v = NULL;
   if (!strcmp(a, "--mode")) {
     if (!(v = cli_value(argc, argv, i))) return CLI_USAGE;
-    if (!play_mode_parse(v, &o->modes[0])) return mode_error(a, v);
+    const char* problem = play_mode_parse(v, &o->modes[0]);
+    if (problem) return mode_error(a, v, problem);
     o->mode_given = true;
     return CLI_OK;
   }
@@ -136,12 +131,8 @@ static int parse_output(int argc, char** argv, int* i, play_options* o) {
     o->backend = tool_backend_options()[e];
     return CLI_OK;
   }
-  if (!strcmp(a, "--size")) {
-    if (!(v = cli_value(argc, argv, i))) return CLI_USAGE;
-    if (!parse_size(v, &o->width, &o->height))
-      return cli_error(CLI_USAGE, "--size: expected WxH with W and H in 1..16384, got '%s'", v);
-    return CLI_OK;
-  }
+  if (!strcmp(a, "--size"))
+    return cli_usage_unless((v = cli_value(argc, argv, i)) && cli_parse_size(a, v, 16384, &o->width, &o->height));
   if (!strcmp(a, "--screenshot-every"))
     return cli_usage_unless((v = cli_value(argc, argv, i)) &&
                             cli_parse_uint(a, v, 1, PLAY_MAX_FRAMES, &o->screenshot_every));

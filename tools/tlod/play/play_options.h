@@ -45,8 +45,8 @@ typedef struct play_options {
 /* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */
 int play_parse(int argc, char** argv, play_options* o);
 
-/* "adaptive", "uniform:L" or "flat" into m; false for anything else. */
-bool play_mode_parse(const char* text, play_mode* m);
+/* "adaptive", "uniform:L" or "flat" into m: NULL, or what is wrong with text. */
+const char* play_mode_parse(const char* text, play_mode* m);
 /* Scheduler settings of a mode. */
 tlod_scheduler_desc play_mode_desc(const play_options* o, const play_mode* m, const char* label);
 /* The finest level any mode of o needs (at least 1). */

@@ -2,6 +2,7 @@
 #include "play_summary.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,76 +11,55 @@ static int compare_double(const void* a, const void* b) {
   return x < y ? -1 : (x > y ? 1 : 0);
 }
 
-double play_percentile(const double* values, uint32_t n, double p) {
-  if (!n) return 0.0;
-  double* v = malloc(sizeof(double) * n);
-  if (!v) return NAN;
-  memcpy(v, values, sizeof(double) * n);
-  qsort(v, n, sizeof(double), compare_double);
+/* Nearest rank of p percent in n sorted values. */
+static double rank_of(const double* sorted, uint32_t n, double p) {
   double rank = ceil(p / 100.0 * n);
   uint32_t i = rank < 1.0 ? 0 : (uint32_t)rank - 1;
-  double r = v[i < n ? i : n - 1];
-  free(v);
-  return r;
+  return sorted[i < n ? i : n - 1];
 }
 
-static distribution distribution_of(const double* v, uint32_t n) {
-  distribution d = {0};
-  if (!n) return d;
-  d.min = d.max = v[0];
-  for (uint32_t i = 0; i < n; i++) {
-    d.mean += v[i];
-    d.min = v[i] < d.min ? v[i] : d.min;
-    d.max = v[i] > d.max ? v[i] : d.max;
+/* Distribution of one field of every frame's digest (NaN when it cannot be read). */
+static distribution distribution_of(const play_trace* t, size_t field) {
+  uint32_t n = t->frame_count;
+  distribution d = {NAN, NAN, NAN, NAN, NAN, NAN};
+  double* v = malloc(sizeof(double) * n);
+  if (!v || !play_trace_digest_field(t, field, v)) {
+    free(v);
+    return d;
   }
+  qsort(v, n, sizeof(double), compare_double);
+  d = (distribution){.min = v[0], .max = v[n - 1]};
+  for (uint32_t i = 0; i < n; i++)
+    d.mean += v[i];
   d.mean /= n;
-  d.p50 = play_percentile(v, n, 50);
-  d.p95 = play_percentile(v, n, 95);
-  d.p99 = play_percentile(v, n, 99);
+  d.p50 = rank_of(v, n, 50);
+  d.p95 = rank_of(v, n, 95);
+  d.p99 = rank_of(v, n, 99);
+  free(v);
   return d;
 }
 
 void play_summarize(const play_trace* t, run_summary* r) {
   memset(r, 0, sizeof(*r));
   uint32_t n = t->frame_count;
+  const play_sums* s = &t->sums;
   r->frames = n;
-  r->gpu_mean = -1.0;
+  r->gpu_mean = s->gpu_frames ? s->gpu_ms / s->gpu_frames : -1.0;
+  r->gpu_frames = s->gpu_frames;
   if (!n) return;
-  double* v[5];
-  for (int k = 0; k < 5; k++)
-    v[k] = calloc(n, sizeof(double));
-  if (!v[0] || !v[1] || !v[2] || !v[3] || !v[4]) {
-    for (int k = 0; k < 5; k++)
-      free(v[k]);
-    return;
-  }
-  double gpu = 0.0;
-  for (uint32_t i = 0; i < n; i++) {
-    play_frame_totals tot;
-    play_frame_totals_of(t, i, &tot);
-    v[0][i] = t->frames[i].frame_ms;
-    v[1][i] = tot.scheduler_ms;
-    v[2][i] = tot.backend_cpu_ms;
-    v[3][i] = tot.backend_wall_ms;
-    v[4][i] = (double)(tot.pattern_triangles + tot.strip_triangles);
-    if (tot.backend_gpu_ms >= 0.0) gpu += tot.backend_gpu_ms, r->gpu_frames++;
-    for (int s = 0; s < TLOD_STAGE_NUM; s++)
-      r->stage_mean[s] += tot.stage_ms[s] / n;
-    r->pattern_mean += (double)tot.pattern_triangles / n;
-    r->strip_mean += (double)tot.strip_triangles / n;
-    r->drawn_mean += (double)tot.drawn_triangles / n;
-    r->culled_mean += (double)tot.culled / n;
-    r->epsilon_mean += (double)tot.effective_epsilon / n;
-    for (int l = 0; l < PLAY_LEVELS; l++)
-      r->histogram_mean[l] += (double)tot.level_histogram[l] / n;
-  }
-  if (r->gpu_frames) r->gpu_mean = gpu / r->gpu_frames;
-  r->frame_ms = distribution_of(v[0], n);
-  r->scheduler_ms = distribution_of(v[1], n);
-  r->backend_cpu_ms = distribution_of(v[2], n);
-  r->backend_wall_ms = distribution_of(v[3], n);
-  r->triangles = distribution_of(v[4], n);
-  r->first_frame_ms = t->frames[0].frame_ms;
-  for (int k = 0; k < 5; k++)
-    free(v[k]);
+  for (int st = 0; st < TLOD_STAGE_NUM; st++)
+    r->stage_mean[st] = s->stage_ms[st] / n;
+  r->pattern_mean = s->pattern / n;
+  r->strip_mean = s->strip / n;
+  r->drawn_mean = s->drawn / n;
+  r->culled_mean = s->culled / n;
+  r->epsilon_mean = s->epsilon / n;
+  for (int l = 0; l < PLAY_LEVELS; l++)
+    r->histogram_mean[l] = s->histogram[l] / n;
+  r->frame_ms = distribution_of(t, offsetof(play_digest, frame_ms));
+  r->scheduler_ms = distribution_of(t, offsetof(play_digest, scheduler_ms));
+  r->backend_cpu_ms = distribution_of(t, offsetof(play_digest, backend_cpu_ms));
+  r->backend_wall_ms = distribution_of(t, offsetof(play_digest, backend_wall_ms));
+  r->triangles = distribution_of(t, offsetof(play_digest, triangles));
+  r->first_frame_ms = t->first_frame_ms;
 }

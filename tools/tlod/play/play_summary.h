@@ -25,6 +25,7 @@ typedef struct summary_job {
   const play_trace* const* runs;
   uint32_t run_count;
   const char* out_dir;
+  const play_outcome* outcome; /* summary.json only */
 } summary_job;
 
 /* The figures of trace t summed up. */

@@ -55,6 +55,36 @@ typedef struct play_object_info {
   float color[4];
 } play_object_info;
 
+/* Frames held in memory: when the window is full, its frames are appended
+ * to the trace files' temporaries before the next frame, so a long run's
+ * memory does not grow with its frames (docs/play.md, "Memory"). */
+#define PLAY_TRACE_WINDOW 1024u
+
+/* What the summary keeps of every frame (its percentiles need them all):
+ * 40 bytes a frame, appended to an unlinked temporary file in the run
+ * folder rather than kept in memory (play_trace_digests_open). */
+typedef struct play_digest {
+  double frame_ms, scheduler_ms, backend_cpu_ms, backend_wall_ms, triangles;
+} play_digest;
+
+/* Sums over every frame, for the summary's means. */
+typedef struct play_sums {
+  double stage_ms[TLOD_STAGE_NUM], pattern, strip, drawn, culled, epsilon, histogram[PLAY_LEVELS], gpu_ms;
+  uint32_t gpu_frames;
+} play_sums;
+
+/* Resource use after frame 1, 10, 100, ... and the last (play_resources.c). */
+#define PLAY_MAX_SAMPLES 9
+typedef struct play_resources {
+  uint32_t frame;                 /* frames played when sampled */
+  uint64_t peak_rss_kib, rss_kib; /* VmHWM, VmRSS of /proc/self/status; 0: unknown */
+  bool gl;                        /* the counts below were taken (gl backend) */
+  uint32_t gl_buffers, gl_textures, gl_renderbuffers, gl_framebuffers, gl_vertex_arrays, gl_programs, gl_shaders,
+      gl_queries;
+} play_resources;
+
+typedef struct play_trace_files play_trace_files; /* play_trace_files.c */
+
 /* One playback (one mode) and its settings. */
 typedef struct play_trace {
   /* settings */
@@ -77,34 +107,65 @@ typedef struct play_trace {
   const play_object_info* objects;
   uint32_t object_count;
   /* results */
-  const char* dir;     /* folder of this run's files, relative to the summary's folder ("." or the mode) */
-  const char* stopped; /* "completed", "interrupted" (SIGINT), "window closed", "error" */
-  double wall_s;       /* whole playback, screenshots included */
+  const char* dir;      /* folder of this run's files, relative to the summary's folder ("." or the mode) */
+  const char* stopped;  /* "completed", "interrupted" (SIGINT), "window closed", "error" */
+  double wall_s;        /* whole playback, screenshots included */
+  uint32_t frame_count; /* frames played (committed) */
+  /* the window: frames window_first .. window_first + window_count - 1 */
   play_frame* frames;
-  play_object_stats* stats; /* frame_count * object_count, frame by frame */
-  uint32_t frame_count, capacity;
+  play_object_stats* stats; /* window_count * object_count, frame by frame */
+  uint32_t window_first, window_count, capacity;
+  FILE* digests; /* every frame's play_digest, in order; NULL before play_trace_digests_open */
+  double first_frame_ms;
+  play_sums sums;
+  play_resources samples[PLAY_MAX_SAMPLES];
+  uint32_t sample_count;
+  play_trace_files* files; /* open from play_trace_files_open to _close */
 } play_trace;
 
-/* Appends a frame (and object_count zeroed object records); NULL when out of memory. */
+/* A zeroed slot for the next frame (and object_count zeroed object
+ * records) at the end of the window; NULL when out of memory. The window
+ * must not be full (play_trace_window_full: flush first). */
 play_frame* play_trace_add_frame(play_trace* t, play_object_stats** objects);
+/* The file of the frames' digests: an unlinked temporary in folder dir. */
+bool play_trace_digests_open(play_trace* t, const char* dir, char* error, size_t error_size);
+/* The slot becomes frame frame_count: summed up, digested and counted;
+ * false when the digest cannot be written (the error is in errno). */
+bool play_trace_commit_frame(play_trace* t);
+/* Reads field (offsetof(play_digest, x)) of every frame's digest into v
+ * (frame_count doubles); false on a read error. */
+bool play_trace_digest_field(const play_trace* t, size_t field, double* v);
+bool play_trace_window_full(const play_trace* t);
 void play_trace_free(play_trace* t);
-/* The figures of one object in one frame. */
-const play_object_stats* play_trace_object(const play_trace* t, uint32_t frame, uint32_t object);
-void play_frame_totals_of(const play_trace* t, uint32_t frame, play_frame_totals* out);
+/* The figures of one object in window frame i. */
+const play_object_stats* play_trace_object(const play_trace* t, uint32_t i, uint32_t object);
+void play_frame_totals_of(const play_trace* t, uint32_t i, play_frame_totals* out);
 
-/* Writers: false with one line in error when the file cannot be written
- * (then nothing is left under path). */
-bool play_write_trace_json(const play_trace* t, const char* path, char* error, size_t error_size);
-bool play_write_trace_csv(const play_trace* t, const char* path, char* error, size_t error_size);
-bool play_write_chrome_trace(const play_trace* t, const char* path, char* error, size_t error_size);
-/* The summary of runs (one per mode) as JSON and as the text printed at the end. */
-bool play_write_summary_json(const play_trace* const* runs, uint32_t run_count, const char* out_dir, const char* path,
-                             char* error, size_t error_size);
+/* The trace files of a run in folder dir: trace.json, trace.csv and
+ * chrome_trace.json, each an atomic file (a unique temporary renamed when
+ * complete). open writes their heads, flush appends the window's frames and
+ * empties it, close (keep: flush, write the tails and rename; otherwise
+ * discard) ends them. False with one line in error ("cannot write
+ * 'DIR/trace.json': No space left on device"); after a false flush or close
+ * nothing is left of the three. */
+bool play_trace_files_open(play_trace* t, const char* dir, char* error, size_t error_size);
+bool play_trace_files_flush(play_trace* t, char* error, size_t error_size);
+bool play_trace_files_close(play_trace* t, bool keep, char* error, size_t error_size);
+
+/* Samples this process's memory (and with gl the live GL objects) into the
+ * trace's next sample (until PLAY_MAX_SAMPLES). */
+void play_resources_sample(play_trace* t, bool gl);
+
+/* The summary of runs (one per mode) as JSON and as the text printed at the
+ * end; status "ok", or "failed" with the first error of the run. */
+typedef struct play_outcome {
+  const char* status; /* "ok" or "failed" */
+  const char* error;  /* the first error, "" when ok */
+} play_outcome;
+bool play_write_summary_json(const play_trace* const* runs, uint32_t run_count, const char* out_dir,
+                             const play_outcome* outcome, const char* path, char* error, size_t error_size);
 bool play_write_summary_text(const play_trace* const* runs, uint32_t run_count, const char* out_dir, const char* path,
                              char* error, size_t error_size);
 void play_print_summary(FILE* f, const play_trace* const* runs, uint32_t run_count, const char* out_dir);
-
-/* Nearest-rank percentile (p in [0, 100]) of n values; sorts a copy. */
-double play_percentile(const double* values, uint32_t n, double p);
 
 #endif

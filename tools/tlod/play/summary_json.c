@@ -16,6 +16,32 @@ static void json_distribution(json_writer* w, const char* key, const distributio
   json_object_end(w);
 }
 
+/* Memory and GL objects after frame 1, 10, 100, ... and the last (soak tests). */
+static void json_resources(json_writer* w, const play_trace* t) {
+  json_array_begin(w, "resources");
+  for (uint32_t k = 0; k < t->sample_count; k++) {
+    const play_resources* r = &t->samples[k];
+    json_object_begin(w, NULL);
+    json_uint(w, "frame", r->frame);
+    json_uint(w, "peak_rss_kib", r->peak_rss_kib);
+    json_uint(w, "rss_kib", r->rss_kib);
+    if (r->gl) {
+      json_object_begin(w, "gl_objects");
+      json_uint(w, "buffers", r->gl_buffers);
+      json_uint(w, "textures", r->gl_textures);
+      json_uint(w, "renderbuffers", r->gl_renderbuffers);
+      json_uint(w, "framebuffers", r->gl_framebuffers);
+      json_uint(w, "vertex_arrays", r->gl_vertex_arrays);
+      json_uint(w, "programs", r->gl_programs);
+      json_uint(w, "shaders", r->gl_shaders);
+      json_uint(w, "queries", r->gl_queries);
+      json_object_end(w);
+    }
+    json_object_end(w);
+  }
+  json_array_end(w);
+}
+
 static bool summary_json(FILE* f, const void* data) {
   const summary_job* j = data;
   const play_trace* t0 = j->runs[0];
@@ -23,6 +49,8 @@ static bool summary_json(FILE* f, const void* data) {
   json_begin(&w, f);
   json_object_begin(&w, NULL);
   json_string(&w, "schema", PLAY_SUMMARY_SCHEMA);
+  json_string(&w, "status", j->outcome->status);
+  json_string(&w, "error", j->outcome->error);
   json_string(&w, "tool", t0->tool_version);
   json_string(&w, "scene", t0->scene);
   json_string(&w, "backend", t0->backend);
@@ -69,6 +97,7 @@ static bool summary_json(FILE* f, const void* data) {
     for (int l = 0; l < PLAY_LEVELS; l++)
       json_number(&w, NULL, r.histogram_mean[l]);
     json_array_end(&w);
+    json_resources(&w, t);
     if (j->run_count > 1) {
       json_object_begin(&w, "relative_to_first");
       json_number(&w, "frame_ms_mean", base.frame_ms.mean > 0.0 ? r.frame_ms.mean / base.frame_ms.mean : 0.0);
@@ -82,8 +111,8 @@ static bool summary_json(FILE* f, const void* data) {
   return json_end(&w);
 }
 
-bool play_write_summary_json(const play_trace* const* runs, uint32_t run_count, const char* out_dir, const char* path,
-                             char* error, size_t error_size) {
-  summary_job j = {runs, run_count, out_dir};
+bool play_write_summary_json(const play_trace* const* runs, uint32_t run_count, const char* out_dir,
+                             const play_outcome* outcome, const char* path, char* error, size_t error_size) {
+  summary_job j = {runs, run_count, out_dir, outcome};
   return tlod_atomic_file_write(path, summary_json, &j, error, error_size);
 }

@@ -76,6 +76,6 @@ static bool summary_text(FILE* f, const void* data) {
 
 bool play_write_summary_text(const play_trace* const* runs, uint32_t run_count, const char* out_dir, const char* path,
                              char* error, size_t error_size) {
-  summary_job j = {runs, run_count, out_dir};
+  summary_job j = {runs, run_count, out_dir, NULL};
   return tlod_atomic_file_write(path, summary_text, &j, error, error_size);
 }

@@ -1,10 +1,8 @@
 /* tlod play -- trace.csv: one row of totals per frame. */
-#include "play_trace.h"
-#include "tlod_atomic_file.h"
+#include "play_trace_format.h"
 #include "tool_names.h"
 
-static bool trace_csv(FILE* f, const void* data) {
-  const play_trace* t = data;
+void trace_csv_head(FILE* f) {
   fputs("frame,time_s,frame_ms,scheduler_ms", f);
   for (int s = 0; s < TLOD_STAGE_NUM; s++)
     fprintf(f, ",%s_ms", tool_stage_name(s));
@@ -14,7 +12,10 @@ static bool trace_csv(FILE* f, const void* data) {
   for (int l = 0; l < PLAY_LEVELS; l++)
     fprintf(f, ",level_%d", l);
   fputs(",eye_x,eye_y,eye_z,target_x,target_y,target_z,fovy\n", f);
-  for (uint32_t n = 0; n < t->frame_count; n++) {
+}
+
+void trace_csv_frames(FILE* f, const play_trace* t) {
+  for (uint32_t n = 0; n < t->window_count; n++) {
     const play_frame* fr = &t->frames[n];
     play_frame_totals tot;
     play_frame_totals_of(t, n, &tot);
@@ -31,11 +32,4 @@ static bool trace_csv(FILE* f, const void* data) {
     fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", (double)fr->eye[0], (double)fr->eye[1], (double)fr->eye[2],
             (double)fr->target[0], (double)fr->target[1], (double)fr->target[2], (double)fr->fovy);
   }
-  return true;
 }
-
-bool play_write_trace_csv(const play_trace* t, const char* path, char* error, size_t error_size) {
-  return tlod_atomic_file_write(path, trace_csv, t, error, error_size);
-}
-
-/* JSON string with the few escapes object names can need. */

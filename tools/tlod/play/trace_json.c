@@ -1,8 +1,7 @@
-/* tlod play -- trace.json: the settings and every frame's figures (schema
- * tlod-play-trace/1, docs/play.md). */
+/* tlod play -- trace.json: the settings, every frame's figures, then the
+ * results (schema tlod-play-trace/1, docs/play.md), written in pieces. */
 #include "common/lod_json.h"
-#include "play_trace.h"
-#include "tlod_atomic_file.h"
+#include "play_trace_format.h"
 #include "tool_names.h"
 
 static void json_vec(json_writer* w, const char* key, const float* v, int n) {
@@ -32,9 +31,6 @@ static void json_settings(json_writer* w, const play_trace* t) {
   json_uint(w, "height", t->height);
   json_uint(w, "screenshot_every", t->screenshot_every);
   json_uint(w, "frames_requested", t->frames_requested);
-  json_uint(w, "frames_completed", t->frame_count);
-  json_string(w, "stopped", t->stopped);
-  json_number(w, "wall_s", t->wall_s);
   json_array_begin(w, "objects");
   for (uint32_t i = 0; i < t->object_count; i++) {
     const play_object_info* o = &t->objects[i];
@@ -50,77 +46,86 @@ static void json_settings(json_writer* w, const play_trace* t) {
   json_array_end(w);
 }
 
-static bool trace_json(FILE* f, const void* data) {
-  const play_trace* t = data;
-  json_writer w;
-  json_begin(&w, f);
-  json_object_begin(&w, NULL);
-  json_string(&w, "schema", PLAY_TRACE_SCHEMA);
-  json_settings(&w, t);
-  json_array_begin(&w, "frames");
-  for (uint32_t n = 0; n < t->frame_count; n++) {
+void trace_json_head(json_writer* w, FILE* f, const play_trace* t) {
+  json_begin(w, f);
+  json_object_begin(w, NULL);
+  json_string(w, "schema", PLAY_TRACE_SCHEMA);
+  json_settings(w, t);
+  json_array_begin(w, "frames");
+}
+
+/* The per-object records of window frame n. */
+static void json_frame_objects(json_writer* w, const play_trace* t, uint32_t n) {
+  json_array_begin(w, "objects");
+  for (uint32_t i = 0; i < t->object_count; i++) {
+    const play_object_stats* s = play_trace_object(t, n, i);
+    json_object_begin(w, NULL);
+    json_string(w, "name", t->objects[i].name);
+    json_number(w, "scheduler_ms", s->update_ms);
+    json_stage_ms(w, "stage_ms", s->stage_ms);
+    json_number(w, "backend_cpu_ms", s->backend_cpu_ms);
+    json_number(w, "backend_gpu_ms", s->backend_gpu_ms);
+    json_number(w, "backend_wall_ms", s->backend_wall_ms);
+    json_uint(w, "patches", s->patches);
+    json_uint(w, "visible", s->patches - s->culled);
+    json_uint(w, "culled", s->culled);
+    json_uint(w, "strips", s->strips);
+    json_uint(w, "pattern_triangles", s->pattern_triangles);
+    json_uint(w, "strip_triangles", s->strip_triangles);
+    json_uint(w, "triangles", s->pattern_triangles + s->strip_triangles);
+    json_uint(w, "drawn_triangles", s->drawn_triangles);
+    json_uint(w, "draw_calls", s->draw_calls);
+    json_number(w, "effective_epsilon", s->effective_epsilon);
+    json_level_histogram(w, "level_histogram", s->level_histogram, PLAY_LEVELS);
+    json_object_end(w);
+  }
+  json_array_end(w);
+}
+
+void trace_json_frames(json_writer* w, const play_trace* t) {
+  for (uint32_t n = 0; n < t->window_count; n++) {
     const play_frame* fr = &t->frames[n];
     play_frame_totals tot;
     play_frame_totals_of(t, n, &tot);
-    json_object_begin(&w, NULL);
-    json_uint(&w, "frame", fr->frame);
-    json_number(&w, "time_s", fr->time_s);
-    json_vec(&w, "eye", fr->eye, 3);
-    json_vec(&w, "target", fr->target, 3);
-    json_vec(&w, "up", fr->up, 3);
-    json_number(&w, "fovy", fr->fovy);
-    json_number(&w, "near", fr->near_z);
-    json_number(&w, "far", fr->far_z);
-    json_number(&w, "frame_ms", fr->frame_ms);
-    json_number(&w, "scheduler_ms", tot.scheduler_ms);
-    json_stage_ms(&w, "stage_ms", tot.stage_ms);
-    json_number(&w, "backend_cpu_ms", tot.backend_cpu_ms);
-    json_number(&w, "backend_gpu_ms", tot.backend_gpu_ms);
-    json_number(&w, "backend_wall_ms", tot.backend_wall_ms);
-    json_number(&w, "screenshot_ms", fr->screenshot_ms);
-    json_string(&w, "screenshot", fr->screenshot);
-    json_uint(&w, "patches", tot.patches);
-    json_uint(&w, "visible", tot.patches - tot.culled);
-    json_uint(&w, "culled", tot.culled);
-    json_uint(&w, "strips", tot.strips);
-    json_uint(&w, "pattern_triangles", tot.pattern_triangles);
-    json_uint(&w, "strip_triangles", tot.strip_triangles);
-    json_uint(&w, "triangles", tot.pattern_triangles + tot.strip_triangles);
-    json_uint(&w, "drawn_triangles", tot.drawn_triangles);
-    json_uint(&w, "draw_calls", tot.draw_calls);
-    json_number(&w, "effective_epsilon", tot.effective_epsilon);
-    json_level_histogram(&w, "level_histogram", tot.level_histogram, PLAY_LEVELS);
-    json_array_begin(&w, "objects");
-    for (uint32_t i = 0; i < t->object_count; i++) {
-      const play_object_stats* s = play_trace_object(t, n, i);
-      json_object_begin(&w, NULL);
-      json_string(&w, "name", t->objects[i].name);
-      json_number(&w, "scheduler_ms", s->update_ms);
-      json_stage_ms(&w, "stage_ms", s->stage_ms);
-      json_number(&w, "backend_cpu_ms", s->backend_cpu_ms);
-      json_number(&w, "backend_gpu_ms", s->backend_gpu_ms);
-      json_number(&w, "backend_wall_ms", s->backend_wall_ms);
-      json_uint(&w, "patches", s->patches);
-      json_uint(&w, "visible", s->patches - s->culled);
-      json_uint(&w, "culled", s->culled);
-      json_uint(&w, "strips", s->strips);
-      json_uint(&w, "pattern_triangles", s->pattern_triangles);
-      json_uint(&w, "strip_triangles", s->strip_triangles);
-      json_uint(&w, "triangles", s->pattern_triangles + s->strip_triangles);
-      json_uint(&w, "drawn_triangles", s->drawn_triangles);
-      json_uint(&w, "draw_calls", s->draw_calls);
-      json_number(&w, "effective_epsilon", s->effective_epsilon);
-      json_level_histogram(&w, "level_histogram", s->level_histogram, PLAY_LEVELS);
-      json_object_end(&w);
-    }
-    json_array_end(&w);
-    json_object_end(&w);
+    json_object_begin(w, NULL);
+    json_uint(w, "frame", fr->frame);
+    json_number(w, "time_s", fr->time_s);
+    json_vec(w, "eye", fr->eye, 3);
+    json_vec(w, "target", fr->target, 3);
+    json_vec(w, "up", fr->up, 3);
+    json_number(w, "fovy", fr->fovy);
+    json_number(w, "near", fr->near_z);
+    json_number(w, "far", fr->far_z);
+    json_number(w, "frame_ms", fr->frame_ms);
+    json_number(w, "scheduler_ms", tot.scheduler_ms);
+    json_stage_ms(w, "stage_ms", tot.stage_ms);
+    json_number(w, "backend_cpu_ms", tot.backend_cpu_ms);
+    json_number(w, "backend_gpu_ms", tot.backend_gpu_ms);
+    json_number(w, "backend_wall_ms", tot.backend_wall_ms);
+    json_number(w, "screenshot_ms", fr->screenshot_ms);
+    json_string(w, "screenshot", fr->screenshot);
+    json_uint(w, "patches", tot.patches);
+    json_uint(w, "visible", tot.patches - tot.culled);
+    json_uint(w, "culled", tot.culled);
+    json_uint(w, "strips", tot.strips);
+    json_uint(w, "pattern_triangles", tot.pattern_triangles);
+    json_uint(w, "strip_triangles", tot.strip_triangles);
+    json_uint(w, "triangles", tot.pattern_triangles + tot.strip_triangles);
+    json_uint(w, "drawn_triangles", tot.drawn_triangles);
+    json_uint(w, "draw_calls", tot.draw_calls);
+    json_number(w, "effective_epsilon", tot.effective_epsilon);
+    json_level_histogram(w, "level_histogram", tot.level_histogram, PLAY_LEVELS);
+    json_frame_objects(w, t, n);
+    json_object_end(w);
   }
-  json_array_end(&w);
-  json_object_end(&w);
-  return json_end(&w);
 }
 
-bool play_write_trace_json(const play_trace* t, const char* path, char* error, size_t error_size) {
-  return tlod_atomic_file_write(path, trace_json, t, error, error_size);
+/* The results come last: they are known only when the run ends. */
+bool trace_json_tail(json_writer* w, const play_trace* t) {
+  json_array_end(w);
+  json_uint(w, "frames_completed", t->frame_count);
+  json_string(w, "stopped", t->stopped);
+  json_number(w, "wall_s", t->wall_s);
+  json_object_end(w);
+  return json_end(w);
 }

@@ -30,9 +30,21 @@ static tlod_view_desc view_of(const tess_options* o, const tool_camera* cam) {
   return view;
 }
 
+/* Refuses a camera with no view direction or no roll: it would draw nothing sensible. */
+static int check_view(const tess_options* o, const tool_camera* cam) {
+  const char* problem = camera_view_problem(cam->eye, cam->target, cam->up);
+  if (!problem) return CLI_OK;
+  const char* target = isnan(o->ad.cam.target[0]) ? " (default: the bounding-box centre)" : "";
+  return cli_error(CLI_USAGE, "--eye %g,%g,%g, --target %g,%g,%g%s, --up %g,%g,%g: %s", (double)cam->eye[0],
+                   (double)cam->eye[1], (double)cam->eye[2], (double)cam->target[0], (double)cam->target[1],
+                   (double)cam->target[2], target, (double)cam->up[0], (double)cam->up[1], (double)cam->up[2], problem);
+}
+
 int tessellate_plan_frame(const tess_options* o, tlod_context* ctx, const scene_setup* s, tlod_scheduler** sch,
                           const tlod_draw_list** out) {
   tool_camera cam = camera_of(o, s->mesh);
+  int rc = check_view(o, &cam);
+  if (rc != CLI_OK) return rc;
   tlod_view_desc view = view_of(o, &cam);
   tlod_scheduler_desc sd = {.epsilon_px = o->ad.epsilon,
                             .max_level = o->ad.max_level,

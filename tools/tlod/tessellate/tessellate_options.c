@@ -29,7 +29,7 @@ void tessellate_usage(FILE* f) {
           "Adaptive (view-dependent) when a camera is given:\n"
           "  --eye X,Y,Z         camera position\n"
           "  --target X,Y,Z      point looked at (default: the mesh's bounding-box centre)\n"
-          "  --up X,Y,Z          up direction (default 0,1,0)\n"
+          "  --up X,Y,Z          up direction (default 0,1,0; not along the view direction)\n"
           "  --fovy DEG          vertical field of view (default 45; 0: orthographic, see --ortho-height)\n"
           "  --ortho-height H    orthographic view height in world units\n"
           "  --size WxH          viewport in pixels (default 1280x720)\n"
@@ -44,18 +44,13 @@ static int parse_vec3(int argc, char** argv, int* i, float* dst) {
   const char* a = argv[*i];
   const char* v = cli_value(argc, argv, i);
   if (!v) return CLI_USAGE;
-  if (!camera_parse_vec3(v, dst)) return cli_error(CLI_USAGE, "%s: expected X,Y,Z, got '%s'", a, v);
-  return CLI_OK;
+  return cli_usage_unless(cli_parse_vec3(a, v, dst));
 }
 
 static int parse_size(int argc, char** argv, int* i, adaptive_options* ad) {
-  char tail;
+  const char* a = argv[*i];
   const char* v = cli_value(argc, argv, i);
-  if (!v) return CLI_USAGE;
-  if (sscanf(v, "%ux%u%c", &ad->width, &ad->height, &tail) != 2 || !ad->width || !ad->height || ad->width > 65536 ||
-      ad->height > 65536)
-    return cli_error(CLI_USAGE, "--size: expected WxH (1..65536), got '%s'", v);
-  return CLI_OK;
+  return cli_usage_unless(v && cli_parse_size(a, v, 65536, &ad->width, &ad->height));
 }
 
 static int parse_camera(int argc, char** argv, int* i, adaptive_options* ad) {
