@@ -2,6 +2,7 @@
 # The ctest test fuzz_covers_importers: fails when tlod_import_file() dispatches a file
 # extension (a `_tlod_str_ends_with_nocase(path, ".ext")` in import.c) that has no fuzz target
 # in fuzz/CMakeLists.txt (tlod_fuzz_import_formats), i.e. an importer was added unfuzzed.
+cmake_minimum_required(VERSION 3.25)
 file(READ "${IMPORT_C}" text)
 string(REGEX MATCHALL "_tlod_str_ends_with_nocase\\(path, \"\\.[A-Za-z0-9]+\"\\)" calls "${text}")
 set(missing "")

@@ -1,10 +1,10 @@
 /* replay_main.c -- a libFuzzer target without libFuzzer: main() runs LLVMFuzzerTestOneInput
  * once on every file named on the command line, and on every regular file directly inside a
- * named folder (sub-folders are skipped: tests/data/fuzz/<target>/open/ holds reproducers of
- * defects not fixed yet, docs/fuzzing.md). The ctest tests fuzz_replay_<target> run it over
- * tests/data/fuzz/<target> and fuzz/seeds/<target>; a crash or a broken contract (abort) fails
- * the test, under the asan preset a sanitizer report too.
- * Usage: <target>_replay PATH...   Prints "replayed N inputs"; exits 1 when a path cannot be
+ * named folder (sub-folders are skipped). The ctest tests fuzz_replay_<target> run it over the
+ * target's seed corpus (fuzz/seeds.py: tests/data, the seeds, every reproducer saved in
+ * tests/data/fuzz/<target>); a crash or a broken contract (abort) fails the test, under the
+ * asan preset a sanitizer report too.
+ * Usage: <target>_replay PATH...   Prints "replayed N inputs"; exits 1 when a file cannot be
  * read or N is 0. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
