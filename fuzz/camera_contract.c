@@ -6,6 +6,8 @@
 
 #include "fuzz_common.h"
 
+enum { kMaxSegments = 64 };
+
 /* camera_path.c names the file as it was given (the full path), the glTF reader by its name.
  * The checks on a glTF camera's keys name the path "gltf:0" instead of the file, an open
  * defect of camera_path.c (tests/data/fuzz/fuzz_gltf_camera/open/fovy_error_names_no_file.gltf),
@@ -43,6 +45,9 @@ void fuzz_check_camera_path(bool ok, camera_path* p, const char* error, const ch
     check_eval(p, ts[i], false);
     check_eval(p, ts[i], true);
   }
+  /* Segment midpoints: where a spline overshoots most. */
+  for (uint32_t i = 0; i + 1 < p->count && i < kMaxSegments; ++i)
+    check_eval(p, 0.5 * (p->keys[i].time + p->keys[i + 1].time) - p->keys[0].time, false);
   (void)camera_path_frames(p, 60.0);
   camera_path_free(p);
 }
