@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""Builds the seed corpora of the fuzz targets (docs/fuzzing.md).
+
+Usage: fuzz/seeds.py OUT_DIR   (fuzz/run calls it; OUT_DIR/<target>/ is rebuilt each time)
+
+Seeds come from the repository only:
+  - tests/data: every .gltf (external buffers inlined as base64 data URIs, so a seed is one
+    self-contained file like a fuzz input; the original is kept too), .glb, .obj; the invalid
+    corpora (glTF-Validator, obj_bad) are in there;
+  - generated here: a GLB packed from each .gltf with one external buffer, PLY meshes in
+    ascii and both binary byte orders, a glTF scene with an animated camera;
+  - fuzz/seeds/<target>/: small hand-made files (valid and invalid) for each target;
+  - tests/data/fuzz/<target>/: every crash found so far (not the open/ folder: those still
+    crash and would stop a run at start).
+fuzz_mesh's inputs are an option byte and a file (fuzz/fuzz_mesh.c): its seeds are the small
+obj/ply/glb/gltf seeds behind a few option bytes.
+"""
+import base64
+import json
+import pathlib
+import shutil
+import struct
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+DATA = ROOT / "tests" / "data"
+TARGETS = ["fuzz_gltf", "fuzz_glb", "fuzz_obj", "fuzz_ply", "fuzz_mesh", "fuzz_camera_path", "fuzz_gltf_camera"]
+MAX_INLINE = 256 * 1024  # larger external buffers are left as they are
+MESH_SEED_MAX = 16 * 1024  # fuzz_mesh: only small meshes (fuzz_mesh.c skips big ones)
+
+
+def data_files(suffix):
+    """Files under tests/data with this extension, fuzz reproducers excluded."""
+    return sorted(p for p in DATA.rglob("*" + suffix) if p.is_file() and "fuzz" not in p.relative_to(DATA).parts)
+
+
+def inline_buffers(path):
+    """The glTF JSON with its external buffers as data URIs, and the list of their bytes;
+    None when it is not JSON (an invalid seed, kept raw) or a buffer is missing."""
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8-sig"))
+        blobs = []
+        for buf in doc.get("buffers", []):
+            uri = buf.get("uri", "")
+            if not uri or uri.startswith("data:"):
+                blobs.append(None)
+                continue
+            blob = (path.parent / uri).read_bytes()
+            if len(blob) > MAX_INLINE:
+                return None
+            blobs.append(blob)
+            buf["uri"] = "data:application/octet-stream;base64," + base64.b64encode(blob).decode()
+        return doc, blobs
+    except (ValueError, OSError, AttributeError, TypeError):
+        return None
+
+
+def glb(doc, bin_blob):
+    """A GLB container: 12-byte header, JSON chunk (space-padded), optional BIN chunk."""
+    js = json.dumps(doc, separators=(",", ":")).encode()
+    js += b" " * (-len(js) % 4)
+    chunks = struct.pack("<II", len(js), 0x4E4F534A) + js
+    if bin_blob is not None:
+        b = bin_blob + b"\0" * (-len(bin_blob) % 4)
+        chunks += struct.pack("<II", len(b), 0x004E4942) + b
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
+
+
+def gltf_seeds(out):
+    for p in data_files(".gltf"):
+        name = p.relative_to(DATA).as_posix().replace("/", "_")
+        shutil.copy(p, out["fuzz_gltf"] / name)
+        inlined = inline_buffers(p)
+        if not inlined:
+            continue
+        doc, blobs = inlined
+        (out["fuzz_gltf"] / ("inline_" + name)).write_text(json.dumps(doc))
+        if len(blobs) == 1 and blobs[0] is not None:
+            packed = json.loads(json.dumps(doc))
+            del packed["buffers"][0]["uri"]
+            (out["fuzz_glb"] / (name[:-5] + ".glb")).write_bytes(glb(packed, blobs[0]))
+        if "cameras" in doc:
+            (out["fuzz_gltf_camera"] / ("inline_" + name)).write_text(json.dumps(doc))
+    for p in data_files(".glb"):
+        shutil.copy(p, out["fuzz_glb"] / p.relative_to(DATA).as_posix().replace("/", "_"))
+        if b'"cameras"' in p.read_bytes()[:65536]:
+            shutil.copy(p, out["fuzz_gltf_camera"] / p.name)
+
+
+CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+CUBE_F = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (3, 7, 6, 2), (0, 4, 7, 3), (1, 2, 6, 5, 1)]
+
+
+def ply(fmt, normals):
+    """The unit cube (last face a degenerate pentagon) as PLY in fmt."""
+    props = ["x", "y", "z"] + (["nx", "ny", "nz"] if normals else [])
+    head = ["ply", "format %s 1.0" % fmt, "element vertex %d" % len(CUBE_V)]
+    head += ["property float %s" % p for p in props]
+    head += ["element face %d" % len(CUBE_F), "property list uchar int vertex_indices", "end_header"]
+    text = ("\n".join(head) + "\n").encode()
+    rows = [v + ((0.0, 0.0, 1.0) if normals else ()) for v in CUBE_V]
+    if fmt == "ascii":
+        body = "".join(" ".join("%g" % c for c in r) + "\n" for r in rows)
+        body += "".join(" ".join(str(i) for i in (len(f),) + f) + "\n" for f in CUBE_F)
+        return text + body.encode()
+    e = "<" if fmt == "binary_little_endian" else ">"
+    body = b"".join(struct.pack(e + "%df" % len(r), *r) for r in rows)
+    body += b"".join(struct.pack(e + "B%di" % len(f), len(f), *f) for f in CUBE_F)
+    return text + body
+
+
+def ply_seeds(out):
+    for fmt in ("ascii", "binary_little_endian", "binary_big_endian"):
+        for normals in (False, True):
+            (out["fuzz_ply"] / ("cube_%s%s.ply" % (fmt, "_n" if normals else ""))).write_bytes(ply(fmt, normals))
+
+
+def camera_scene():
+    """A glTF scene: a triangle and camera 0 on a node moved by a translation and a rotation
+    channel (one embedded buffer)."""
+    times = struct.pack("<3f", 0.0, 1.0, 2.0)
+    moves = struct.pack("<9f", 0, 1, 5, 3, 1, 4, 0, 2, 3)
+    turns = struct.pack("<12f", 0, 0, 0, 1, 0, 0.3826834, 0, 0.9238795, 0, 0.7071068, 0, 0.7071068)
+    blob = times + moves + turns
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": 12}, {"buffer": 0, "byteOffset": 12, "byteLength": 36},
+             {"buffer": 0, "byteOffset": 48, "byteLength": 48}]
+    acc = [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "SCALAR", "min": [0], "max": [2]},
+           {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+           {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC4"}]
+    return {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"name": "rig", "translation": [0, 0.5, 0], "children": [2]}, {"name": "still", "camera": 1},
+                  {"name": "cam", "camera": 0}],
+        "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1, "zfar": 100}},
+                    {"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}],
+        "animations": [{"samplers": [{"input": 0, "output": 1}, {"input": 0, "output": 2, "interpolation": "LINEAR"}],
+                        "channels": [{"sampler": 0, "target": {"node": 2, "path": "translation"}},
+                                     {"sampler": 1, "target": {"node": 2, "path": "rotation"}}]}],
+        "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64," +
+                     base64.b64encode(blob).decode()}],
+        "bufferViews": views, "accessors": acc,
+    }, blob
+
+
+def camera_seeds(out):
+    doc, blob = camera_scene()
+    (out["fuzz_gltf_camera"] / "animated_camera.gltf").write_text(json.dumps(doc, indent=1))
+    packed = json.loads(json.dumps(doc))
+    del packed["buffers"][0]["uri"]
+    (out["fuzz_gltf_camera"] / "animated_camera.glb").write_bytes(glb(packed, blob))
+    still = {k: v for k, v in doc.items() if k not in ("animations", "buffers", "bufferViews", "accessors")}
+    (out["fuzz_gltf_camera"] / "still_camera.gltf").write_text(json.dumps(still))
+
+
+def mesh_seeds(out):
+    """fuzz_mesh: option byte (format in bits 0-1) + file."""
+    sources = [(0, out["fuzz_obj"]), (1, out["fuzz_ply"]), (2, out["fuzz_glb"]), (3, out["fuzz_gltf"])]
+    options = (0x04, 0x08, 0x20, 0x0C | 0x40 | 0x80, 0x34, 0x00)  # two a file, in turn
+    n = 0
+    for fmt, folder in sources:
+        for p in sorted(folder.iterdir()):
+            body = p.read_bytes()
+            if len(body) > MESH_SEED_MAX:
+                continue
+            for opt in (options[n % 6], options[(n + 3) % 6]):
+                (out["fuzz_mesh"] / ("%02x_%s" % (opt | fmt, p.name))).write_bytes(bytes([opt | fmt]) + body)
+            n += 1
+
+
+def copy_dir(src, dst):
+    if src.is_dir():
+        for p in sorted(src.iterdir()):
+            if p.is_file():
+                shutil.copy(p, dst / p.name)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    base = pathlib.Path(sys.argv[1])
+    out = {t: base / t for t in TARGETS}
+    for d in out.values():
+        shutil.rmtree(d, ignore_errors=True)
+        d.mkdir(parents=True)
+    for p in data_files(".obj"):
+        shutil.copy(p, out["fuzz_obj"] / p.relative_to(DATA).as_posix().replace("/", "_"))
+    gltf_seeds(out)
+    ply_seeds(out)
+    camera_seeds(out)
+    for t in TARGETS:
+        copy_dir(ROOT / "fuzz" / "seeds" / t, out[t])
+    mesh_seeds(out)
+    for t in TARGETS:
+        copy_dir(DATA / "fuzz" / t, out[t])
+    for t in TARGETS:
+        print("seeds: %-18s %4d files" % (t, len(list(out[t].iterdir()))))
+
+
+if __name__ == "__main__":
+    main()
