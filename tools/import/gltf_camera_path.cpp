@@ -62,7 +62,21 @@ struct Local {
   bool has_matrix = false;
 };
 
-Local local_of(const tinygltf::Node& n) {
+// glTF rotations are unit quaternions; a non-unit one would scale the
+// camera's frame (1e6 components put the target at infinity), so it is
+// normalised, and one without a direction is refused naming `what`.
+void make_unit(double q[4], const std::string& what) {
+  double len = 0;
+  for (int i = 0; i < 4; i++)
+    len += q[i] * q[i];
+  len = std::sqrt(len);
+  if (!(len > 1e-12) || !std::isfinite(len)) fail(TLOD_ERROR_PARSE, what + ": rotation is not a usable quaternion");
+  for (int i = 0; i < 4; i++)
+    q[i] /= len;
+}
+
+Local local_of(const tinygltf::Model& m, size_t node) {
+  const tinygltf::Node& n = m.nodes[node];
   Local l;
   if (n.matrix.size() == 16) {
     std::copy(n.matrix.begin(), n.matrix.end(), l.matrix.begin());
@@ -72,6 +86,7 @@ Local local_of(const tinygltf::Node& n) {
     l.t[i] = n.translation[i];
   for (size_t i = 0; i < 4 && n.rotation.size() == 4; i++)
     l.q[i] = n.rotation[i];
+  if (n.rotation.size() == 4) make_unit(l.q, format("nodes[%zu]", node));
   for (size_t i = 0; i < 3 && n.scale.size() == 3; i++)
     l.s[i] = n.scale[i];
   return l;
@@ -153,7 +168,7 @@ void build(const char* path, uint32_t camera, std::vector<camera_path_json_key>&
   if (node < 0) fail(TLOD_ERROR_INVALID_ARGUMENT, format("camera %u is on no node", camera));
   Mat above = identity(); // static parents
   for (int p = parent[size_t(node)], guard = 0; p >= 0 && guard < 1024; p = parent[size_t(p)], guard++)
-    above = mul(matrix_of(local_of(m.nodes[size_t(p)])), above);
+    above = mul(matrix_of(local_of(m, size_t(p))), above);
   Channel tr{{}, {}, 3}, rot{{}, {}, 4};
   for (const tinygltf::Animation& an : m.animations) {
     for (const tinygltf::AnimationChannel& ch : an.channels) {
@@ -185,11 +200,14 @@ void build(const char* path, uint32_t camera, std::vector<camera_path_json_key>&
   times.erase(std::unique(times.begin(), times.end()), times.end());
   if (times.size() < 2) times = {0.0, 1.0}; // a still camera: one second of it
   acc.take(times.size(), 2 * sizeof(camera_path_json_key), "camera path keys");
-  Local base = local_of(m.nodes[size_t(node)]);
+  Local base = local_of(m, size_t(node));
   for (double t : times) {
     Local l = base;
     if (!tr.times.empty()) sample(tr, t, l.t), l.has_matrix = false;
-    if (!rot.times.empty()) sample(rot, t, l.q), l.has_matrix = false;
+    if (!rot.times.empty()) {
+      sample(rot, t, l.q), l.has_matrix = false;
+      make_unit(l.q, format("animation of camera node %d at t = %g", node, t));
+    }
     Mat w = mul(above, matrix_of(l));
     camera_path_json_key k{};
     k.time = t;

@@ -34,6 +34,12 @@ double camera_path_frames(const camera_path* p, double fps) {
 }
 
 /* Values every path must satisfy (files and built-ins alike). */
+static bool key_finite(const camera_key* k) {
+  for (int c = 0; c < 3; c++)
+    if (!isfinite(k->eye[c]) || !isfinite(k->target[c]) || !isfinite(k->up[c])) return false;
+  return true;
+}
+
 static bool check_keys(const camera_path* p, char* error, size_t error_size) {
   if (p->count < 2) {
     snprintf(error, error_size, "%s: keyframes: need at least 2 keyframes, got %u", p->name, p->count);
@@ -52,6 +58,8 @@ static bool check_keys(const camera_path* p, char* error, size_t error_size) {
       snprintf(buf, sizeof(buf), "time %g is not after keyframes[%u].time %g (times must increase)", k->time, i - 1,
                p->keys[i - 1].time);
       problem = buf;
+    } else if (!key_finite(k)) {
+      problem = "eye, target or up is not finite";
     } else if (!(d > 0.0)) {
       problem = "eye and target are the same point";
     } else if (!(u > 0.0)) {
@@ -111,7 +119,7 @@ bool camera_path_load_gltf(const char* scene, uint32_t camera, camera_path* out,
   uint32_t count = 0;
   if (!gltf_camera_path_load(scene, camera, &keys, &count, error, error_size)) return false;
   char name[300];
-  snprintf(name, sizeof(name), "gltf:%u", camera);
+  snprintf(name, sizeof(name), "%s: camera %u", scene, camera);
   return from_keys(scene, name, keys, count, out, error, error_size);
 }
 
