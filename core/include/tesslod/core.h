@@ -309,12 +309,32 @@ typedef enum tlod_alpha_mode {
   _TLOD_ALPHA_FORCE_U32 = 0x7FFFFFFF
 } tlod_alpha_mode;
 
+/* How a surface makes its per-patch error tables (tlod_patch_info below;
+ * docs/design.md 3.5b). Both are rigorous upper bounds of the true deviation
+ * of every level's pattern; they trade build time against triangles drawn. */
+typedef enum tlod_error_tables {
+  TLOD_ERROR_TABLES_DEFAULT = 0, /* == MEASURED */
+  /* Levels 0..TLOD_ERROR_TABLE_LEVELS-1 measured per patch (bound / true
+   * deviation about 1.0-1.4): the fewest triangles at a given screen error.
+   * Costs 1.7-3x the build (and refresh) time of CLOSED_FORM
+   * (BENCHMARKS.md "Surface build cost of the error tables"). */
+  TLOD_ERROR_TABLES_MEASURED,
+  /* error_table[l] = error_bound * 4^-l + error_slack, nothing measured: the
+   * cheapest build, for meshes refreshed every frame (skinning, simulation),
+   * but a looser bound (1.3-8x the true deviation), so the level rule picks
+   * finer levels. Never below the MEASURED table of the same patch in tests. */
+  TLOD_ERROR_TABLES_CLOSED_FORM,
+  TLOD_ERROR_TABLES_NUM,
+  _TLOD_ERROR_TABLES_FORCE_U32 = 0x7FFFFFFF
+} tlod_error_tables;
+
 typedef struct tlod_surface_desc {
   tlod_surface_type type;
   tlod_alpha_mode alpha_mode; /* default: 0.75 everywhere */
   float alpha;                /* TLOD_ALPHA_GLOBAL only: [0, 1]; ignored otherwise */
   tlod_shading_normal shading_normal;
   const char* label;
+  tlod_error_tables error_tables; /* default: MEASURED; a value >= NUM is refused (INVALID_ARGUMENT) */
 } tlod_surface_desc;
 
 /* ---- Per-level error tables (issue #9; maths: docs/design.md "Error tables") ----
