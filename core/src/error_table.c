@@ -16,10 +16,17 @@
  *    the lattice (the corner cells of each orientation). Those are sampled on
  *    a sub-grid; between samples the sub-cell error is h_s^2 q + s h_s^3 c,
  *    at most h_s^2 Qbar + h_s^3 Cbar. Level 0's finer grid is read off
- *    level 1's four cells (see cell_acc01).
+ *    level 1's four cells (level01_m2); every entry and the tail are also
+ *    capped by the second-derivative bound error_bound 4^-l.
  *  - quads (Phong): a shared sample grid of the patch, all cells, and the
  *    remainder (1/2) M R^2 with M from the tensor net (phong.c).
- *  - every entry adds a slack for the float rounding of the evaluation. */
+ *  - every entry adds a slack for the float rounding of the evaluation.
+ *  - TLOD_ERROR_TABLES_CLOSED_FORM: error_bound 4^-l plus the same slack,
+ *    nothing measured (_tlod_error_table_closed); never below the above.
+ * Cost (BENCHMARKS.md "Surface build cost"): the sample loops are laid out
+ * so they vectorise (samples by weight, components side by side, one pass
+ * over the samples for all cells of a level, maxima as trees), which took
+ * the cubic tables from 4.5x to about 2.8x the build without tables. */
 #include <math.h>
 #include <string.h>
 
@@ -222,7 +229,7 @@ static double quad_shape_max3(const d3 (*h)[3]) {
 #define ROW3(W)                                                                                                        \
   { G3(W, 1, 0), G3(W, 2, 0), G3(W, 0, 1), G3(W, 1, 1), G3(W, 2, 1), G3(W, 0, 2), G3(W, 1, 2), G3(W, 1, 0) }
 static const double k_cell_w[7][NS] = {ROW3(WQA), ROW3(WQB), ROW3(WQC), ROW3(WCA), ROW3(WCB), ROW3(WCC), ROW3(WCD)};
-/* Level 0 is one cell, sampled on the CELL0_N = 6 grid (from level 1's cells, cell_acc01). */
+/* Level 0 is one cell, sampled on the CELL0_N = 6 grid (from level 1's cells, level01_m2). */
 #define CELL0_N 6
 
 /* On a cell with Taylor vertex y0 = (u0, v0), size h, orientation s, the

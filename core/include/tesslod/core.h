@@ -339,7 +339,8 @@ typedef struct tlod_surface_desc {
 
 /* ---- Per-level error tables (issue #9; maths: docs/design.md "Error tables") ----
  * Levels 0..TLOD_ERROR_TABLE_LEVELS-1 are measured per patch when the
- * surface is built or refreshed; above them a rigorous tail decays as 4^-l. */
+ * surface is built or refreshed (unless the desc asks for
+ * TLOD_ERROR_TABLES_CLOSED_FORM); above them a rigorous tail decays as 4^-l. */
 #define TLOD_ERROR_TABLE_LEVELS 3
 
 /* Per-patch precomputed data, in kept-face order. */
@@ -360,7 +361,9 @@ typedef struct tlod_patch_info {
    * level-l pattern's piecewise-linear interpolant of the surface (as the
    * pattern draws it: 4^l triangles, quads 2 * 4^l with the pattern's
    * diagonal), float evaluation rounding included; non-increasing in l,
-   * and >= every tail value below. */
+   * and >= every tail value below. Measured, or with
+   * TLOD_ERROR_TABLES_CLOSED_FORM error_bound * 4^-l + error_slack (the
+   * desc's error_tables); the measured entry is never above that. */
   float error_table[TLOD_ERROR_TABLE_LEVELS];
   float error_tail;  /* level l >= TLOD_ERROR_TABLE_LEVELS: error_tail * 4^-l + error_slack */
   float error_slack; /* float rounding of the evaluation (included in every value) */
