@@ -316,13 +316,15 @@ typedef enum tlod_error_tables {
   TLOD_ERROR_TABLES_DEFAULT = 0, /* == MEASURED */
   /* Levels 0..TLOD_ERROR_TABLE_LEVELS-1 measured per patch (bound / true
    * deviation about 1.0-1.4): the fewest triangles at a given screen error.
-   * Costs 1.7-3x the build (and refresh) time of CLOSED_FORM
+   * Build (and refresh) time against CLOSED_FORM on one thread: Phong
+   * per-vertex alpha about 2.6x, PN 2.0x, Phong one alpha 1.7x, flat 1.0x
    * (BENCHMARKS.md "Surface build cost of the error tables"). */
   TLOD_ERROR_TABLES_MEASURED,
   /* error_table[l] = error_bound * 4^-l + error_slack, nothing measured: the
    * cheapest build, for meshes refreshed every frame (skinning, simulation),
    * but a looser bound (1.3-8x the true deviation), so the level rule picks
-   * finer levels. Never below the MEASURED table of the same patch in tests. */
+   * finer levels. Never below the MEASURED table of the same patch (whose
+   * entries are capped by it). */
   TLOD_ERROR_TABLES_CLOSED_FORM,
   TLOD_ERROR_TABLES_NUM,
   _TLOD_ERROR_TABLES_FORCE_U32 = 0x7FFFFFFF
