@@ -627,7 +627,7 @@ static int closed_form_case(tlod_context* ctx, tlod_mesh* mesh, const surf_case*
   }
   /* and rigorous against the dense deviation, as the measured tables are */
   g_collect = false;
-  bad += check_surface(closed, mesh, c->kind_tri, c->kind_quad, 1000, 400);
+  bad += check_surface(closed, mesh, c->kind_tri, c->kind_quad, 1000, 100);
   g_collect = true;
   tlod_surface_destroy(dflt), tlod_surface_destroy(meas), tlod_surface_destroy(closed);
   return bad;
@@ -636,7 +636,7 @@ static int closed_form_case(tlod_context* ctx, tlod_mesh* mesh, const surf_case*
 TEST(test_closed_form_tables) {
   tlod_context* ctx = new_context();
   CHECK(ctx);
-  mesh_data t = random_patches(500, 600, 3, 85.0), q = random_patches(501, 200, 4, 85.0);
+  mesh_data t = random_patches(500, 300, 3, 85.0), q = random_patches(501, 100, 4, 85.0);
   const mesh_data* meshes[2] = {&t, &q};
   int bad = 0;
   for (int m = 0; m < 2; m++) {
