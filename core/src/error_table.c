@@ -16,12 +16,19 @@
  *    the lattice (the corner cells of each orientation). Those are sampled on
  *    a sub-grid; between samples the sub-cell error is h_s^2 q + s h_s^3 c,
  *    at most h_s^2 Qbar + h_s^3 Cbar. Level 0's finer grid is read off
- *    level 1's four cells (see cell_acc01).
+ *    level 1's four cells (level01_m2); every entry and the tail are also
+ *    capped by the second-derivative bound error_bound 4^-l.
  *  - quads (Phong): a shared sample grid of the patch, all cells, and the
  *    remainder (1/2) M R^2 with M from the tensor net (phong.c).
- *  - every entry adds a slack for the float rounding of the evaluation. */
-#include <float.h>
+ *  - every entry adds a slack for the float rounding of the evaluation.
+ *  - TLOD_ERROR_TABLES_CLOSED_FORM: error_bound 4^-l plus the same slack,
+ *    nothing measured (_tlod_error_table_closed); never below the above.
+ * Cost (BENCHMARKS.md "Surface build cost"): the sample loops are laid out
+ * so they vectorise (samples by weight, components side by side, one pass
+ * over the samples for all cells of a level, maxima as trees), which took
+ * the cubic tables from 4.5x to about 2.8x the build without tables. */
 #include <math.h>
+#include <string.h>
 
 #include "surface_eval.h"
 
@@ -41,11 +48,22 @@ static inline double dmin(double a, double b) { return a < b ? a : b; }
 static const double k_pow4[] = {1.0, 0x1p-2, 0x1p-4, 0x1p-6, 0x1p-8, 0x1p-10};
 
 static double d3_len2(const double* a) { return a[0] * a[0] + a[1] * a[1] + a[2] * a[2]; }
+/* The largest of a[0..7], as a tree of maxima (depth 3, not a chain of 8). */
+static inline double max8(const double* a) {
+  return dmax(dmax(dmax(a[0], a[1]), dmax(a[2], a[3])), dmax(dmax(a[4], a[5]), dmax(a[6], a[7])));
+}
 
-/* The smallest float >= x (x >= 0). */
+/* The smallest float >= x (x >= 0): x rounded, and the next float up (the
+ * bit pattern + 1, as floats >= 0 are ordered like their bits) if that fell
+ * below x. Branch-free: the comparison is data-dependent, and a mispredicted
+ * branch per entry cost as much as the rest of a flat patch's table. */
 static float float_up(double x) {
   float f = (float)x;
-  return (double)f < x ? f * (1.0f + FLT_EPSILON) : f;
+  uint32_t bits;
+  memcpy(&bits, &f, sizeof bits);
+  bits += (uint32_t)((double)f < x);
+  memcpy(&f, &bits, sizeof f);
+  return f;
 }
 
 /* Float rounding of the evaluation: every evaluated position is a short
@@ -54,16 +72,22 @@ static float float_up(double x) {
  * scale per point, and a measured deviation compares a point with an
  * interpolant of points: 16 ulps (2^-24 each) of scale + extent. */
 static double eval_slack(const _tlod_corners* c, const double (*extra)[3], int extra_n) {
-  double scale = 0.0, extent = 0.0;
+  /* Six independent maxima (per axis, even and odd points), not one chain of
+   * dependent ones; one square root (sqrt is monotonic). */
+  double s[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, extent2 = 0.0;
   for (uint32_t x = 0; x < c->n; x++) {
-    scale = dmax(scale, dmax(fabs((double)c->p[x].x), dmax(fabs((double)c->p[x].y), fabs((double)c->p[x].z))));
+    s[0] = dmax(s[0], fabs((double)c->p[x].x)), s[1] = dmax(s[1], fabs((double)c->p[x].y));
+    s[2] = dmax(s[2], fabs((double)c->p[x].z));
     double e[3] = {c->p[x].x - c->p[0].x, c->p[x].y - c->p[0].y, c->p[x].z - c->p[0].z};
-    extent = dmax(extent, _tlod_norm3(e));
+    extent2 = dmax(extent2, d3_len2(e));
   }
-  for (int x = 0; x < extra_n; x++)
+  for (int x = 0; x < extra_n; x += 2) {
+    const double* odd = extra[x + 1 < extra_n ? x + 1 : x];
     for (int k = 0; k < 3; k++)
-      scale = dmax(scale, fabs(extra[x][k]));
-  return 16.0 * 0x1p-24 * (scale + extent);
+      s[k] = dmax(s[k], fabs(extra[x][k])), s[3 + k] = dmax(s[3 + k], fabs(odd[k]));
+  }
+  double scale = dmax(dmax(dmax(s[0], s[1]), dmax(s[2], s[3])), dmax(s[4], s[5]));
+  return 16.0 * 0x1p-24 * (scale + sqrt(extent2));
 }
 
 /* Stores the table: e[l] (exact-arithmetic bounds) plus slack, made
@@ -78,6 +102,11 @@ static void finish(tlod_patch_info* info, const double e[K + 1], double tail, do
     info->error_table[l] = float_up(next);
   }
 }
+
+/* The previous bound (docs/design.md 3.5), set before the table:
+ * error_bound, a float rounded to nearest, times 1 + 2^-23 so it is at
+ * least the double it was rounded from. */
+static double closed_form_bound(const tlod_patch_info* info) { return (double)info->error_bound * (1.0 + 0x1p-23); }
 
 float tlod_patch_error_bound(const tlod_patch_info* info, uint32_t level) {
   if (level < TLOD_ERROR_TABLE_LEVELS) return info->error_table[level];
@@ -95,72 +124,76 @@ float tlod_patch_error_bound(const tlod_patch_info* info, uint32_t level) {
  * max |q|: on the edges exactly (|A|/8, |C|/8, |B - (A+C)/2|/4 at the
  * midpoints), inside on the N-grid, over (1 - 1/N^2): q minus its linear
  * interpolant on a grid sub-triangle is q itself scaled by 1/N^2. */
-/* The interior points (i, j) / QUAD_N, i, j >= 1, i + j < QUAD_N (10). */
-#define QN 10
+/* The points: the interior (i, j) / QUAD_N, i, j >= 1, i + j < QUAD_N (10),
+ * then the edge midpoints (1/2, 0), (0, 1/2), (1/2, 1/2) and the first again
+ * (14: an even count, for the vector loop). |q|^2 = w^T G w with w = (qa, qb,
+ * qc) the point's weights and G the Gram matrix of (A, B, C): per point six
+ * products of constant weights, not three components of three terms. */
+#define QN 14
 #define QP(W, i, j) W((double)(i) / QUAD_N, (double)(j) / QUAD_N)
 #define QROW(W)                                                                                                        \
   {                                                                                                                    \
     QP(W, 1, 1), QP(W, 1, 2), QP(W, 1, 3), QP(W, 1, 4), QP(W, 2, 1), QP(W, 2, 2), QP(W, 2, 3), QP(W, 3, 1),            \
-        QP(W, 3, 2), QP(W, 4, 1)                                                                                       \
+        QP(W, 3, 2), QP(W, 4, 1), W(0.5, 0.0), W(0.0, 0.5), W(0.5, 0.5), QP(W, 1, 1)                                   \
   }
 #define QWA(a, b) (0.5 * ((a) * (a) - (a)))
 #define QWB(a, b) ((a) * (b))
 #define QWC(a, b) (0.5 * ((b) * (b) - (b)))
-static const double k_quad_w[3][QN] = {QROW(QWA), QROW(QWB), QROW(QWC)};
+#define QAA(a, b) (QWA(a, b) * QWA(a, b))
+#define QBB(a, b) (QWB(a, b) * QWB(a, b))
+#define QCC(a, b) (QWC(a, b) * QWC(a, b))
+#define QAB(a, b) (2.0 * QWA(a, b) * QWB(a, b))
+#define QAC(a, b) (2.0 * QWA(a, b) * QWC(a, b))
+#define QBC(a, b) (2.0 * QWB(a, b) * QWC(a, b))
+static const double k_quad_p[6][QN] = {QROW(QAA), QROW(QBB), QROW(QCC), QROW(QAB), QROW(QAC), QROW(QBC)};
 
-/* The squared maximum of |q| on the edges (exact) and at the interior grid
- * points, the latter into acc[k] (an elementwise maximum). */
-static double quad_shape_m2(const double* A, const double* B, const double* C, double* restrict acc) {
-  double hyp[3] = {B[0] - 0.5 * (A[0] + C[0]), B[1] - 0.5 * (A[1] + C[1]), B[2] - 0.5 * (A[2] + C[2])};
-  double l2[QN] = {0};
-  for (int c = 0; c < 3; c++)
-    for (int k = 0; k < QN; k++) {
-      double q = k_quad_w[0][k] * A[c] + k_quad_w[1][k] * B[c] + k_quad_w[2][k] * C[c];
-      l2[k] += q * q;
-    }
+static double d3_dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* The squared maximum of |q| on the edges (exact) and at the interior grid points. */
+static double quad_shape_m2(const double* A, const double* B, const double* C) {
+  const double g[6] = {d3_dot(A, A), d3_dot(B, B), d3_dot(C, C), d3_dot(A, B), d3_dot(A, C), d3_dot(B, C)};
+  const double(*p)[QN] = k_quad_p;
+  double l2[QN];
   for (int k = 0; k < QN; k++)
-    acc[k] = acc[k] > l2[k] ? acc[k] : l2[k];
-  return dmax(d3_len2(A) / 64.0, dmax(d3_len2(C) / 64.0, d3_len2(hyp) / 16.0));
+    l2[k] = p[0][k] * g[0] + p[1][k] * g[1] + p[2][k] * g[2] + p[3][k] * g[3] + p[4][k] * g[4] + p[5][k] * g[5];
+  return dmax(max8(l2), max8(l2 + QN - 8));
 }
 
-static double quad_shape_finish(double m2, const double* acc) {
-  for (int k = 0; k < QN; k++)
-    m2 = dmax(m2, acc[k]);
-  return sqrt(m2) / (1.0 - 1.0 / (QUAD_N * QUAD_N));
-}
+static double quad_shape_finish(double m2) { return sqrt(m2) / (1.0 - 1.0 / (QUAD_N * QUAD_N)); }
 
 static double quad_shape_max(const double* A, const double* B, const double* C) {
-  double acc[QN] = {0};
-  return quad_shape_finish(quad_shape_m2(A, B, C, acc), acc);
+  return quad_shape_finish(quad_shape_m2(A, B, C));
 }
 
 /* ------------------------------------------------------------------------ */
 /* Cubic triangles                                                          */
 /* ------------------------------------------------------------------------ */
 
-/* Net index of b_{ijk} (i: u, j: v, k: w), _tlod_tri_net order. */
-static int at(int i, int j, int k) {
-  static const int idx[4][4] = {{2, 6, 5, 1}, {7, 9, 4, -1}, {8, 3, -1, -1}, {0, -1, -1, -1}}; /* [i][j] */
-  (void)k;
-  return idx[i][j];
-}
-
 typedef struct cubic {
   d3 h[3][3]; /* [corner i, j, k][f_uu, f_uv, f_vv] */
   d3 t[4];    /* f_uuu, f_uuv, f_uvv, f_vvv */
 } cubic;
 
+/* 6 (b_p - 2 b_q + b_r) and 6 (b_p - b_q - b_r + b_s): second differences of
+ * the net (indices constant at every call, so they fold). */
+static inline void diff2(const double (*b)[3], int p, int q, int r, double* out) {
+  for (int c = 0; c < 3; c++)
+    out[c] = 6.0 * (b[p][c] - 2.0 * b[q][c] + b[r][c]);
+}
+static inline void twist2(const double (*b)[3], int p, int q, int r, int s, double* out) {
+  for (int c = 0; c < 3; c++)
+    out[c] = 6.0 * (b[p][c] - b[q][c] - b[r][c] + b[s][c]);
+}
+
+/* Net order (_tlod_tri_net): 0 b300, 1 b030, 2 b003, 3 b210, 4 b120, 5 b021,
+ * 6 b012, 7 b102, 8 b201, 9 b111 (i: u, j: v, k: w). At corner e_x the
+ * Hessian's net is f_uu = 6 (b_{x+200} - 2 b_{x+101} + b_{x+002}), f_uv =
+ * 6 (b_{x+110} - b_{x+101} - b_{x+011} + b_{x+002}), f_vv = 6 (b_{x+020} -
+ * 2 b_{x+011} + b_{x+002}). */
 static void cubic_from_net(const double (*b)[3], cubic* out) {
-  static const int base[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  for (int x = 0; x < 3; x++) {
-    int i = base[x][0], j = base[x][1], k = base[x][2];
-    for (int c = 0; c < 3; c++) {
-      out->h[x][0][c] = 6.0 * (b[at(i + 2, j, k)][c] - 2.0 * b[at(i + 1, j, k + 1)][c] + b[at(i, j, k + 2)][c]);
-      out->h[x][1][c] = 6.0 * (b[at(i + 1, j + 1, k)][c] - b[at(i + 1, j, k + 1)][c] - b[at(i, j + 1, k + 1)][c] +
-                               b[at(i, j, k + 2)][c]);
-      out->h[x][2][c] = 6.0 * (b[at(i, j + 2, k)][c] - 2.0 * b[at(i, j + 1, k + 1)][c] + b[at(i, j, k + 2)][c]);
-    }
-  }
+  diff2(b, 0, 8, 7, out->h[0][0]), twist2(b, 3, 8, 9, 7, out->h[0][1]), diff2(b, 4, 9, 7, out->h[0][2]);
+  diff2(b, 3, 9, 6, out->h[1][0]), twist2(b, 4, 9, 5, 6, out->h[1][1]), diff2(b, 1, 5, 6, out->h[1][2]);
+  diff2(b, 8, 7, 2, out->h[2][0]), twist2(b, 9, 7, 6, 2, out->h[2][1]), diff2(b, 5, 6, 2, out->h[2][2]);
   for (int c = 0; c < 3; c++) {
     double b300 = b[0][c], b030 = b[1][c], b003 = b[2][c], b210 = b[3][c], b120 = b[4][c];
     double b021 = b[5][c], b012 = b[6][c], b102 = b[7][c], b201 = b[8][c], b111 = b[9][c];
@@ -173,10 +206,10 @@ static void cubic_from_net(const double (*b)[3], cubic* out) {
 
 /* Qbar = the largest quad_shape_max of the corner Hessians h[x] = (f_uu, f_uv, f_vv). */
 static double quad_shape_max3(const d3 (*h)[3]) {
-  double acc[QN] = {0}, m2 = 0.0;
+  double m2 = 0.0;
   for (int x = 0; x < 3; x++)
-    m2 = dmax(m2, quad_shape_m2(h[x][0], h[x][1], h[x][2], acc));
-  return quad_shape_finish(m2, acc);
+    m2 = dmax(m2, quad_shape_m2(h[x][0], h[x][1], h[x][2]));
+  return quad_shape_finish(m2);
 }
 
 /* Weights of one cell sample (m1, m2): quadratic part (of f_uu, f_uv, f_vv)
@@ -191,12 +224,12 @@ static double quad_shape_max3(const d3 (*h)[3]) {
 #define WCC(a, b) (0.5 * (a) * (b) * (b))
 #define WCD(a, b) (((b) * (b) * (b) - (b)) / 6.0)
 /* The CELL_N = 3 grid without the three corners (7 samples, the first repeated). */
-#define NS 8
+#define NS 8 /* max8() reads NS values */
 #define G3(W, i, j) W((double)(i) / CELL_N, (double)(j) / CELL_N)
 #define ROW3(W)                                                                                                        \
   { G3(W, 1, 0), G3(W, 2, 0), G3(W, 0, 1), G3(W, 1, 1), G3(W, 2, 1), G3(W, 0, 2), G3(W, 1, 2), G3(W, 1, 0) }
 static const double k_cell_w[7][NS] = {ROW3(WQA), ROW3(WQB), ROW3(WQC), ROW3(WCA), ROW3(WCB), ROW3(WCC), ROW3(WCD)};
-/* Level 0 is one cell, sampled on the CELL0_N = 6 grid (from level 1's cells, cell_acc01). */
+/* Level 0 is one cell, sampled on the CELL0_N = 6 grid (from level 1's cells, level01_m2). */
 #define CELL0_N 6
 
 /* On a cell with Taylor vertex y0 = (u0, v0), size h, orientation s, the
@@ -214,40 +247,41 @@ typedef struct cell_basis {
 static void cell_basis_init(const cubic* restrict p, cell_basis* restrict b) {
   const double(*w)[NS] = k_cell_w;
   for (int c = 0; c < 3; c++) {
-    const double h0a = p->h[0][0][c], h0b = p->h[0][1][c], h0c = p->h[0][2][c];
-    const double h1a = p->h[1][0][c], h1b = p->h[1][1][c], h1c = p->h[1][2][c];
+    /* q is linear in the Hessian: d_x = q_{H_x - H_2} */
     const double h2a = p->h[2][0][c], h2b = p->h[2][1][c], h2c = p->h[2][2][c];
+    const double h0a = p->h[0][0][c] - h2a, h0b = p->h[0][1][c] - h2b, h0c = p->h[0][2][c] - h2c;
+    const double h1a = p->h[1][0][c] - h2a, h1b = p->h[1][1][c] - h2b, h1c = p->h[1][2][c] - h2c;
     const double ta = p->t[0][c], tb = p->t[1][c], tc = p->t[2][c], td = p->t[3][c];
     for (int k = 0; k < NS; k++) {
-      double a2 = w[0][k] * h2a + w[1][k] * h2b + w[2][k] * h2c;
-      b->a2[c][k] = a2;
-      b->d0[c][k] = w[0][k] * h0a + w[1][k] * h0b + w[2][k] * h0c - a2;
-      b->d1[c][k] = w[0][k] * h1a + w[1][k] * h1b + w[2][k] * h1c - a2;
+      b->a2[c][k] = w[0][k] * h2a + w[1][k] * h2b + w[2][k] * h2c;
+      b->d0[c][k] = w[0][k] * h0a + w[1][k] * h0b + w[2][k] * h0c;
+      b->d1[c][k] = w[0][k] * h1a + w[1][k] * h1b + w[2][k] * h1c;
       b->t[c][k] = w[3][k] * ta + w[4][k] * tb + w[5][k] * tc + w[6][k] * td;
     }
   }
 }
 
-/* A level's base vectors: lo = h^2 a2 + h^3 t (s = 1), up = h^2 a2 - h^3 t. */
-static void cell_bases(const cell_basis* restrict b, double h2, double h3, double (*restrict lo)[NS],
-                       double (*restrict up)[NS]) {
-  for (int c = 0; c < 3; c++)
-    for (int k = 0; k < NS; k++) {
-      lo[c][k] = h2 * b->a2[c][k] + h3 * b->t[c][k];
-      up[c][k] = h2 * b->a2[c][k] - h3 * b->t[c][k];
-    }
+/* Level l >= 2: max |E|^2 over the samples of the six hull cells, lower at
+ * y0 = (0,0), (1-h,0), (0,1-h), upper at (h,h), (1-h,h), (h,1-h), i.e. with
+ * lo = h^2 a2 + h^3 t, up = h^2 a2 - h^3 t, g = h^2 (1 - h):
+ *   lo, lo + g d0, lo + g d1, up + h^3 (d0 + d1), up + g d0 + h^3 d1, up + h^3 d0 + g d1.
+ * All six in one pass over the samples, so each basis value is loaded once. */
+static inline void hull_add(const cell_basis* restrict b, int c, int k, const double w[3], double s[6]) {
+  double lo = w[0] * b->a2[c][k] + w[1] * b->t[c][k], up = w[0] * b->a2[c][k] - w[1] * b->t[c][k];
+  double gd0 = w[2] * b->d0[c][k], gd1 = w[2] * b->d1[c][k], hd0 = w[1] * b->d0[c][k], hd1 = w[1] * b->d1[c][k];
+  double e1 = lo + gd0, e2 = lo + gd1, e3 = up + hd0 + hd1, e4 = up + gd0 + hd1, e5 = up + hd0 + gd1;
+  s[0] += lo * lo, s[1] += e1 * e1, s[2] += e2 * e2, s[3] += e3 * e3, s[4] += e4 * e4, s[5] += e5 * e5;
 }
 
-/* acc[k] = max(acc[k], |base_k + x0 d0_k + x1 d1_k|^2), x0 = h^2 u0, x1 = h^2 v0. */
-static void cell_acc(const double (*restrict base)[NS], const cell_basis* restrict b, double x0, double x1,
-                     double* restrict acc) {
+static double hull_cells_m2(const cell_basis* restrict b, double h2, double h3, double g) {
+  const double w[3] = {h2, h3, g};
+  double acc[NS];
   for (int k = 0; k < NS; k++) {
-    double e0 = base[0][k] + x0 * b->d0[0][k] + x1 * b->d1[0][k];
-    double e1 = base[1][k] + x0 * b->d0[1][k] + x1 * b->d1[1][k];
-    double e2 = base[2][k] + x0 * b->d0[2][k] + x1 * b->d1[2][k];
-    double l2 = e0 * e0 + e1 * e1 + e2 * e2;
-    acc[k] = acc[k] > l2 ? acc[k] : l2;
+    double s[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    hull_add(b, 0, k, w, s), hull_add(b, 1, k, w, s), hull_add(b, 2, k, w, s);
+    acc[k] = dmax(dmax(dmax(s[0], s[1]), dmax(s[2], s[3])), dmax(s[4], s[5]));
   }
+  return max8(acc);
 }
 
 /* Level 0 (one cell, y0 = (0, 0), h = 1) on the 6-grid, from level 1's
@@ -259,46 +293,49 @@ static void cell_acc(const double (*restrict base)[NS], const cell_basis* restri
 #define M1(a, b) (a)
 #define M2(a, b) (b)
 static const double k_cell_b[3][NS] = {ROW3(BARY), ROW3(M1), ROW3(M2)};
-#define MID(W)                                                                                                         \
-  { W(0.5, 0.0), W(0.0, 0.5), W(0.5, 0.5) }
-static const double k_mid_w[7][3] = {MID(WQA), MID(WQB), MID(WQC), MID(WCA), MID(WCB), MID(WCC), MID(WCD)};
-
-/* E_0 at the midpoints (1/2, 0), (0, 1/2), (1/2, 1/2): mid[point][component]. */
-static double cubic_midpoints(const cubic* restrict p, d3 mid[3]) {
+/* E_0 at the edge midpoints (1/2, 0), (0, 1/2), (1/2, 1/2), mid[point][component],
+ * from the net: a cubic edge's midpoint is (b_i + 3 b_ij + 3 b_ji + b_j) / 8,
+ * so S - P_0 there is 3/8 (b_ij + b_ji - b_i - b_j). */
+static double cubic_midpoints(const double (*b)[3], d3 mid[3]) {
+  static const int edge[3][4] = {{8, 7, 0, 2}, {5, 6, 1, 2}, {3, 4, 0, 1}}; /* b201 b102 b300 b003, ... */
   double m2 = 0.0;
   for (int k = 0; k < 3; k++) {
+    const int* e = edge[k];
     for (int c = 0; c < 3; c++)
-      mid[k][c] = k_mid_w[0][k] * p->h[2][0][c] + k_mid_w[1][k] * p->h[2][1][c] + k_mid_w[2][k] * p->h[2][2][c] +
-                  k_mid_w[3][k] * p->t[0][c] + k_mid_w[4][k] * p->t[1][c] + k_mid_w[5][k] * p->t[2][c] +
-                  k_mid_w[6][k] * p->t[3][c];
+      mid[k][c] = 0.375 * ((b[e[0]][c] + b[e[1]][c]) - (b[e[2]][c] + b[e[3]][c]));
     m2 = dmax(m2, d3_len2(mid[k]));
   }
   return m2;
 }
 
-/* A level-1 cell: cell_acc into acc1, and E_1 + the interpolant of the
- * corner values c0 (at y0), c1, c2 (the cell's m1, m2 corners) into acc0. */
-static void cell_acc01(const double (*restrict base)[NS], const cell_basis* restrict b, double x0, double x1,
-                       const double* c0, const double* c1, const double* c2, double* restrict acc1,
-                       double* restrict acc0) {
-  const double *B0 = k_cell_b[0], *B1 = k_cell_b[1], *B2 = k_cell_b[2];
-  for (int k = 0; k < NS; k++) {
-    double e0 = base[0][k] + x0 * b->d0[0][k] + x1 * b->d1[0][k];
-    double e1 = base[1][k] + x0 * b->d0[1][k] + x1 * b->d1[1][k];
-    double e2 = base[2][k] + x0 * b->d0[2][k] + x1 * b->d1[2][k];
-    double f0 = e0 + B0[k] * c0[0] + B1[k] * c1[0] + B2[k] * c2[0];
-    double f1 = e1 + B0[k] * c0[1] + B1[k] * c1[1] + B2[k] * c2[1];
-    double f2 = e2 + B0[k] * c0[2] + B1[k] * c1[2] + B2[k] * c2[2];
-    double l1 = e0 * e0 + e1 * e1 + e2 * e2, l0 = f0 * f0 + f1 * f1 + f2 * f2;
-    acc1[k] = acc1[k] > l1 ? acc1[k] : l1;
-    acc0[k] = acc0[k] > l0 ? acc0[k] : l0;
-  }
+/* Levels 1 and 0 from level 1's four cells (h = 1/2, so g = h^2 (1 - h) =
+ * h^3 = 1/8): E_1 of lower (0,0), (1/2,0), (0,1/2): lo, lo + g d0, lo + g d1,
+ * and upper (1/2,1/2): up + g (d0 + d1), into m[0]; E_1 plus the interpolant
+ * of the cell's corner values of E_0 (B0 at y0, B1 at the m1 corner, B2 at
+ * the m2 corner: 0 at the patch's corners, mid[] at the edge midpoints; the
+ * upper cell's m1 corner is (0, 1/2), its m2 corner (1/2, 0)) into m[1]:
+ * max |.|^2 over the samples, one pass. */
+static inline void level01_add(const cell_basis* restrict b, int c, int k, const d3 mid[3], double s[8]) {
+  const double *B0 = k_cell_b[0], *B1 = k_cell_b[1], *B2 = k_cell_b[2], g = 0.125;
+  double lo = 0.25 * b->a2[c][k] + 0.125 * b->t[c][k], up = 0.25 * b->a2[c][k] - 0.125 * b->t[c][k];
+  double gd0 = g * b->d0[c][k], gd1 = g * b->d1[c][k];
+  double e2 = lo + gd0, e3 = lo + gd1, e4 = up + gd0 + gd1;
+  double f1 = lo + B1[k] * mid[0][c] + B2[k] * mid[1][c], f2 = e2 + B0[k] * mid[0][c] + B2[k] * mid[2][c];
+  double f3 = e3 + B0[k] * mid[1][c] + B1[k] * mid[2][c];
+  double f4 = e4 + B0[k] * mid[2][c] + B1[k] * mid[1][c] + B2[k] * mid[0][c];
+  s[0] += lo * lo, s[1] += e2 * e2, s[2] += e3 * e3, s[3] += e4 * e4;
+  s[4] += f1 * f1, s[5] += f2 * f2, s[6] += f3 * f3, s[7] += f4 * f4;
 }
 
-static double acc_max(const double* acc, double m2) {
-  for (int k = 0; k < NS; k++)
-    m2 = dmax(m2, acc[k]);
-  return m2;
+static void level01_m2(const cell_basis* restrict b, const d3 mid[3], double m[2]) {
+  double acc1[NS], acc0[NS];
+  for (int k = 0; k < NS; k++) {
+    double s[8] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    level01_add(b, 0, k, mid, s), level01_add(b, 1, k, mid, s), level01_add(b, 2, k, mid, s);
+    acc1[k] = dmax(dmax(s[0], s[1]), dmax(s[2], s[3]));
+    acc0[k] = dmax(dmax(s[4], s[5]), dmax(s[6], s[7]));
+  }
+  m[0] = dmax(m[0], max8(acc1)), m[1] = dmax(m[1], max8(acc0));
 }
 
 static void cubic_table(const double (*net)[3], const _tlod_corners* c, const double (*extra)[3], int extra_n,
@@ -316,40 +353,27 @@ static void cubic_table(const double (*net)[3], const _tlod_corners* c, const do
   cell_basis_init(&p, &b);
   {
     /* Levels 0 and 1: h = 1/2, the four cells (0,0), (1/2,0), (0,1/2) lower, (1/2,1/2) upper. */
-    static const double zero[3] = {0.0, 0.0, 0.0};
-    const double h2 = 0.25, h3 = 0.125, g = h2 * 0.5, hs0 = 1.0 / CELL0_N, hs1 = 0.5 / CELL_N;
+    const double h2 = 0.25, h3 = 0.125, hs0 = 1.0 / CELL0_N, hs1 = 0.5 / CELL_N;
     d3 mid[3]; /* E_0 at (1/2,0), (0,1/2), (1/2,1/2) */
-    double m0 = cubic_midpoints(&p, mid), lo[3][NS], up[3][NS], acc1[NS] = {0}, acc0[NS] = {0};
-    cell_bases(&b, h2, h3, lo, up);
-    cell_acc01(lo, &b, 0.0, 0.0, zero, mid[0], mid[1], acc1, acc0);
-    cell_acc01(lo, &b, g, 0.0, mid[0], zero, mid[2], acc1, acc0);
-    cell_acc01(lo, &b, 0.0, g, mid[1], mid[2], zero, acc1, acc0);
-    /* upper: y0 - h m, its m1 corner (0, 1/2), its m2 corner (1/2, 0) */
-    cell_acc01(up, &b, h3, h3, mid[2], mid[1], mid[0], acc1, acc0);
-    e[0] = dmin(sqrt(acc_max(acc0, m0)) + hs0 * hs0 * qbar + hs0 * hs0 * hs0 * cbar, qbar + cbar);
-    e[1] = dmin(sqrt(acc_max(acc1, 0.0)) + hs1 * hs1 * qbar + hs1 * hs1 * hs1 * cbar, h2 * qbar + h3 * cbar);
+    double m[2] = {0.0, cubic_midpoints(net, mid)};
+    level01_m2(&b, (const d3*)mid, m);
+    e[0] = dmin(sqrt(m[1]) + hs0 * hs0 * qbar + hs0 * hs0 * hs0 * cbar, qbar + cbar);
+    e[1] = dmin(sqrt(m[0]) + hs1 * hs1 * qbar + hs1 * hs1 * hs1 * cbar, h2 * qbar + h3 * cbar);
   }
   for (int l = 2; l <= K; l++) {
     double h = 1.0 / (double)(1 << l), hs = h / CELL_N, h2 = h * h, h3 = h2 * h;
-    double lo[3][NS], up[3][NS], acc[NS] = {0}; /* h^2 a2 + h^3 t, h^2 a2 - h^3 t */
-    cell_bases(&b, h2, h3, lo, up);
-    /* Hull cells: lower at the three corners (y0 = (0,0), (1-h,0), (0,1-h)),
-     * upper next to them ((h,h), (1-h,h), (h,1-h)). */
-    double g = h2 * (1.0 - h);
-    cell_acc(lo, &b, 0.0, 0.0, acc);
-    cell_acc(lo, &b, g, 0.0, acc);
-    cell_acc(lo, &b, 0.0, g, acc);
-    cell_acc(up, &b, h3, h3, acc);
-    cell_acc(up, &b, g, h3, acc);
-    cell_acc(up, &b, h3, g, acc);
-    double m2 = 0.0;
-    for (int k = 0; k < NS; k++)
-      m2 = dmax(m2, acc[k]);
-    double sampled = sqrt(m2) + hs * hs * qbar + hs * hs * hs * cbar;
+    double sampled = sqrt(hull_cells_m2(&b, h2, h3, h2 * (1.0 - h))) + hs * hs * qbar + hs * hs * hs * cbar;
     e[l] = dmin(sampled, h2 * qbar + h3 * cbar);
   }
-  /* l > K: h^2 Qbar + h^3 Cbar <= 4^-l (Qbar + 2^-(K+1) Cbar). */
-  finish(info, e, qbar + cbar / (double)(1 << (K + 1)), eval_slack(c, extra, extra_n));
+  /* l > K: h^2 Qbar + h^3 Cbar <= 4^-l (Qbar + 2^-(K+1) Cbar). The
+   * second-derivative bound (error_bound, with its exact 4^-l law) is also a
+   * bound at every level, and is the smaller of the two on some patches
+   * (Qbar's 36/35, the h^3 term): every entry takes the smaller, so the
+   * measured table is never above the closed-form one. */
+  double eb = closed_form_bound(info), tail = dmin(qbar + cbar / (double)(1 << (K + 1)), eb);
+  for (int l = 0; l <= K; l++)
+    e[l] = dmin(e[l], eb * k_pow4[l]);
+  finish(info, e, tail, eval_slack(c, extra, extra_n));
 }
 
 /* ------------------------------------------------------------------------ */
@@ -453,6 +477,19 @@ static void flat_quad_table(const _tlod_corners* c, tlod_patch_info* info) {
   for (int l = 0; l <= K; l++)
     e[l] = e0 * k_pow4[l];
   finish(info, e, e0, eval_slack(c, NULL, 0));
+}
+
+/* Closed-form mode: error_bound is a rigorous bound of the level-0
+ * deviation with the 4^-l law (docs/design.md 3.5); the slack is the
+ * measured tables' own, so the two modes differ only in e_l. */
+void _tlod_error_table_closed(const _tlod_corners* c, const float (*pn_net)[3], tlod_patch_info* info) {
+  double extra[10][3], e[K + 1], e0 = closed_form_bound(info);
+  for (int x = 0; pn_net && x < 10; x++)
+    for (int k = 0; k < 3; k++)
+      extra[x][k] = pn_net[x][k];
+  for (int l = 0; l <= K; l++)
+    e[l] = e0 * k_pow4[l];
+  finish(info, e, e0, eval_slack(c, (const double(*)[3])extra, pn_net ? 10 : 0));
 }
 
 void _tlod_error_table(tlod_surface_type type, const _tlod_corners* c, const double (*net)[3],

@@ -101,7 +101,7 @@ static float max_alpha(const _tlod_corners* c) {
 
 /* Triangle: p* - p = 2uv d_ij + 2vw d_jk + 2wu d_ki, d_e = (pi_i(p_j) +
  * pi_j(p_i))/2 - midpoint, and 2(uv + vw + wu) <= 2/3. */
-float _tlod_phong_tri_bound(const _tlod_corners* c, float* d_max) {
+float _tlod_phong_tri_bound(const _tlod_corners* c, const double (*alpha_net)[3], float* d_max) {
   float d = 0.0f;
   for (uint32_t e = 0; e < 3; e++) {
     uint32_t i = e, j = (e + 1) % 3;
@@ -112,7 +112,7 @@ float _tlod_phong_tri_bound(const _tlod_corners* c, float* d_max) {
   }
   *d_max = max_alpha(c) * d;
   if (c->alpha[0] == c->alpha[1] && c->alpha[1] == c->alpha[2]) return *d_max * (2.0f / 3.0f);
-  return _tlod_phong_alpha_bound(c);
+  return alpha_net ? _tlod_tri_net_bound(alpha_net, c) : _tlod_phong_alpha_bound(c);
 }
 
 /* Per-vertex alpha makes the patch cubic: alpha (linear, net alpha_x) times

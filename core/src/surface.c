@@ -12,6 +12,7 @@ static tlod_surface_desc surface_desc_defaults(const tlod_surface_desc* in) {
   if (d.type == TLOD_SURFACE_DEFAULT) d.type = TLOD_SURFACE_PHONG;
   if (d.alpha_mode == TLOD_ALPHA_DEFAULT) d.alpha_mode = TLOD_ALPHA_GLOBAL, d.alpha = 0.75f;
   if (d.shading_normal == TLOD_SHADING_NORMAL_DEFAULT) d.shading_normal = TLOD_SHADING_NORMAL_INTERPOLATED;
+  if (d.error_tables == TLOD_ERROR_TABLES_DEFAULT) d.error_tables = TLOD_ERROR_TABLES_MEASURED;
   if (!d.label) d.label = "surface";
   return d;
 }
@@ -46,27 +47,30 @@ static void sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n,
   info->radius = (r + grow) * (1.0f + 1e-5f);
 }
 
-/* Per-level error tables (error_table.c): the cubic net a triangle needs,
- * the quad net computed above for Phong quads. */
-static void build_error_table(tlod_surface* s, uint32_t f, const _tlod_corners* c, const double (*quad_net)[4][3]) {
+/* Per-level error tables (error_table.c): the cubic net a triangle needs
+ * (PN: the control net; Phong with per-vertex alphas: alpha_net, computed
+ * once in build_patch for the bound and the table; NULL otherwise), the quad
+ * net computed above for Phong quads. */
+static void build_error_table(tlod_surface* s, uint32_t f, const _tlod_corners* c, const double (*alpha_net)[3],
+                              const double (*quad_net)[4][3]) {
   tlod_patch_info* info = &s->info[f];
-  double net[10][3];
+  if (s->desc.error_tables == TLOD_ERROR_TABLES_CLOSED_FORM) {
+    _tlod_error_table_closed(c, s->desc.type == TLOD_SURFACE_PN ? (const float(*)[3])s->pn[f].b : NULL, info);
+    return;
+  }
   bool phong = s->desc.type == TLOD_SURFACE_PHONG;
   if (c->n == 4) {
     _tlod_error_table(s->desc.type, c, NULL, phong ? quad_net : NULL, info);
     return;
   }
+  double net[10][3];
   if (s->desc.type == TLOD_SURFACE_PN) {
     for (int i = 0; i < 10; i++)
       for (int k = 0; k < 3; k++)
         net[i][k] = s->pn[f].b[i][k];
-  } else if (phong && !(c->alpha[0] == c->alpha[1] && c->alpha[1] == c->alpha[2])) {
-    _tlod_phong_alpha_net(c, net);
-  } else {
-    _tlod_error_table(s->desc.type, c, NULL, NULL, info);
-    return;
+    alpha_net = (const double(*)[3])net;
   }
-  _tlod_error_table(s->desc.type, c, (const double(*)[3])net, NULL, info);
+  _tlod_error_table(s->desc.type, c, alpha_net, NULL, info);
 }
 
 static void build_patch(tlod_surface* s, uint32_t f) {
@@ -74,7 +78,8 @@ static void build_patch(tlod_surface* s, uint32_t f) {
   gather(s, f, &c);
   tlod_patch_info* info = &s->info[f];
   info->corner_count = c.n;
-  double quad_net[4][4][3];
+  double quad_net[4][4][3], alpha_net[10][3];
+  bool per_vertex = false;
   switch (s->desc.type) {
   case TLOD_SURFACE_PN: {
     _tlod_pn_build(&c, &s->pn[f]);
@@ -88,7 +93,9 @@ static void build_patch(tlod_surface* s, uint32_t f) {
   }
   case TLOD_SURFACE_PHONG:
     if (c.n == 3) {
-      info->error_bound = _tlod_phong_tri_bound(&c, &info->d_max);
+      per_vertex = !(c.alpha[0] == c.alpha[1] && c.alpha[1] == c.alpha[2]);
+      if (per_vertex) _tlod_phong_alpha_net(&c, alpha_net);
+      info->error_bound = _tlod_phong_tri_bound(&c, per_vertex ? (const double(*)[3])alpha_net : NULL, &info->d_max);
     } else {
       _tlod_quad_net(&c, quad_net);
       info->error_bound = _tlod_quad_net_bound(quad_net, &c, &info->d_max);
@@ -102,7 +109,7 @@ static void build_patch(tlod_surface* s, uint32_t f) {
     sphere_of(&c, NULL, 0, info->error_bound, info);
     break;
   }
-  build_error_table(s, f, &c, quad_net);
+  build_error_table(s, f, &c, per_vertex ? (const double(*)[3])alpha_net : NULL, quad_net);
 }
 
 typedef struct build_job {
@@ -127,6 +134,9 @@ static tlod_result validate_surface_desc(tlod_context* ctx, const tlod_mesh* mes
   if ((unsigned)d->alpha_mode >= TLOD_ALPHA_NUM)
     return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': unknown alpha mode %d", d->label,
                       (int)d->alpha_mode);
+  if ((unsigned)d->error_tables >= TLOD_ERROR_TABLES_NUM)
+    return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': unknown error_tables mode %d", d->label,
+                      (int)d->error_tables);
   if (d->alpha_mode == TLOD_ALPHA_GLOBAL && !(d->alpha >= 0.0f && d->alpha <= 1.0f))
     return _tlod_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "surface '%s': alpha %g outside [0, 1]", d->label,
                       (double)d->alpha);

@@ -21,8 +21,9 @@ enum { _TLOD_EVAL_DERIVS = 1, _TLOD_EVAL_TRUE_NORMAL = 2 };
 void _tlod_phong_edge(v3 pa, v3 na, float alpha_a, v3 pb, v3 nb, float alpha_b, float t, v3* pos, v3* nrm);
 /* Triangle or quad by c->n. */
 void _tlod_phong_eval(const _tlod_corners* c, float u, float v, uint32_t flags, tlod_surface_point* out);
-/* Bound on |surface - flat patch| and the d_max it comes from. */
-float _tlod_phong_tri_bound(const _tlod_corners* c, float* d_max);
+/* Bound on |surface - flat patch| and the d_max it comes from. alpha_net:
+ * _tlod_phong_alpha_net of c when its alphas differ (NULL: computed here). */
+float _tlod_phong_tri_bound(const _tlod_corners* c, const double (*alpha_net)[3], float* d_max);
 /* Bounds from second derivatives (phong.c): the level-l pattern is within
  * 4^-l times the result. _tlod_tri_net_bound takes a cubic triangle net. */
 float _tlod_tri_net_bound(const double net[10][3], const _tlod_corners* c);
@@ -60,6 +61,10 @@ float _tlod_pn_bound(const _tlod_pn_patch* patch, const _tlod_corners* c, float*
  * quad_net: the tensor net of a quad (Phong; NULL for flat quads). */
 void _tlod_error_table(tlod_surface_type type, const _tlod_corners* c, const double (*net)[3],
                        const double (*quad_net)[4][3], tlod_patch_info* info);
+/* TLOD_ERROR_TABLES_CLOSED_FORM: the table from info->error_bound (already
+ * set) alone, error_bound * 4^-l plus the measured tables' evaluation slack
+ * (pn_net: the PN control net, NULL for other surfaces). */
+void _tlod_error_table_closed(const _tlod_corners* c, const float (*pn_net)[3], tlod_patch_info* info);
 
 /* surface.c: a patch's corner data, and evaluation with those corners
  * gathered once (tangents only when flags ask). */

@@ -436,6 +436,7 @@ typedef struct stats {
 } stats;
 
 static stats g_stats;
+static bool g_collect = true; /* false: checks without adding to the tightness statistics */
 
 static void stats_add(int kind, uint32_t l, double ratio, double old_ratio) {
   if (g_stats.n[kind][l] == g_stats.cap[kind][l]) {
@@ -488,7 +489,7 @@ static int check_surface(const tlod_surface* s, const tlod_mesh* mesh, int kind_
         bad++;
       }
       /* Tightness where the deviation is above float noise. */
-      if (dense > 4.0 * info.error_slack)
+      if (g_collect && dense > 4.0 * info.error_slack)
         stats_add(kind, l, bound / dense, (double)info.error_bound * pow(0.25, (double)l) / dense);
     }
     /* Non-increasing, and the tail continues the table. */
@@ -594,6 +595,68 @@ TEST(test_tables_meshes) {
   shape_free(&qs);
   tlod_context_destroy(ctx);
   CHECK_MSG(bad == 0, "%d bounds below the dense deviation", bad);
+}
+
+/* TLOD_ERROR_TABLES_CLOSED_FORM on one mesh and case: every bound at least
+ * the measured table's (levels 0..10) and the closed form error_bound 4^-l
+ * plus the slack; a zero desc builds the measured tables. Returns the
+ * violations. */
+static int closed_form_case(tlod_context* ctx, tlod_mesh* mesh, const surf_case* c) {
+  tlod_surface_desc sd = {.type = c->type, .alpha_mode = c->alpha_mode, .alpha = c->alpha};
+  tlod_surface *dflt = NULL, *meas = NULL, *closed = NULL;
+  int bad = tlod_surface_create(ctx, mesh, &sd, &dflt) != TLOD_SUCCESS;
+  sd.error_tables = TLOD_ERROR_TABLES_MEASURED;
+  bad += tlod_surface_create(ctx, mesh, &sd, &meas) != TLOD_SUCCESS;
+  sd.error_tables = TLOD_ERROR_TABLES_CLOSED_FORM;
+  bad += tlod_surface_create(ctx, mesh, &sd, &closed) != TLOD_SUCCESS;
+  if (bad) return bad;
+  bad += tlod_surface_query_desc(dflt).error_tables != TLOD_ERROR_TABLES_MEASURED;
+  bad += tlod_surface_query_desc(closed).error_tables != TLOD_ERROR_TABLES_CLOSED_FORM;
+  for (uint32_t f = 0; f < tlod_surface_patch_count(meas); f++) {
+    tlod_patch_info d = tlod_surface_patch(dflt, f), m = tlod_surface_patch(meas, f), k = tlod_surface_patch(closed, f);
+    bad += memcmp(&d, &m, sizeof d) != 0;
+    for (uint32_t l = 0; l <= 10; l++) {
+      double kb = tlod_patch_error_bound(&k, l), mb = tlod_patch_error_bound(&m, l);
+      double closed_form = (double)k.error_bound * ldexp(1.0, -2 * (int)l);
+      if (kb >= mb && kb >= closed_form && kb <= closed_form * (1 + 1e-6) + 2.0 * k.error_slack) continue;
+      if (bad < 5)
+        fprintf(stderr, "  %s patch %u level %u: closed form %.9g, measured %.9g, error_bound 4^-l %.9g\n",
+                tlod_surface_type_name(c->type), f, l, kb, mb, closed_form);
+      bad++;
+    }
+  }
+  /* and rigorous against the dense deviation, as the measured tables are */
+  g_collect = false;
+  bad += check_surface(closed, mesh, c->kind_tri, c->kind_quad, 1000, 100);
+  g_collect = true;
+  tlod_surface_destroy(dflt), tlod_surface_destroy(meas), tlod_surface_destroy(closed);
+  return bad;
+}
+
+TEST(test_closed_form_tables) {
+  tlod_context* ctx = new_context();
+  CHECK(ctx);
+  mesh_data t = random_patches(500, 300, 3, 85.0), q = random_patches(501, 100, 4, 85.0);
+  const mesh_data* meshes[2] = {&t, &q};
+  int bad = 0;
+  for (int m = 0; m < 2; m++) {
+    tlod_mesh* mesh = make_mesh(ctx, meshes[m]);
+    CHECK(mesh);
+    for (size_t k = 0; k < sizeof k_cases / sizeof k_cases[0]; k++)
+      if (!(k_cases[k].type == TLOD_SURFACE_PN && meshes[m]->has_quads))
+        bad += closed_form_case(ctx, mesh, &k_cases[k]);
+    tlod_mesh_destroy(mesh);
+  }
+  /* an unknown mode is refused */
+  tlod_mesh* mesh = make_mesh(ctx, &t);
+  tlod_surface* s = (tlod_surface*)&bad;
+  CHECK(tlod_surface_create(ctx, mesh, &(tlod_surface_desc){.error_tables = TLOD_ERROR_TABLES_NUM}, &s) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(s == NULL && strstr(tlod_context_last_error(ctx), "error_tables"));
+  tlod_mesh_destroy(mesh);
+  mesh_data_free(&t), mesh_data_free(&q);
+  tlod_context_destroy(ctx);
+  CHECK_MSG(bad == 0, "%d closed-form bounds below the measured table or off error_bound 4^-l", bad);
 }
 
 /* Refresh recomputes the tables of the patches that changed, as a fresh build. */
@@ -702,6 +765,7 @@ int main(void) {
   g_stats.worst_excess = -INFINITY;
   RUN(test_phong_alpha_net_is_the_surface);
   RUN(test_tables_refresh);
+  RUN(test_closed_form_tables);
   RUN(test_tables_random);
   RUN(test_tables_meshes);
   print_tightness();

@@ -106,14 +106,17 @@ static void fixture_free(fixture* fx) {
   memset(fx, 0, sizeof *fx);
 }
 
-static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type) {
+/* tables: the surface desc's error_tables (DEFAULT: the measured tables). */
+static bool fixture_make_tables(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type,
+                                tlod_error_tables tables) {
   memset(fx, 0, sizeof *fx);
   fx->ctx = ctx;
   fx->s = s;
   fx->type = type;
   tlod_mesh_desc md = shape_mesh_desc(s);
   tlod_result r = tlod_mesh_create(ctx, &md, &fx->mesh);
-  if (r == TLOD_SUCCESS) r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type}, &fx->surf);
+  if (r == TLOD_SUCCESS)
+    r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type, .error_tables = tables}, &fx->surf);
   if (r == TLOD_SUCCESS) r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = PAT_MAX}, &fx->pat);
   if (r != TLOD_SUCCESS) {
     fprintf(stderr, "fixture %s %s: %s: %s\n", s->name, type_name(type), tlod_result_string(r),
@@ -132,6 +135,10 @@ static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_su
   fx->base = calloc(fx->patches + 1, sizeof *fx->base);
   fixture_read(fx);
   return true;
+}
+
+static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type) {
+  return fixture_make_tables(fx, ctx, s, type, TLOD_ERROR_TABLES_DEFAULT);
 }
 
 static tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
@@ -1608,10 +1615,10 @@ static void measure_frame(fixture* fx, const tlod_draw_list* dl, const view_ref*
   }
 }
 
-static void screen_error_suite(tlod_context* ctx, const shape* s, tlod_surface_type type, int cameras, uint64_t seed,
-                               screen_stats* settled, screen_stats* morphing) {
+static void screen_error_suite(tlod_context* ctx, const shape* s, tlod_surface_type type, tlod_error_tables tables,
+                               int cameras, uint64_t seed, screen_stats* settled, screen_stats* morphing) {
   fixture fx;
-  CHECK(fixture_make(&fx, ctx, s, type));
+  CHECK(fixture_make_tables(&fx, ctx, s, type, tables));
   double R = 0;
   for (uint32_t v = 0; v < fx.vertices; ++v)
     R = fmax(R, len3(fx.vpos[v]));
@@ -1672,7 +1679,7 @@ TEST(test_screen_error) {
       {&sph, TLOD_SURFACE_PHONG}, {&sph, TLOD_SURFACE_PN}, {&qs, TLOD_SURFACE_PHONG}, {&cube, TLOD_SURFACE_PN}};
   for (int k = 0; k < 4; ++k) {
     screen_stats a = {0}, b = {0};
-    CALL(screen_error_suite(ctx, cases[k].s, cases[k].type, 24, 300 + (uint64_t)k, &a, &b));
+    CALL(screen_error_suite(ctx, cases[k].s, cases[k].type, TLOD_ERROR_TABLES_DEFAULT, 24, 300 + (uint64_t)k, &a, &b));
     printf("  %-11s %-5s %u cameras: settled %u patches, %llu samples: worst %.3f eps, median over patches %.3f "
            "(measured / bound: median %.3f); TIME half-way %u patches (%u blending), %llu samples: worst %.3f eps, "
            "median %.3f (measured / bound %.3f); %u clamped at the max level skipped\n",
@@ -1686,6 +1693,31 @@ TEST(test_screen_error) {
   shape_free(&sph);
   shape_free(&qs);
   shape_free(&cube);
+  tlod_context_destroy(ctx);
+}
+
+/* The closed-form tables (TLOD_ERROR_TABLES_CLOSED_FORM, error_bound 4^-l)
+ * drive the same level rule: the drawn mesh is within eps too, settled and
+ * mid-morph, on a triangle and a quad mesh. */
+TEST(test_screen_error_closed_form) {
+  tlod_context* ctx = new_context(2, NULL, NULL);
+  CHECK(ctx);
+  shape sph = shape_icosphere(1), qs = shape_quad_sphere(2);
+  const shape* shapes[2] = {&sph, &qs};
+  const tlod_surface_type types[2] = {TLOD_SURFACE_PN, TLOD_SURFACE_PHONG};
+  for (int k = 0; k < 2; ++k) {
+    screen_stats a = {0}, b = {0};
+    CALL(screen_error_suite(ctx, shapes[k], types[k], TLOD_ERROR_TABLES_CLOSED_FORM, 24, 400 + (uint64_t)k, &a, &b));
+    printf("  closed form %-11s %-5s %u cameras: settled worst %.3f eps (%llu samples), TIME half-way worst %.3f eps "
+           "(%llu samples, %u blending)\n",
+           shapes[k]->name, type_name(types[k]), a.cameras, a.worst, (unsigned long long)a.samples, b.worst,
+           (unsigned long long)b.samples, b.morphing);
+    CHECK(a.samples > 1000 && b.samples > 1000);
+    free(a.ratios), free(a.tight);
+    free(b.ratios), free(b.tight);
+  }
+  shape_free(&sph);
+  shape_free(&qs);
   tlod_context_destroy(ctx);
 }
 
@@ -2413,6 +2445,7 @@ int main(int argc, char** argv) {
   RUN_SELECTED(test_geomorph_continuous);
   RUN_SELECTED(test_projection_scale);
   RUN_SELECTED(test_screen_error);
+  RUN_SELECTED(test_screen_error_closed_form);
   RUN_SELECTED(test_monotone_and_budget);
   RUN_SELECTED(test_frame_time_target);
   RUN_SELECTED(test_multi_view);

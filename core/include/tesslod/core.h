@@ -367,17 +367,40 @@ typedef enum tlod_alpha_mode {
   _TLOD_ALPHA_FORCE_U32 = 0x7FFFFFFF
 } tlod_alpha_mode;
 
+/* How a surface makes its per-patch error tables (tlod_patch_info below;
+ * docs/design.md 3.5b). Both are rigorous upper bounds of the true deviation
+ * of every level's pattern; they trade build time against triangles drawn. */
+typedef enum tlod_error_tables {
+  TLOD_ERROR_TABLES_DEFAULT = 0, /* == MEASURED */
+  /* Levels 0..TLOD_ERROR_TABLE_LEVELS-1 measured per patch (bound / true
+   * deviation about 1.0-1.4): the fewest triangles at a given screen error.
+   * Build (and refresh) time against CLOSED_FORM on one thread: Phong
+   * per-vertex alpha about 2.6x, PN 2.0x, Phong one alpha 1.7x, flat 1.0x
+   * (BENCHMARKS.md "Surface build cost of the error tables"). */
+  TLOD_ERROR_TABLES_MEASURED,
+  /* error_table[l] = error_bound * 4^-l + error_slack, nothing measured: the
+   * cheapest build, for meshes refreshed every frame (skinning, simulation),
+   * but a looser bound (1.3-8x the true deviation), so the level rule picks
+   * finer levels. Never below the MEASURED table of the same patch (whose
+   * entries are capped by it). */
+  TLOD_ERROR_TABLES_CLOSED_FORM,
+  TLOD_ERROR_TABLES_NUM,
+  _TLOD_ERROR_TABLES_FORCE_U32 = 0x7FFFFFFF
+} tlod_error_tables;
+
 typedef struct tlod_surface_desc {
   tlod_surface_type type;
   tlod_alpha_mode alpha_mode; /* default: 0.75 everywhere */
   float alpha;                /* TLOD_ALPHA_GLOBAL only: [0, 1]; ignored otherwise */
   tlod_shading_normal shading_normal;
   const char* label;
+  tlod_error_tables error_tables; /* default: MEASURED; a value >= NUM is refused (INVALID_ARGUMENT) */
 } tlod_surface_desc;
 
 /* ---- Per-level error tables (issue #9; maths: docs/design.md "Error tables") ----
  * Levels 0..TLOD_ERROR_TABLE_LEVELS-1 are measured per patch when the
- * surface is built or refreshed; above them a rigorous tail decays as 4^-l. */
+ * surface is built or refreshed (unless the desc asks for
+ * TLOD_ERROR_TABLES_CLOSED_FORM); above them a rigorous tail decays as 4^-l. */
 #define TLOD_ERROR_TABLE_LEVELS 3
 
 /* Per-patch precomputed data, in kept-face order. */
@@ -398,7 +421,9 @@ typedef struct tlod_patch_info {
    * level-l pattern's piecewise-linear interpolant of the surface (as the
    * pattern draws it: 4^l triangles, quads 2 * 4^l with the pattern's
    * diagonal), float evaluation rounding included; non-increasing in l,
-   * and >= every tail value below. */
+   * and >= every tail value below. Measured, or with
+   * TLOD_ERROR_TABLES_CLOSED_FORM error_bound * 4^-l + error_slack (the
+   * desc's error_tables); the measured entry is never above that. */
   float error_table[TLOD_ERROR_TABLE_LEVELS];
   float error_tail;  /* level l >= TLOD_ERROR_TABLE_LEVELS: error_tail * 4^-l + error_slack */
   float error_slack; /* float rounding of the evaluation (included in every value) */

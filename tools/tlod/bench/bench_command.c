@@ -24,10 +24,13 @@ static int run_lod_suites(const bench_options* o, FILE* csv) {
   return rc;
 }
 
-/* "eval" and "all" run the evaluation suite; the others the scheduler suites. */
+/* "eval", "build" and "all" run on IN; the others are the scheduler suites. */
 static int run_suite(const bench_options* o, FILE* csv) {
-  if (strcmp(o->suite, "eval") != 0 && strcmp(o->suite, "all") != 0) return run_lod_suites(o, csv);
-  return bench_eval(o, csv);
+  bool all = !strcmp(o->suite, "all");
+  if (!strcmp(o->suite, "build")) return bench_build(o, csv);
+  if (strcmp(o->suite, "eval") != 0 && !all) return run_lod_suites(o, csv);
+  int rc = bench_eval(o, csv);
+  return rc == CLI_OK && all ? bench_build(o, csv) : rc;
 }
 
 int cmd_bench(int argc, char** argv) {

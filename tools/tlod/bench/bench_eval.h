@@ -1,4 +1,5 @@
-/* tlod bench --suite eval (bench_eval.c) and the memcpy bandwidth (bench_bandwidth.c). */
+/* tlod bench --suite eval (bench_eval.c), --suite build (bench_build.c) and
+ * the memcpy bandwidth (bench_bandwidth.c). */
 #ifndef TLOD_TOOLS_BENCH_EVAL_H
 #define TLOD_TOOLS_BENCH_EVAL_H
 
@@ -10,5 +11,8 @@
 double bench_memcpy_bandwidth(void);
 /* Preprocessing and CPU evaluation rates on o->in; csv (may be NULL) gets one row per case. */
 int bench_eval(const bench_options* o, FILE* csv);
+/* Surface build CPU time on one thread, measured error tables against the
+ * closed form, per surface type, on o->in; csv (may be NULL) one row per type. */
+int bench_build(const bench_options* o, FILE* csv);
 
 #endif

@@ -20,7 +20,11 @@ void bench_usage(FILE* f) {
              "  --repeat N         timed runs per case (default 3)\n"
              "  --warmup N         untimed runs first (default 1)\n"
              "  --csv FILE         also write one CSV row per case\n"
-             "  --suite S          eval (default) | scheduler | table1 | gl | all\n"
+             "  --suite S          eval (default) | build | scheduler | table1 | gl | all\n"
+             "                     build: tlod_surface_create on one thread, CPU time per 100k patches of IN\n"
+             "                     with measured error tables against closed-form ones, per surface type\n"
+             "                     (flat, Phong one alpha, Phong per-vertex alpha, PN), --repeat interleaved\n"
+             "                     rounds (min, median), and the bytes per patch of the tables\n"
              "                     scheduler: time per frame on 10k, 100k, 1M patches (torus), orbiting camera\n"
              "                     table1: Schwarz et al.'s Table 1 (PN, 1600x1144, 0.5 px): base, adaptive per\n"
              "                     policy, uniform at the worst patch's level, strip overhead\n"
@@ -67,7 +71,7 @@ int bench_parse(int argc, char** argv, bench_options* o) {
     } else if (!strcmp(a, "--warmup")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 0, 1000, &o->warmup)) return CLI_USAGE;
     } else if (!strcmp(a, "--suite")) {
-      static const char* const suites[] = {"eval", "scheduler", "table1", "gl", "all", NULL};
+      static const char* const suites[] = {"eval", "build", "scheduler", "table1", "gl", "all", NULL};
       if (!(v = cli_value(argc, argv, &i)) || cli_parse_enum(a, v, suites) < 0) return CLI_USAGE;
       o->suite = v;
     } else if (!strcmp(a, "--frames")) {
