@@ -8,7 +8,9 @@
  * failure (create, short write, close, rename) is reported with errno and
  * leaves nothing behind.
  */
+#include <errno.h>
 #include <stdio.h>
+#include <string.h>
 
 #include <stb_image_write.h>
 
@@ -34,9 +36,17 @@ bool tlod_png_write(const char* path, uint32_t width, uint32_t height, const uin
   tlod_atomic_file a;
   if (!tlod_atomic_file_begin(&a, path, error, error_size)) return false;
   stbi_flip_vertically_on_write(0); /* libstb's process-wide flag: rows are given top first */
+  errno = 0;
   bool encoded =
       stbi_write_png_to_func(png_sink_write, a.file, (int)width, (int)height, 4, rgba_top_first, (int)(width * 4)) != 0;
+  /* The sink cannot return an error: read the write's errno (ENOSPC, EFBIG)
+   * now, before closing the file replaces it. */
+  const int write_errno = encoded && ferror(a.file) ? (errno ? errno : EIO) : 0;
   if (!encoded)
     _tlod_platform_error(error, error_size, "%s: PNG encoding (%ux%u) failed (out of memory?)", path, width, height);
+  if (write_errno) {
+    _tlod_platform_error(error, error_size, "cannot write '%s': %s", path, strerror(write_errno));
+    return tlod_atomic_file_end(&a, false, NULL, 0);
+  }
   return tlod_atomic_file_end(&a, encoded, error, error_size);
 }

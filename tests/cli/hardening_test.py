@@ -101,9 +101,10 @@ if BUILT_WITH_GL:
     rc, so, se = run_limited(3000, "play", "--backend", "gl", "--size", "256x256", "--frames", "3",
                              "--screenshot-every", "1", "-q", "--out", d)
     s = load_json(os.path.join(d, "summary.json"))
-    check("screenshot write error: exit 1, summary.json failed naming the screenshot",
-          rc == 1 and isinstance(s, dict) and s.get("status") == "failed" and "frame_00000.png" in s.get("error", ""),
-          (rc, se, s))
+    check("screenshot write error: exit 1, summary.json failed naming the screenshot and the write's errno "
+          "(EFBIG, not the EIO left after closing)",
+          rc == 1 and isinstance(s, dict) and s.get("status") == "failed" and "frame_00000.png" in s.get("error", "")
+          and "File too large" in s.get("error", ""), (rc, se, s))
 
 # ---- numbers that wrapped ---------------------------------------------------
 WRAPS = [

@@ -6,6 +6,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -115,6 +116,18 @@ static _tlod_contained_status _tlod_read_fd(int fd, size_t size, unsigned char**
   return _TLOD_CONTAINED_OK;
 }
 
+/* A folder on the resolved path swapped for a symlink between realpath()
+ * and open() would open a file elsewhere: the kernel's name for what was
+ * opened must still be the resolved (inside) path. Without /proc this check
+ * is skipped (docs/security.md). */
+static bool _tlod_opened_as(int fd, const char* path) {
+  char link[64], got[4096];
+  snprintf(link, sizeof link, "/proc/self/fd/%d", fd);
+  const ssize_t n = readlink(link, got, sizeof got);
+  if (n < 0) return true;
+  return (size_t)n == strlen(path) && memcmp(got, path, (size_t)n) == 0;
+}
+
 static _tlod_contained_status _tlod_read_regular(const char* path, size_t max_bytes, unsigned char** data,
                                                  size_t* size) {
   /* O_NONBLOCK: opening a FIFO with no writer must not wait; fstat then refuses it. */
@@ -122,7 +135,9 @@ static _tlod_contained_status _tlod_read_regular(const char* path, size_t max_by
   if (fd < 0) return _TLOD_CONTAINED_NOT_FOUND;
   struct stat sb;
   _tlod_contained_status st = _TLOD_CONTAINED_OK;
-  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode))
+  if (!_tlod_opened_as(fd, path))
+    st = _TLOD_CONTAINED_OUTSIDE;
+  else if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode))
     st = _TLOD_CONTAINED_NOT_REGULAR;
   else if ((unsigned long long)sb.st_size > max_bytes)
     st = _TLOD_CONTAINED_TOO_LARGE;
