@@ -113,7 +113,7 @@ static int run_cases(tlod_context* ctx, const tlod_mesh* mesh, const bench_optio
   int rc = CLI_OK;
   for (size_t k = 0; k < sizeof k_build_cases / sizeof k_build_cases[0] && rc == CLI_OK; k++) {
     const build_case* c = &k_build_cases[k];
-    double fig[2][2];
+    double fig[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
     rc = run_case(ctx, mesh, c, o, fig);
     if (rc != CLI_OK) break;
     printf("build      %-8s T1  measured tables min %7.2f median %7.2f | closed form min %7.2f median %7.2f ms per "
