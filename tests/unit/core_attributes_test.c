@@ -260,7 +260,180 @@ TEST(seam_flags_follow_split_attributes) {
   shape_free(&s);
 }
 
+/* ------------------------------------------------------------------------ */
+/* (a) Bitwise agreement along shared edges, (b) values at pattern vertices */
+/* ------------------------------------------------------------------------ */
+
+/* Grid point of edge e at end-corner weight q (over nn), as
+ * tlod_grid_point_kind() classifies it (core.h). */
+static void edge_ij(uint32_t corners, uint32_t e, uint32_t nn, uint32_t q, uint16_t ij[2]) {
+  static const int tri[3][4] = {{1, -1, 0, 1}, {0, 0, 1, -1}, {0, 1, 0, 0}}; /* i = a + b q, j = c + d q (over nn) */
+  static const int quad[4][4] = {{0, 1, 0, 0}, {1, 0, 0, 1}, {1, -1, 1, 0}, {0, 0, 1, -1}};
+  const int* r = corners == 3 ? tri[e] : quad[e];
+  ij[0] = (uint16_t)((int)nn * r[0] + r[1] * (int)q);
+  ij[1] = (uint16_t)((int)nn * r[2] + r[3] * (int)q);
+}
+
+/* Edge points of patch f's edge e at grid level g: out[q] for end weight q. */
+static bool eval_edge(const tlod_mesh* m, uint32_t f, uint32_t e, uint32_t g, float (*out)[4]) {
+  uint32_t nn = 1u << g, corners = tlod_mesh_face_corners(m, f, NULL);
+  uint16_t ij[(1u << 5) + 1][2];
+  for (uint32_t q = 0; q <= nn; q++)
+    edge_ij(corners, e, nn, q, ij[q]);
+  return tlod_mesh_eval_attributes_grid(m, f, g, &ij[0][0], sizeof(ij[0]), nn + 1, out) == TLOD_SUCCESS;
+}
+
+/* Over every linked edge at levels 0..5: non-seam edges give bitwise equal
+ * values at each edge point on both sides (point q on f is point nn - q on
+ * the neighbour); counts the seam edges whose sides differ. */
+static void check_shared_edges(const tlod_mesh* m, uint32_t* compared, uint32_t* differing_seams) {
+  tlod_mesh_view view = tlod_mesh_query_view(m);
+  uint32_t na = view.attribute_count;
+  float(*a)[4] = calloc(((1u << 5) + 1) * (size_t)na, sizeof(*a));
+  float(*b)[4] = calloc(((1u << 5) + 1) * (size_t)na, sizeof(*b));
+  for (uint32_t g = 0; g <= 5; g++)
+    for (uint32_t f = 0; f < view.face_count; f++)
+      for (uint32_t e = 0; e < view.face_corners[f]; e++) {
+        tlod_edge_link l = view.links[f][e];
+        if (l.face == UINT32_MAX || l.face < f) continue;
+        uint32_t nn = 1u << g;
+        CHECK_MSG(eval_edge(m, f, e, g, a) && eval_edge(m, l.face, l.edge, g, b), "patch %u edge %u", f, e);
+        bool equal = true;
+        for (uint32_t q = 0; q <= nn; q++)
+          equal = equal && !memcmp(a[q * na], b[(nn - q) * na], sizeof(*a) * na);
+        if (l.seam) {
+          *differing_seams += !equal && g == 0;
+          continue;
+        }
+        CHECK_MSG(equal, "level %u: patch %u edge %u and patch %u edge %u differ", g, f, e, l.face, l.edge);
+        (*compared)++;
+      }
+  free(a);
+  free(b);
+}
+
+static void shared_edges_case(const shape* s, bool seam_uv, uint32_t nlat, uint32_t nlon) {
+  attr_data a = attr_data_smooth(s);
+  float* uv = seam_uv ? seam_sphere_uv(nlat, nlon) : NULL;
+  if (uv) a.desc[0].data = uv;
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  tlod_mesh* m = make_mesh(ctx, s, a.desc, 3);
+  CHECK(m);
+  uint32_t compared = 0, differing = 0, seams = tlod_mesh_query_info(m).attribute_seam_edges;
+  check_shared_edges(m, &compared, &differing);
+  tlod_mesh_destroy(m);
+  tlod_context_destroy(ctx);
+  free(uv);
+  attr_data_free(&a);
+  CHECK_MSG(compared > 0, "%s: no shared edge compared", s->name);
+  CHECK_MSG(differing == seams, "%s: %u of %u seams differ", s->name, differing, seams);
+}
+
+TEST(shared_edges_are_bitwise_equal) {
+  shape shapes[4] = {shape_icosphere(2), shape_quad_sphere(3), shape_cube_split(), shape_torus(7, 5)};
+  for (int k = 0; k < 4; k++) {
+    CALL(shared_edges_case(&shapes[k], false, 0, 0));
+    shape_free(&shapes[k]);
+  }
+  shape seam = shape_seam_sphere(6, 8);
+  CALL(shared_edges_case(&seam, true, 6, 8));
+  shape_free(&seam);
+}
+
+/* The interpolation written out in double: barycentric u, v, w on corners
+ * 0, 1, 2 of a triangle, bilinear on a quad (core.h PARAMETERS). */
+static double expected_value(const tlod_mesh_view* v, uint32_t f, uint32_t attr, int c, double u, double w) {
+  const uint32_t* face = v->faces[f];
+  uint32_t na = v->attribute_count;
+  double x[4];
+  for (uint32_t i = 0; i < v->face_corners[f]; i++)
+    x[i] = v->attributes[face[i] * na + attr][c];
+  if (v->face_corners[f] == 3) return u * x[0] + w * x[1] + (1.0 - u - w) * x[2];
+  return (1 - u) * (1 - w) * x[0] + u * (1 - w) * x[1] + u * w * x[2] + (1 - u) * w * x[3];
+}
+
+static void check_pattern_values(const tlod_mesh* m, const tlod_patterns* pat) {
+  tlod_mesh_view view = tlod_mesh_query_view(m);
+  uint32_t na = view.attribute_count, lmax = tlod_patterns_max_level(pat);
+  for (uint32_t f = 0; f < view.face_count; f++) {
+    tlod_pattern_shape sh = view.face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
+    uint32_t count;
+    const tlod_pattern_vertex* pv = tlod_patterns_vertices(pat, sh, &count);
+    float(*out)[4] = calloc((size_t)count * na, sizeof(*out));
+    CHECK(tlod_mesh_eval_attributes_grid(m, f, lmax, &pv[0].i, sizeof(*pv), count, out) == TLOD_SUCCESS);
+    for (uint32_t x = 0; x < count; x++)
+      for (uint32_t k = 0; k < na; k++) {
+        uint32_t param, kind = tlod_grid_point_kind(view.face_corners[f], lmax, pv[x].i, pv[x].j, &param);
+        if (kind < TLOD_GRID_EDGE) {
+          CHECK_MSG(!memcmp(out[x * na + k], view.attributes[view.faces[f][kind] * na + k], 16), "corner not exact");
+          continue;
+        }
+        double scale = 0;
+        for (uint32_t i = 0; i < view.face_corners[f]; i++)
+          for (int c = 0; c < 4; c++)
+            scale = fmax(scale, fabs(view.attributes[view.faces[f][i] * na + k][c]));
+        for (int c = 0; c < 4; c++) {
+          double want = expected_value(&view, f, k, c, (double)pv[x].i / (1 << lmax), (double)pv[x].j / (1 << lmax));
+          CHECK_MSG(fabs(out[x * na + k][c] - want) <= 4 * scale * 0x1p-24,
+                    "patch %u vertex %u attribute %u.%d: %.9g, expected %.9g", f, x, k, c, (double)out[x * na + k][c],
+                    want);
+        }
+      }
+    free(out);
+  }
+}
+
+TEST(pattern_values_match_the_corner_weights) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  tlod_patterns* pat = NULL;
+  CHECK(tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = 4}, &pat) == TLOD_SUCCESS);
+  shape shapes[2] = {shape_icosphere(1), shape_quad_sphere(2)};
+  for (int k = 0; k < 2; k++) {
+    attr_data a = attr_data_smooth(&shapes[k]);
+    tlod_mesh* m = make_mesh(ctx, &shapes[k], a.desc, 3);
+    CHECK(m);
+    CALL(check_pattern_values(m, pat));
+    tlod_mesh_destroy(m);
+    attr_data_free(&a);
+    shape_free(&shapes[k]);
+  }
+  tlod_patterns_destroy(pat);
+  tlod_context_destroy(ctx);
+}
+
+TEST(eval_grid_checks_its_arguments) {
+  shape s = shape_icosphere(0);
+  attr_data a = attr_data_smooth(&s);
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  tlod_mesh* m = make_mesh(ctx, &s, a.desc, 3);
+  tlod_mesh* plain = make_mesh(ctx, &s, NULL, 0);
+  CHECK(m && plain);
+  uint16_t ij[2][2] = {{1, 1}, {3, 2}}; /* the second is off a level-2 triangle grid */
+  float out[2 * 3][4], sentinel[2 * 3][4];
+  memset(out, 0x5a, sizeof(out));
+  memcpy(sentinel, out, sizeof(out));
+  CHECK(tlod_mesh_eval_attributes_grid(m, 0, 2, &ij[0][0], 4, 2, out) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_mesh_eval_attributes_grid(m, 20, 2, &ij[0][0], 4, 1, out) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_mesh_eval_attributes_grid(m, 0, 16, &ij[0][0], 4, 1, out) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_mesh_eval_attributes_grid(m, 0, 2, NULL, 4, 1, out) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_mesh_eval_attributes_grid(m, 0, 2, &ij[0][0], 4, 1, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_mesh_eval_attributes_grid(NULL, 0, 2, &ij[0][0], 4, 1, out) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(!memcmp(out, sentinel, sizeof(out)));
+  CHECK(tlod_mesh_eval_attributes_grid(plain, 0, 2, &ij[0][0], 4, 1, NULL) == TLOD_SUCCESS);
+  CHECK(tlod_mesh_eval_attributes_grid(plain, 0, 2, &ij[0][0], 4, 2, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_mesh_eval_attributes_grid(m, 0, 2, &ij[0][0], 4, 1, out) == TLOD_SUCCESS);
+  tlod_mesh_destroy(plain);
+  tlod_mesh_destroy(m);
+  tlod_context_destroy(ctx);
+  attr_data_free(&a);
+  shape_free(&s);
+}
+
 int main(void) {
+  RUN(shared_edges_are_bitwise_equal);
+  RUN(pattern_values_match_the_corner_weights);
+  RUN(eval_grid_checks_its_arguments);
+
   RUN(validation_names_the_attribute);
   RUN(out_of_memory_frees_everything);
   RUN(view_and_patch_attributes_copy_the_input);
