@@ -216,6 +216,18 @@ TEST(view_and_patch_attributes_copy_the_input) {
   CHECK(tlod_mesh_patch_attributes(m, 0, 1, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
   CHECK(tlod_mesh_patch_attributes(NULL, 0, 0, corners) == TLOD_ERROR_INVALID_ARGUMENT);
   CHECK(tlod_mesh_query_info(m).attribute_seam_edges == 0);
+  CHECK(tlod_mesh_attribute_count(NULL) == 0 && tlod_mesh_query_attribute(NULL, 0).components == 0);
+  /* An update moves the geometry and leaves the attributes as they are. */
+  float(*before)[4] = malloc(sizeof(*before) * 3 * view.vertex_count);
+  memcpy(before, view.attributes, sizeof(*before) * 3 * view.vertex_count);
+  float* moved = malloc(sizeof(float) * 3 * s.vertex_count);
+  for (uint32_t k = 0; k < 3 * s.vertex_count; k++)
+    moved[k] = 2.0f * s.positions[k];
+  CHECK(tlod_mesh_update(m, moved, 0, NULL, 0) == TLOD_SUCCESS);
+  view = tlod_mesh_query_view(m);
+  CHECK(!memcmp(before, view.attributes, sizeof(*before) * 3 * view.vertex_count));
+  free(moved);
+  free(before);
   free(corners);
   tlod_mesh_destroy(m);
   tlod_context_destroy(ctx);
