@@ -8,11 +8,27 @@
 
 #include "tesslod/backend.h"
 
+#ifndef TLOD_MAX_ATTRIBUTES /* TEMPORARY until core-attrs (issue 11) is merged: meshes without attributes */
+#define TLOD_MAX_ATTRIBUTES 8
+typedef struct tlod_attribute_info {
+  char name[32];
+  uint32_t components;
+} tlod_attribute_info;
+static inline uint32_t tlod_mesh_attribute_count(const tlod_mesh* m) { return (void)m, 0u; }
+static inline tlod_attribute_info tlod_mesh_query_attribute(const tlod_mesh* m, uint32_t a) {
+  return (void)m, (void)a, (tlod_attribute_info){{0}, 0};
+}
+static inline tlod_result tlod_mesh_patch_attributes(const tlod_mesh* m, uint32_t f, uint32_t n, float (*o)[4]) {
+  return (void)m, (void)f, (void)n, (void)o, TLOD_SUCCESS;
+}
+#endif
+
 /* A validated item: its surface, the backend's state of that surface. */
 typedef struct _tlod_draw_ref {
   const tlod_draw_item* item;
   const tlod_surface* surface;
   void* surface_state;
+  void* texture_state; /* the backend's state of item->base_color_texture; NULL without one */
 } _tlod_draw_ref;
 
 typedef struct _tlod_device_vtbl {
@@ -33,6 +49,10 @@ typedef struct _tlod_device_vtbl {
   /* false: the dispatch times draw() into cpu_ms and wall_ms; true: the
    * backend does (gl: cpu_ms without the finish, wall_ms with it). */
   bool times_draws;
+  /* May be NULL: textures validated and counted, nothing kept (cpu, null).
+   * desc is validated, its label resolved. */
+  tlod_result (*create_texture)(void* state, const tlod_texture_desc* desc, void** texture_state);
+  void (*destroy_texture)(void* state, void* texture_state);
 } _tlod_device_vtbl;
 
 extern const _tlod_device_vtbl _tlod_cpu_device_vtbl;

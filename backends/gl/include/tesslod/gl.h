@@ -81,6 +81,11 @@
 #define TLOD_GL_BINDING_PATTERNS 1  /* pattern vertices of both shapes */
 #define TLOD_GL_BINDING_INSTANCES 2 /* per visible patch: level, geomorph blends, edge levels */
 #define TLOD_GL_BINDING_STRIPS 3    /* per connection strip: patches, edges, levels, blends */
+#define TLOD_GL_BINDING_ATTRIBUTES 4 /* per patch and corner: vec4 mesh attributes (tlod_mesh_patch_attributes) */
+
+/* Texture unit of the base colour texture while drawing (sampler2D
+ * u_base_color_texture of the fragment stage). */
+#define TLOD_GL_TEXTURE_UNIT_BASE_COLOR 0
 
 /* GLSL version of the shaders (backends/shaders), compiled at device creation. */
 #define TLOD_GL_GLSL_VERSION 450
