@@ -200,8 +200,7 @@ void tlod_device_destroy_surface(tlod_device* dev, tlod_device_surface* ds) {
 static const char* texture_desc_error(const tlod_texture_desc* d, char* buf, size_t size) {
   if (!d->rgba8) return "rgba8 is NULL";
   if (d->width == 0 || d->height == 0 || d->width > TLOD_TEXTURE_MAX_SIZE || d->height > TLOD_TEXTURE_MAX_SIZE) {
-    snprintf(buf, size, "%s %u outside [1, %u]",
-             d->width == 0 || d->width > TLOD_TEXTURE_MAX_SIZE ? "width" : "height",
+    snprintf(buf, size, "%s %u outside [1, %u]", d->width == 0 || d->width > TLOD_TEXTURE_MAX_SIZE ? "width" : "height",
              d->width == 0 || d->width > TLOD_TEXTURE_MAX_SIZE ? d->width : d->height, TLOD_TEXTURE_MAX_SIZE);
     return buf;
   }

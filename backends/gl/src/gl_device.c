@@ -41,9 +41,9 @@ enum {
   U_COUNT
 };
 static const char* const uniform_names[U_COUNT] = {
-    "u_view_proj", "u_model", "u_normal_matrix",  "u_light_dir",  "u_base_color", "u_debug", "u_eye",
-    "u_forward",   "u_ortho", "u_first_instance", "u_shape_base", "u_corners",    "u_grid",  "u_max_level",
-    "u_blend",     "u_alpha_cutoff", "u_texcoord", "u_attribute_count"};
+    "u_view_proj", "u_model",     "u_normal_matrix", "u_light_dir",      "u_base_color", "u_debug",
+    "u_eye",       "u_forward",   "u_ortho",         "u_first_instance", "u_shape_base", "u_corners",
+    "u_grid",      "u_max_level", "u_blend",         "u_alpha_cutoff",   "u_texcoord",   "u_attribute_count"};
 
 typedef struct gl_program {
   GLuint id;
@@ -64,7 +64,7 @@ typedef struct gl_device {
   tlod_device_stats* stats;
   uint32_t lmax;
   bool hardware;
-  const char* fragment_hook; /* during creation only: NULL == material.glsl */
+  const char* fragment_hook;        /* during creation only: NULL == material.glsl */
   gl_programs programs[TYPE_COUNT]; /* by resolved surface type */
   GLuint vao_pattern, vao_strip;
   GLuint buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs;
@@ -133,8 +133,8 @@ static void gl_destroy(void* state) {
     glDeleteProgram(d->programs[t].tess[0].id);
     glDeleteProgram(d->programs[t].tess[1].id);
   }
-  void* arrays[] = {d->instances, d->strips, d->refs,  d->instance_of, d->records,
-                    d->ranges,    d->order,   d->order_depth, d->attributes};
+  void* arrays[] = {d->instances, d->strips, d->refs,        d->instance_of, d->records,
+                    d->ranges,    d->order,  d->order_depth, d->attributes};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(d->ctx, arrays[i]);
   tlod_context_free(d->ctx, d);
@@ -157,7 +157,8 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type) {
                                                      : _tlod_shader_flat;
   const char* version = "#version 450 core\n#define TLOD_GLSL 1\n";
   const char* attrs = _tlod_shader_attributes;
-  const char* pattern[] = {version, _tlod_shader_layout, _tlod_shader_common, attrs, surface, _tlod_shader_pattern_vert};
+  const char* pattern[] = {version, _tlod_shader_layout,      _tlod_shader_common, attrs,
+                           surface, _tlod_shader_pattern_vert};
   const char* strip[] = {version, _tlod_shader_layout, _tlod_shader_common, attrs, surface, _tlod_shader_strip_vert};
   /* The material is source string 1 from its line 1: the driver's log names its lines. */
   const char* frag[] = {version, _tlod_shader_layout, _tlod_shader_shade_frag, "\n#line 1 1\n",
@@ -169,12 +170,12 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type) {
   bool ok = ps->pattern.id && ps->strip.id;
   for (int sh = 0; sh < 2 && d->hardware && ok; sh++) {
     const char* corners = sh ? "#define TLOD_CORNERS 4\n" : "#define TLOD_CORNERS 3\n";
-    const char* vs[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, attrs, surface,
-                        _tlod_shader_tess_vert};
-    const char* tcs[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, attrs, surface,
-                         _tlod_shader_tess_tesc};
-    const char* tes[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, attrs, surface,
-                         _tlod_shader_tess_tese};
+    const char* vs[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
+                        attrs,   surface, _tlod_shader_tess_vert};
+    const char* tcs[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
+                         attrs,   surface, _tlod_shader_tess_tesc};
+    const char* tes[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
+                         attrs,   surface, _tlod_shader_tess_tese};
     const char* const* stages[4] = {vs, tcs, tes, frag};
     const int counts[4] = {7, 7, 7, 5};
     ps->tess[sh].id = _tlod_gl_program_tess(stages, counts, error, sizeof(error));

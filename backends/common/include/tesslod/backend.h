@@ -203,7 +203,7 @@ typedef struct tlod_texture_desc {
   bool srgb; /* sRGB-encoded colour (glTF base colour textures): decoded to linear when sampled */
   tlod_wrap wrap_s, wrap_t;
   tlod_filter min_filter, mag_filter;
-  bool mipmaps_off; /* default: a full mipmap chain, generated from rgba8 */
+  bool mipmaps_off;  /* default: a full mipmap chain, generated from rgba8 */
   const char* label; /* names the texture in messages; default "texture" */
 } tlod_texture_desc;
 
