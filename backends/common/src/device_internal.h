@@ -8,21 +8,6 @@
 
 #include "tesslod/backend.h"
 
-#ifndef TLOD_MAX_ATTRIBUTES /* TEMPORARY until core-attrs (issue 11) is merged: meshes without attributes */
-#define TLOD_MAX_ATTRIBUTES 8
-typedef struct tlod_attribute_info {
-  char name[32];
-  uint32_t components;
-} tlod_attribute_info;
-static inline uint32_t tlod_mesh_attribute_count(const tlod_mesh* m) { return (void)m, 0u; }
-static inline tlod_attribute_info tlod_mesh_query_attribute(const tlod_mesh* m, uint32_t a) {
-  return (void)m, (void)a, (tlod_attribute_info){{0}, 0};
-}
-static inline tlod_result tlod_mesh_patch_attributes(const tlod_mesh* m, uint32_t f, uint32_t n, float (*o)[4]) {
-  return (void)m, (void)f, (void)n, (void)o, TLOD_SUCCESS;
-}
-#endif
-
 /* A validated item: its surface, the backend's state of that surface. */
 typedef struct _tlod_draw_ref {
   const tlod_draw_item* item;
