@@ -177,24 +177,42 @@ static inline void fixture_free(fixture* fx) {
   fx->surf = NULL, fx->mesh = NULL, fx->pat = NULL, fx->ds = NULL, fx->dev = NULL;
 }
 
-/* dev may be NULL (no device surface). */
-static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type,
-                                const tlod_patterns* patterns, tlod_device* dev) {
+/* A fixture of any mesh desc (attributes, say); dev may be NULL (no device surface). */
+static inline bool fixture_make_desc(fixture* fx, tlod_context* ctx, const tlod_mesh_desc* md, tlod_surface_type type,
+                                     const tlod_patterns* patterns, tlod_device* dev) {
   memset(fx, 0, sizeof *fx);
   fx->ctx = ctx;
   fx->pat = patterns;
   fx->dev = dev;
-  tlod_mesh_desc md = shape_mesh_desc(s);
-  tlod_result r = tlod_mesh_create(ctx, &md, &fx->mesh);
+  tlod_result r = tlod_mesh_create(ctx, md, &fx->mesh);
   if (r == TLOD_SUCCESS)
-    r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type, .label = s->name}, &fx->surf);
+    r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type, .label = md->label}, &fx->surf);
   if (r == TLOD_SUCCESS && dev) r = tlod_device_create_surface(dev, fx->surf, &fx->ds);
   if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "fixture %s: %s: %s\n", s->name, tlod_result_string(r), tlod_context_last_error(ctx));
+    fprintf(stderr, "fixture %s: %s: %s\n", md->label, tlod_result_string(r), tlod_context_last_error(ctx));
     fixture_free(fx);
     return false;
   }
   return true;
+}
+
+/* A shape's fixture; dev may be NULL (no device surface). */
+static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type,
+                                const tlod_patterns* patterns, tlod_device* dev) {
+  tlod_mesh_desc md = shape_mesh_desc(s);
+  return fixture_make_desc(fx, ctx, &md, type, patterns, dev);
+}
+
+/* The lat-long UVs of shape_seam_sphere(nlat, nlon): vertex (i, j) has
+ * (j / nlon, i / nlat) (v = 0 at the +z pole, glTF's top); 2 floats per vertex. */
+static inline float* seam_sphere_uvs(uint32_t nlat, uint32_t nlon) {
+  float* uv = malloc(sizeof(float) * 2 * (nlat + 1) * (nlon + 1));
+  for (uint32_t i = 0; uv && i <= nlat; ++i)
+    for (uint32_t j = 0; j <= nlon; ++j) {
+      uv[2 * (i * (nlon + 1) + j)] = (float)j / (float)nlon;
+      uv[2 * (i * (nlon + 1) + j) + 1] = (float)i / (float)nlat;
+    }
+  return uv;
 }
 
 static inline tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
