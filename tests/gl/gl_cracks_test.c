@@ -464,19 +464,14 @@ TEST(test_uv_seam_no_holes) {
   tlod_patterns* pat;
   tlod_device* dev;
   CALL(cracks_open(&env, &ctx, &pat, &dev, (tlod_device_gl_desc){0}));
-  enum { NLAT = 10, NLON = 20, SEAM_CAMERAS = 30 };
-  shape sph = shape_seam_sphere(NLAT, NLON);
-  float* uv = seam_sphere_uvs(NLAT, NLON);
-  CHECK(uv);
-  tlod_attribute_desc attr = {.data = uv, .components = 2, .name = "TEXCOORD_0"};
-  tlod_mesh_desc md = shape_mesh_desc(&sph);
-  md.attributes = &attr;
-  md.attribute_count = 1;
+  enum { NLON = 20, SEAM_CAMERAS = 30 };
+  uv_sphere us;
+  CHECK(uv_sphere_make(&us, 10, NLON));
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   uint32_t failures = 0, mixed = 0;
   for (int ti = 0; ti < 2; ++ti) {
     fixture fx;
-    CHECK(fixture_make_desc(&fx, ctx, &md, types[ti], pat, dev));
+    CHECK(fixture_make_desc(&fx, ctx, &us.desc, types[ti], pat, dev));
     uint32_t seams = tlod_mesh_query_info(fx.mesh).attribute_seam_edges;
     CHECK_MSG(seams >= NLON, "only %u attribute seam edges: the mesh does not exercise seams", seams);
     tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
@@ -504,8 +499,7 @@ TEST(test_uv_seam_no_holes) {
     tlod_scheduler_destroy(sch);
     fixture_free(&fx);
   }
-  free(uv);
-  shape_free(&sph);
+  uv_sphere_free(&us);
   cracks_close(&env, ctx, pat, dev);
   CHECK_MSG(mixed >= SEAM_CAMERAS, "only %u of %d frames had strips", mixed, 2 * SEAM_CAMERAS);
   CHECK_MSG(failures == 0, "%u frames with holes (see above)", failures);

@@ -168,18 +168,13 @@ static void compare(const fixture* fx, uint32_t patches, const float* got, doubl
 TEST(test_engine_shader_evaluates_patches) {
   gl_session gs;
   CHECK_MSG(gl_session_open(&gs, 16, 16, 5, "gl_glsl_include", (tlod_device_gl_desc){0}), "no GL context");
-  shape sph = shape_seam_sphere(NLAT, NLON);
-  float* uv = seam_sphere_uvs(NLAT, NLON);
-  CHECK(uv);
-  tlod_attribute_desc attr = {.data = uv, .components = 2, .name = "TEXCOORD_0"};
-  tlod_mesh_desc md = shape_mesh_desc(&sph);
-  md.attributes = &attr;
-  md.attribute_count = 1;
+  uv_sphere us;
+  CHECK(uv_sphere_make(&us, NLAT, NLON));
   static const char* const files[3] = {"phong.glsl", "pn.glsl", "flat.glsl"};
   static const tlod_surface_type types[3] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN, TLOD_SURFACE_FLAT};
   for (int t = 0; t < 3; t++) {
     fixture fx;
-    CHECK(fixture_make_desc(&fx, gs.ctx, &md, types[t], gs.pat, NULL));
+    CHECK(fixture_make_desc(&fx, gs.ctx, &us.desc, types[t], gs.pat, NULL));
     uint32_t patches = tlod_surface_patch_count(fx.surf);
     GLuint prog = engine_program(files[t]);
     CHECK_MSG(prog, "%s: the engine shader did not build (see above)", files[t]);
@@ -196,8 +191,7 @@ TEST(test_engine_shader_evaluates_patches) {
     glDeleteProgram(prog);
     fixture_free(&fx);
   }
-  free(uv);
-  shape_free(&sph);
+  uv_sphere_free(&us);
   gl_session_close(&gs);
 }
 

@@ -99,17 +99,12 @@ static void place(float m[16], float s, float tx, float ty, float tz) {
   m[12] = tx, m[13] = ty, m[14] = tz, m[15] = 1.0f;
 }
 
-/* The scheduler plans in the object's space: its view is view * model. */
-static tlod_view_desc object_view(const tlod_view_desc* v, const float model[16]) {
-  tlod_view_desc o = *v;
-  for (int c = 0; c < 4; c++)
-    for (int r = 0; r < 4; r++) {
-      float s = 0.0f;
-      for (int k = 0; k < 4; k++)
-        s += v->view[k * 4 + r] * model[c * 4 + k];
-      o.view[c * 4 + r] = s;
-    }
-  return o;
+/* A session with the default material, an image buffer and the quad grid. */
+static void material_open(gl_session* gs, const char* label, uint8_t** rgba, grid_mesh* g) {
+  CHECK_MSG(gl_session_open(gs, W, H, 5, label, (tlod_device_gl_desc){0}), "no GL context or device (see above)");
+  *rgba = malloc(4 * W * H);
+  CHECK(*rgba);
+  grid_make(g);
 }
 
 /* An object of a scene: fixture, scheduler, its item. */
@@ -200,16 +195,10 @@ static void check_uv_quad(gl_session* gs, uint8_t* rgba) {
 /* The lat-long sphere: u = atan2(y, x) / 2 pi, v = polar angle / pi at the
  * hit point of the pixel's ray with the unit sphere. */
 static void check_uv_sphere(gl_session* gs, uint8_t* rgba) {
-  enum { NLAT = 16, NLON = 32 };
-  shape sph = shape_seam_sphere(NLAT, NLON);
-  float* uv = seam_sphere_uvs(NLAT, NLON);
-  CHECK(uv);
-  tlod_attribute_desc attr = {.data = uv, .components = 2, .name = "TEXCOORD_0"};
-  tlod_mesh_desc md = shape_mesh_desc(&sph);
-  md.attributes = &attr;
-  md.attribute_count = 1;
+  uv_sphere us;
+  CHECK(uv_sphere_make(&us, 16, 32));
   object o;
-  CHECK(object_make(&o, gs, &md, TLOD_SURFACE_PHONG));
+  CHECK(object_make(&o, gs, &us.desc, TLOD_SURFACE_PHONG));
   tlod_draw_item item = {0};
   CHECK(draw_scene(gs, &o, &item, 1, rgba));
   CHECK_MSG(item.draw_list->strip_count > 0 || item.draw_list->level_histogram[0] == 0, "no refinement");
@@ -233,8 +222,7 @@ static void check_uv_sphere(gl_session* gs, uint8_t* rgba) {
          item.draw_list->strip_count);
   CHECK_MSG(checked > 3000 && worst < 0.04, "UV off by %.4f (of %u pixels)", worst, checked);
   object_free(&o);
-  free(uv);
-  shape_free(&sph);
+  uv_sphere_free(&us);
 }
 
 /* ---- (a') attribute parity with the cpu tessellator ------------------------ */
@@ -294,17 +282,11 @@ static bool draw_uv_reference(const tlod_cpu_mesh* m, const tlod_view_desc* v) {
  * agree within 2 / 255 on all but 0.1% of them (u away from 0 and 1, where
  * a pixel at the seam may take either side). */
 static void check_uv_parity(gl_session* gs, uint8_t* rgba) {
-  enum { NLAT = 12, NLON = 24 };
-  shape sph = shape_seam_sphere(NLAT, NLON);
-  float* uv = seam_sphere_uvs(NLAT, NLON);
+  uv_sphere us;
   uint8_t* ref = malloc(4 * W * H);
-  CHECK(uv && ref);
-  tlod_attribute_desc attr = {.data = uv, .components = 2, .name = "TEXCOORD_0"};
-  tlod_mesh_desc md = shape_mesh_desc(&sph);
-  md.attributes = &attr;
-  md.attribute_count = 1;
+  CHECK(uv_sphere_make(&us, 12, 24) && ref);
   object o;
-  CHECK(object_make(&o, gs, &md, TLOD_SURFACE_PN));
+  CHECK(object_make(&o, gs, &us.desc, TLOD_SURFACE_PN));
   camera cam = camera_look(2.2, 0.4, 1.1, 0, 0, 0, 50, W, H); /* the seam (+x) in view, levels mixed */
   tlod_view_desc v = make_view(&cam);
   const tlod_draw_list* dl = plan(&o.fx, o.sched, &v, 0.0f);
@@ -336,8 +318,7 @@ static void check_uv_parity(gl_session* gs, uint8_t* rgba) {
   tlod_cpu_mesh_destroy(gs->ctx, m);
   object_free(&o);
   free(ref);
-  free(uv);
-  shape_free(&sph);
+  uv_sphere_free(&us);
 }
 
 TEST(test_fragment_hook_uv) {
@@ -403,11 +384,9 @@ static void check_quadrants(const uint8_t* rgba, bool srgb, const char* what) {
 
 TEST(test_texture) {
   gl_session gs;
-  CHECK_MSG(gl_session_open(&gs, W, H, 5, "gl_material_tex", (tlod_device_gl_desc){0}), "no GL context");
-  uint8_t* rgba = malloc(4 * W * H);
-  CHECK(rgba);
+  uint8_t* rgba = NULL;
   grid_mesh g;
-  grid_make(&g);
+  CALL(material_open(&gs, "gl_material_tex", &rgba, &g));
   object o;
   CHECK(object_make(&o, &gs, &g.desc, TLOD_SURFACE_FLAT));
   for (int s = 0; s < 2; s++) {
@@ -554,11 +533,9 @@ static void check_sides(gl_session* gs, object* o, uint8_t* rgba) {
 
 TEST(test_mask_blend_cull) {
   gl_session gs;
-  CHECK_MSG(gl_session_open(&gs, W, H, 5, "gl_material_alpha", (tlod_device_gl_desc){0}), "no GL context");
-  uint8_t* rgba = malloc(4 * W * H);
-  CHECK(rgba);
+  uint8_t* rgba = NULL;
   grid_mesh g;
-  grid_make(&g);
+  CALL(material_open(&gs, "gl_material_alpha", &rgba, &g));
   object objs[2];
   CHECK(object_make(&objs[0], &gs, &g.desc, TLOD_SURFACE_FLAT));
   CHECK(object_make(&objs[1], &gs, &g.desc, TLOD_SURFACE_FLAT));
