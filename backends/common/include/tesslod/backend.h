@@ -270,7 +270,10 @@ typedef struct tlod_draw_desc {
   float view[16], proj[16]; /* column-major world -> eye -> clip (the scheduler's view of the world) */
   uint32_t viewport[4];     /* x, y, width, height in the bound framebuffer; width, height > 0 */
   /* World direction towards the light; (0, 0, 0) (no direction) == (0.3, 0.8, 0.5).
-   * Normalised by the device. Shading: colour * (0.15 + 0.85 * max(dot(n, l), 0)). */
+   * Normalised by the device. Shading (the built-in material; "gl": a
+   * fragment hook replaces it): base * (0.15 + 0.85 * max(dot(n, l), 0)),
+   * base = the item's colour times its texture sample (alpha likewise), n
+   * the unit normal, flipped on back faces. */
   float light_dir[3];
   tlod_debug_view debug;
   bool wireframe; /* overlay edges */
