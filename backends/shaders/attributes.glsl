@@ -25,20 +25,21 @@ vec4 edge_attribute(uint patch_id, Patch P, uint e, uint num, uint a) {
   return r;
 }
 
-// Every attribute of a point given as pattern_point's kind (0-3 corner, 4-7
-// edge at num, 8 interior at uv); unused slots (0, 0, 0, 0).
-void point_attributes(uint patch_id, Patch P, uint kind, uint num, vec2 uv,
-                      out vec4 attr[TLOD_SHADER_MAX_ATTRIBUTES]) {
+// Attribute a of a point given as pattern_point's kind (0-3 corner, 4-7
+// edge at num, 8 interior at uv); (0, 0, 0, 0) for a >= u_attribute_count.
+vec4 point_attribute(uint patch_id, Patch P, uint kind, uint num, vec2 uv, uint a) {
+  if (a >= u_attribute_count) return vec4(0.0);
+  if (kind < 4u) return corner_attribute(patch_id, kind, a);
+  if (kind < 8u) return edge_attribute(patch_id, P, kind - 4u, num, a);
   float w[4];
   corner_weights(P.info.x, uv, w);
-  for (uint a = 0u; a < uint(TLOD_SHADER_MAX_ATTRIBUTES); a++) {
-    vec4 x = vec4(0.0);
-    if (a < u_attribute_count) {
-      if (kind < 4u) x = corner_attribute(patch_id, kind, a);
-      else if (kind < 8u) x = edge_attribute(patch_id, P, kind - 4u, num, a);
-      else
-        for (uint c = 0u; c < P.info.x; c++) x += corner_attribute(patch_id, c, a) * w[c];
-    }
-    attr[a] = x;
-  }
+  vec4 x = vec4(0.0);
+  for (uint c = 0u; c < P.info.x; c++) x += corner_attribute(patch_id, c, a) * w[c];
+  return x;
+}
+
+// Every attribute of such a point; unused slots (0, 0, 0, 0).
+void point_attributes(uint patch_id, Patch P, uint kind, uint num, vec2 uv,
+                      out vec4 attr[TLOD_SHADER_MAX_ATTRIBUTES]) {
+  for (uint a = 0u; a < uint(TLOD_SHADER_MAX_ATTRIBUTES); a++) attr[a] = point_attribute(patch_id, P, kind, num, uv, a);
 }

@@ -5,7 +5,10 @@ in vec3 v_normal;
 in vec3 v_world;
 flat in uint v_level;
 flat in uint v_strip;
+in vec2 v_texcoord;
+#if TLOD_ATTRIBUTE_VARYINGS > 0
 in vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
+#endif
 
 uniform vec3 u_light_dir;   // normalised, towards the light
 uniform vec4 u_base_color;
@@ -13,9 +16,8 @@ uniform uint u_debug;       // 0 shaded, 1 levels, 2 silhouette depth, 3 strips,
 uniform vec3 u_eye;
 uniform uint u_ortho;
 uniform vec3 u_forward;
-uniform uint u_blend;          // tlod_blend_mode
-uniform float u_alpha_cutoff;  // MASK
-uniform uint u_texcoord;       // attribute of the base colour texture's coordinates; >= 8: no texture
+uniform float u_alpha_cutoff;  // MASK (TLOD_MASK programs)
+uniform uint u_texcoord;       // attribute of the base colour texture's coordinates (v_texcoord); >= 8: none
 uniform uint u_attribute_count;
 layout(binding = TLOD_TEXTURE_UNIT_BASE_COLOR) uniform sampler2D u_base_color_texture;
 
@@ -29,6 +31,7 @@ struct tlod_fragment {
   vec3 eye;         // world position of the camera
   vec4 base_color;  // the item's colour times its base colour texture sample (linear)
   vec4 attributes[TLOD_SHADER_MAX_ATTRIBUTES];  // the mesh attributes, (0, 0, 0, 0) past attribute_count
+                                                 // (fragment hooks only: zero for the built-in material)
   uint attribute_count;
   uint level;       // refinement level of the patch (strips: the side's)
   bool strip;       // a connection strip's fragment
@@ -51,8 +54,13 @@ tlod_fragment fragment(vec3 n) {
   f.eye = u_eye;
   f.base_color = u_base_color;
   if (u_texcoord < uint(TLOD_SHADER_MAX_ATTRIBUTES))
-    f.base_color *= texture(u_base_color_texture, v_attr[u_texcoord].xy);
-  for (int a = 0; a < TLOD_SHADER_MAX_ATTRIBUTES; a++) f.attributes[a] = v_attr[a];
+    f.base_color *= texture(u_base_color_texture, v_texcoord);
+  for (int a = 0; a < TLOD_SHADER_MAX_ATTRIBUTES; a++)
+#if TLOD_ATTRIBUTE_VARYINGS > 0
+    f.attributes[a] = v_attr[a];
+#else
+    f.attributes[a] = vec4(0.0);  // the built-in material reads none
+#endif
   f.attribute_count = u_attribute_count;
   f.level = v_level;
   f.strip = v_strip == 1u;
@@ -65,7 +73,9 @@ void main() {
   if (!gl_FrontFacing) n = -n;
   if (u_debug == 0u) {
     vec4 c = tlod_shade(fragment(n));
-    if (u_blend == 1u && c.a < u_alpha_cutoff) discard;
+#if TLOD_MASK
+    if (c.a < u_alpha_cutoff) discard;  // the MASK programs only: discard costs the early depth test
+#endif
     o_color = c;
     return;
   }

@@ -34,16 +34,15 @@ enum {
   U_CORNERS,
   U_GRID,
   U_MAX_LEVEL,
-  U_BLEND,
   U_ALPHA_CUTOFF,
   U_TEXCOORD,
   U_ATTRIBUTE_COUNT,
   U_COUNT
 };
 static const char* const uniform_names[U_COUNT] = {
-    "u_view_proj", "u_model",     "u_normal_matrix", "u_light_dir",      "u_base_color", "u_debug",
-    "u_eye",       "u_forward",   "u_ortho",         "u_first_instance", "u_shape_base", "u_corners",
-    "u_grid",      "u_max_level", "u_blend",         "u_alpha_cutoff",   "u_texcoord",   "u_attribute_count"};
+    "u_view_proj", "u_model",     "u_normal_matrix", "u_light_dir",      "u_base_color",     "u_debug",
+    "u_eye",       "u_forward",   "u_ortho",         "u_first_instance", "u_shape_base",     "u_corners",
+    "u_grid",      "u_max_level", "u_alpha_cutoff",  "u_texcoord",       "u_attribute_count"};
 
 typedef struct gl_program {
   GLuint id;
@@ -64,8 +63,12 @@ typedef struct gl_device {
   tlod_device_stats* stats;
   uint32_t lmax;
   bool hardware;
-  const char* fragment_hook;        /* during creation only: NULL == material.glsl */
-  gl_programs programs[TYPE_COUNT]; /* by resolved surface type */
+  char* fragment_hook; /* a copy of the desc's (MASK programs link later); NULL == material.glsl */
+  /* By resolved surface type and MASK: programs with `discard` (MASK
+   * items) are their own, linked at the first MASK item of the type: a
+   * shader that may discard loses the early depth test (llvmpipe: ~10% of
+   * a heavy frame), so the others never carry it. */
+  gl_programs programs[TYPE_COUNT][2];
   GLuint vao_pattern, vao_strip;
   GLuint buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs;
   uint32_t index_first[2][TLOD_MAX_LEVEL + 1], index_count[2][TLOD_MAX_LEVEL + 1], shape_base[2];
@@ -128,11 +131,14 @@ static void gl_destroy(void* state) {
   glDeleteQueries(QUERY_RING, d->queries);
   glDeleteQueries(QUERY_RING, d->prim_queries);
   for (int t = 0; t < TYPE_COUNT; t++) {
-    glDeleteProgram(d->programs[t].pattern.id);
-    glDeleteProgram(d->programs[t].strip.id);
-    glDeleteProgram(d->programs[t].tess[0].id);
-    glDeleteProgram(d->programs[t].tess[1].id);
+    for (int m = 0; m < 2; m++) {
+      glDeleteProgram(d->programs[t][m].pattern.id);
+      glDeleteProgram(d->programs[t][m].strip.id);
+      glDeleteProgram(d->programs[t][m].tess[0].id);
+      glDeleteProgram(d->programs[t][m].tess[1].id);
+    }
   }
+  tlod_context_free(d->ctx, d->fragment_hook);
   void* arrays[] = {d->instances, d->strips, d->refs,        d->instance_of, d->records,
                     d->ranges,    d->order,  d->order_depth, d->attributes};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
@@ -151,33 +157,50 @@ static void locate(gl_device* d, gl_program* p) {
   d->stats->gl.program_links++;
 }
 
-static tlod_result build_programs(gl_device* d, tlod_surface_type type) {
+/* A vertex-side stage: the shared files, the surface type's evaluation,
+ * the varyings when the stage feeds the fragment stage, then its main. */
+static int stage_sources(const char* out[8], const char* version, const char* corners, const char* surface, bool last,
+                         const char* main_src) {
+  int n = 0;
+  out[n++] = version;
+  if (corners) out[n++] = corners;
+  out[n++] = _tlod_shader_layout;
+  out[n++] = _tlod_shader_common;
+  out[n++] = _tlod_shader_attributes;
+  if (last) out[n++] = _tlod_shader_varyings;
+  out[n++] = surface;
+  out[n++] = main_src;
+  return n;
+}
+
+static tlod_result build_programs(gl_device* d, tlod_surface_type type, bool mask) {
   const char* surface = type == TLOD_SURFACE_PN      ? _tlod_shader_pn
                         : type == TLOD_SURFACE_PHONG ? _tlod_shader_phong
                                                      : _tlod_shader_flat;
-  const char* version = "#version 450 core\n#define TLOD_GLSL 1\n";
-  const char* attrs = _tlod_shader_attributes;
-  const char* pattern[] = {version, _tlod_shader_layout,      _tlod_shader_common, attrs,
-                           surface, _tlod_shader_pattern_vert};
-  const char* strip[] = {version, _tlod_shader_layout, _tlod_shader_common, attrs, surface, _tlod_shader_strip_vert};
+  /* All attributes reach the fragment stage only for a hook: the built-in
+   * material reads none, and each varying costs per fragment. */
+  char version[160];
+  snprintf(version, sizeof(version),
+           "#version 450 core\n#define TLOD_GLSL 1\n#define TLOD_ATTRIBUTE_VARYINGS %d\n#define TLOD_MASK %d\n",
+           d->fragment_hook ? 8 : 0, mask ? 1 : 0);
+  const char *pattern[8], *strip[8];
+  int np = stage_sources(pattern, version, NULL, surface, true, _tlod_shader_pattern_vert);
+  int ns = stage_sources(strip, version, NULL, surface, true, _tlod_shader_strip_vert);
   /* The material's lines are numbered from TLOD_GL_HOOK_LINE: the driver's log names them. */
   const char* frag[] = {version, _tlod_shader_layout, _tlod_shader_shade_frag, TLOD_GL_HOOK_LINE_DIRECTIVE,
                         d->fragment_hook ? d->fragment_hook : _tlod_shader_material};
   char error[1600] = "";
-  gl_programs* ps = &d->programs[type];
-  ps->pattern.id = _tlod_gl_program(pattern, 6, frag, 5, error, sizeof(error));
-  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, 6, frag, 5, error, sizeof(error));
+  gl_programs* ps = &d->programs[type][mask];
+  ps->pattern.id = _tlod_gl_program(pattern, np, frag, 5, error, sizeof(error));
+  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, ns, frag, 5, error, sizeof(error));
   bool ok = ps->pattern.id && ps->strip.id;
   for (int sh = 0; sh < 2 && d->hardware && ok; sh++) {
     const char* corners = sh ? "#define TLOD_CORNERS 4\n" : "#define TLOD_CORNERS 3\n";
-    const char* vs[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
-                        attrs,   surface, _tlod_shader_tess_vert};
-    const char* tcs[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
-                         attrs,   surface, _tlod_shader_tess_tesc};
-    const char* tes[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
-                         attrs,   surface, _tlod_shader_tess_tese};
+    const char *vs[8], *tcs[8], *tes[8];
+    const int counts[4] = {stage_sources(vs, version, corners, surface, false, _tlod_shader_tess_vert),
+                           stage_sources(tcs, version, corners, surface, false, _tlod_shader_tess_tesc),
+                           stage_sources(tes, version, corners, surface, true, _tlod_shader_tess_tese), 5};
     const char* const* stages[4] = {vs, tcs, tes, frag};
-    const int counts[4] = {7, 7, 7, 5};
     ps->tess[sh].id = _tlod_gl_program_tess(stages, counts, error, sizeof(error));
     ok = ps->tess[sh].id != 0;
   }
@@ -251,7 +274,15 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   d->patterns = desc->patterns;
   d->lmax = tlod_patterns_max_level(desc->patterns);
   d->hardware = desc->gl.hardware_tessellation;
-  d->fragment_hook = desc->gl.fragment_hook;
+  if (desc->gl.fragment_hook) {
+    size_t n = strlen(desc->gl.fragment_hook) + 1;
+    d->fragment_hook = tlod_context_alloc(ctx, n);
+    if (!d->fragment_hook) {
+      tlod_context_free(ctx, d);
+      return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory for the fragment hook");
+    }
+    memcpy(d->fragment_hook, desc->gl.fragment_hook, n);
+  }
   snprintf(d->label, sizeof(d->label), "%s", desc->label);
   /* Named objects only (DSA): creating them binds nothing of the engine's. */
   GLuint bufs[5];
@@ -270,10 +301,9 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   uint32_t mask = desc->gl.surface_types ? desc->gl.surface_types : (1u << TLOD_SURFACE_NUM) - 1u;
   if (mask & (1u << TLOD_SURFACE_DEFAULT)) mask |= 1u << TLOD_SURFACE_PHONG;
   for (int t = 1; t < TYPE_COUNT && r == TLOD_SUCCESS; t++) {
-    if (mask & (1u << t)) r = build_programs(d, (tlod_surface_type)t);
+    if (mask & (1u << t)) r = build_programs(d, (tlod_surface_type)t, false);
   }
   if (r == TLOD_SUCCESS) r = upload_patterns(d);
-  d->fragment_hook = NULL; /* the caller's string: not kept */
   if (r != TLOD_SUCCESS) {
     gl_destroy(d);
     return r;
@@ -342,7 +372,7 @@ static tlod_result upload_surface(gl_device* d, gl_surface* gs, const tlod_surfa
 static tlod_result gl_create_surface(void* state, const tlod_surface* s, void** surface_state) {
   gl_device* d = state;
   tlod_surface_view view = tlod_surface_query_view(s);
-  if ((uint32_t)view.type >= TYPE_COUNT || !d->programs[view.type].linked)
+  if ((uint32_t)view.type >= TYPE_COUNT || !d->programs[view.type][0].linked)
     return tlod_context_fail(d->ctx, TLOD_ERROR_UNSUPPORTED,
                              "gl device '%s': surface '%s' is %s, and the device has no programs for it "
                              "(desc.gl.surface_types)",
@@ -490,8 +520,8 @@ static void set_view_uniforms(gl_device* d, const tlod_draw_desc* fr) {
     eye[i] = -(v[i * 4 + 0] * v[12] + v[i * 4 + 1] * v[13] + v[i * 4 + 2] * v[14]);
     fwd[i] = -v[i * 4 + 2];
   }
-  for (int t = 0; t < TYPE_COUNT; t++) {
-    gl_programs* ps = &d->programs[t];
+  for (int t = 0; t < 2 * TYPE_COUNT; t++) {
+    gl_programs* ps = &d->programs[t / 2][t % 2];
     if (!ps->linked) continue;
     const gl_program* progs[4];
     for (int k = 0, n = programs_of(d, ps, progs); k < n; k++) {
@@ -516,7 +546,6 @@ static void set_item_uniforms(const gl_device* d, const gl_programs* ps, const _
     glProgramUniformMatrix4fv(p->id, p->loc[U_MODEL], 1, GL_FALSE, sh->model);
     glProgramUniformMatrix3fv(p->id, p->loc[U_NORMAL_MATRIX], 1, GL_FALSE, sh->normal_matrix);
     glProgramUniform4fv(p->id, p->loc[U_BASE_COLOR], 1, sh->color);
-    glProgramUniform1ui(p->id, p->loc[U_BLEND], (uint32_t)it->blend);
     glProgramUniform1f(p->id, p->loc[U_ALPHA_CUTOFF], cutoff);
     glProgramUniform1ui(p->id, p->loc[U_TEXCOORD], texcoord);
     glProgramUniform1ui(p->id, p->loc[U_ATTRIBUTE_COUNT], gs->attribute_count);
@@ -685,7 +714,7 @@ static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
                       tlod_draw_item_stats* st) {
   double t0 = tlod_now_ms();
   const gl_surface* gs = it->surface_state;
-  const gl_programs* ps = &d->programs[gs->type];
+  const gl_programs* ps = &d->programs[gs->type][it->item->blend == TLOD_BLEND_MASK];
   const tlod_draw_list* dl = it->item->draw_list;
   const struct gl_item_range* range = &d->ranges[k];
   _tlod_item_shading sh;
@@ -716,13 +745,29 @@ static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
   st->cpu_ms += tlod_now_ms() - t0;
 }
 
+/* The MASK programs of the surface types of this draw's MASK items, linked
+ * the first time (they bind nothing: DSA and glProgramUniform only). */
+static tlod_result link_mask_programs(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items) {
+  for (uint32_t k = 0; k < fr->item_count; k++) {
+    tlod_surface_type t = ((const gl_surface*)items[k].surface_state)->type;
+    if (items[k].item->blend != TLOD_BLEND_MASK || d->programs[t][1].linked) continue;
+    double t0 = tlod_now_ms();
+    tlod_result r = build_programs(d, t, true);
+    d->stats->gl.mask_link_ms += tlod_now_ms() - t0;
+    if (r != TLOD_SUCCESS) return r;
+  }
+  return TLOD_SUCCESS;
+}
+
 static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
                            tlod_draw_item_stats* item_stats) {
   gl_device* d = state;
   double t0 = tlod_now_ms();
+  tlod_result r = link_mask_programs(d, fr, items);
+  if (r != TLOD_SUCCESS) return r;
   gl_saved_state saved;
   _tlod_gl_save_state(&saved);
-  tlod_result r = stage(d, fr, items, item_stats);
+  r = stage(d, fr, items, item_stats);
   if (r == TLOD_SUCCESS) r = order_items(d, fr, items);
   if (r != TLOD_SUCCESS) {
     _tlod_gl_restore_state(&saved);

@@ -65,6 +65,7 @@ extern const char* const _tlod_shader_pattern_vert;
 extern const char* const _tlod_shader_strip_vert;
 extern const char* const _tlod_shader_shade_frag;
 extern const char* const _tlod_shader_attributes;
+extern const char* const _tlod_shader_varyings;
 extern const char* const _tlod_shader_material;
 extern const char* const _tlod_shader_tess_vert;
 extern const char* const _tlod_shader_tess_tesc;

@@ -308,7 +308,9 @@ typedef struct tlod_device_gl_stats {
   /* GL_PRIMITIVES_GENERATED of the draw gpu_ms belongs to (read late, like
    * it); 0 when none is ready. */
   uint64_t primitives_generated;
-  uint32_t program_links;   /* since creation: a constant of the device's desc */
+  uint32_t program_links;   /* since creation: a constant of the device's desc, plus as many again per
+                               surface type the first time a MASK item of that type is drawn */
+  double mask_link_ms;      /* time in those MASK links (inside the draws that made them) */
   uint32_t pattern_uploads; /* pattern vertex + index buffer uploads since creation (1) */
   uint64_t pattern_bytes;   /* bytes of those uploads */
   uint64_t patch_bytes;     /* patch record bytes uploaded since creation (surface create + update) */

@@ -46,7 +46,11 @@
  *     programs     pattern + strip per surface type in desc.gl.surface_types
  *                  (0 == flat, phong, pn), + two tessellation programs
  *                  (triangles, quads) per type with hardware_tessellation;
- *                  uniform locations looked up once, at link;
+ *                  uniform locations looked up once, at link; the first
+ *                  draw with a TLOD_BLEND_MASK item of a surface type links
+ *                  that type's programs again with the alpha test (a shader
+ *                  that can discard loses the early depth test, so the
+ *                  others never carry it; stats gl.mask_link_ms);
  *     buffers      pattern vertices (binding TLOD_GL_BINDING_PATTERNS) and
  *                  pattern indices (GL_STATIC_DRAW, uploaded once);
  *                  instances, strips, strip references (GL_STREAM_DRAW,
