@@ -461,7 +461,11 @@ static void check_mask(gl_session* gs, object* o, uint8_t* rgba) {
   tlod_texture_desc td = {.width = 2, .height = 2, .rgba8 = k_half_alpha, .mag_filter = TLOD_FILTER_NEAREST};
   CHECK(tlod_device_create_texture(gs->dev, &td, &tex) == TLOD_SUCCESS);
   tlod_draw_item item = {.base_color_texture = tex, .blend = TLOD_BLEND_MASK, .color = {1, 0, 0, 1}, .has_color = true};
+  uint32_t links = tlod_device_query_stats(gs->dev).gl.program_links;
   CHECK(draw_scene(gs, o, &item, 1, rgba));
+  /* the first MASK item of a type links that type's MASK programs, once */
+  uint32_t mask_links = tlod_device_query_stats(gs->dev).gl.program_links - links;
+  CHECK_MSG(mask_links == 2, "the first MASK draw linked %u programs (pattern + strip: 2)", mask_links);
   const uint8_t *left = pixel_at(rgba, -0.5, 0.2), *right = pixel_at(rgba, 0.5, 0.2);
   printf("  MASK: left (alpha 0) (%u, %u, %u), right (alpha 1) (%u, %u, %u)\n", left[0], left[1], left[2], right[0],
          right[1], right[2]);
@@ -474,6 +478,7 @@ static void check_mask(gl_session* gs, object* o, uint8_t* rgba) {
   item.has_alpha_cutoff = true, item.alpha_cutoff = 0.2f;
   CHECK(draw_scene(gs, o, &item, 1, rgba));
   CHECK_MSG(pixel_at(rgba, 0, 0)[0] >= 250, "MASK did not draw alpha 0.3 over the cutoff 0.2");
+  CHECK(tlod_device_query_stats(gs->dev).gl.program_links == links + 2);
   tlod_device_destroy_texture(gs->dev, tex);
 }
 

@@ -96,9 +96,11 @@
  *   row length and pixel pack buffer binding.
  *
  * FRAGMENT HOOKS (tlod_device_gl_desc.fragment_hook)
- *   The device's fragment stage is assembled as "#version 450 core" +
- *   layout.h + shade.frag + "#line 100001" + the hook (or, with NULL, the
- *   built-in material.glsl), so the hook is GLSL 4.50 core defining
+ *   The device's fragment stage is assembled as "#version 450 core" and
+ *   its defines (TLOD_GLSL 1, TLOD_ATTRIBUTE_VARYINGS 8 with a hook, 0
+ *   without; TLOD_MASK 1 in the MASK programs) + layout.h + shade.frag +
+ *   "#line 100001" + the hook (or, with NULL, the built-in material.glsl),
+ *   so the hook is GLSL 4.50 core defining
  *       vec4 tlod_shade(tlod_fragment f);
  *   which returns the fragment's colour (straight alpha). It may define
  *   helper functions and constants, and read storage buffers or textures
