@@ -24,6 +24,7 @@ void main() {
       morph_point(a, p0, n0, p1, n1, pos, nrm);
     }
   }
+  write_varyings(ins.patch_id, P, kind, v.param, v.uv);
   v_normal = world_normal(nrm);
   v_world = world_position(pos);
   v_level = ins.level;

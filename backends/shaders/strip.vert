@@ -33,6 +33,11 @@ void main() {
     polyline_point(patches[S.patch_b], eb, lb, nb - (r - na - 1u), S.morph.y, pos, nrm);
     v_level = lb;
   }
+  // Every point takes side a's attributes at the same edge point (b's
+  // point r - na - 1 of nb, in a's direction), as the cpu tessellator does:
+  // no strip smears the two sides of an attribute seam.
+  uint num = r <= na ? r << (u_max_level - la) : (r - na - 1u) << (u_max_level - lb);
+  write_varyings(S.patch_a, patches[S.patch_a], 4u + ea, num, vec2(0.0));
   v_normal = world_normal(nrm);
   v_world = world_position(pos);
   v_strip = 1u;

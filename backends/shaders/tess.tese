@@ -37,6 +37,7 @@ void main() {
   if (kind < 4u) { pos = P.p[kind].xyz; nrm = P.n[kind].xyz; }
   else if (kind < 8u) patch_edge_point(P, kind - 4u, num, pos, nrm);
   else interior_point(P, uv, pos, nrm);
+  write_varyings(ins.patch_id, P, kind, num, uv);
   v_normal = world_normal(nrm);
   v_world = world_position(pos);
   v_level = ins.level;

@@ -1,6 +1,7 @@
 /* tesslod::gl -- shader compilation with the driver's log on failure. */
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "gl_internal.h"
 
@@ -17,6 +18,31 @@ static const char* stage_name(GLenum stage) {
   }
 }
 
+/* Writes the driver's log with the lines of the fragment stage's material
+ * (the device's fragment hook, numbered from TLOD_GL_HOOK_LINE by a #line
+ * directive) named "fragment_hook:LINE": Mesa writes "S:LINE(COL): ...",
+ * NVIDIA "S(LINE) : ..."; the source string number S is not used (Mesa
+ * applies a #line string number to some messages only). */
+static void name_sources(const char* log, char* out, size_t size) {
+  size_t o = 0;
+  for (const char* p = log; *p && o + 1 < size; p++) {
+    const char* q = p;
+    while (*q >= '0' && *q <= '9')
+      q++;
+    char* end = NULL;
+    unsigned long line = (q > p && (*q == ':' || *q == '(')) ? strtoul(q + 1, &end, 10) : 0;
+    bool line_start = p == log || p[-1] == '\n';
+    if (line_start && line >= TLOD_GL_HOOK_LINE && end) {
+      o += (size_t)snprintf(out + o, size - o, "fragment_hook%c%lu", *q, line - TLOD_GL_HOOK_LINE + 1);
+      if (o >= size) break;
+      p = end - 1;
+      continue;
+    }
+    out[o++] = *p;
+  }
+  out[o < size ? o : size - 1] = '\0';
+}
+
 static GLuint compile(GLenum stage, const char* const* src, int count, char* error, size_t error_size) {
   GLuint sh = glCreateShader(stage);
   glShaderSource(sh, count, src, NULL);
@@ -24,9 +50,10 @@ static GLuint compile(GLenum stage, const char* const* src, int count, char* err
   GLint ok = 0;
   glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    char log[1024] = "";
+    char log[1024] = "", named[1200] = "";
     glGetShaderInfoLog(sh, sizeof(log), NULL, log);
-    snprintf(error, error_size, "%s shader: %s", stage_name(stage), log);
+    if (stage == GL_FRAGMENT_SHADER) name_sources(log, named, sizeof(named));
+    snprintf(error, error_size, "%s shader: %s", stage_name(stage), stage == GL_FRAGMENT_SHADER ? named : log);
     glDeleteShader(sh);
     return 0;
   }

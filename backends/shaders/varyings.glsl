@@ -1,0 +1,17 @@
+// The attribute varyings of the device's last vertex stages (pattern.vert,
+// strip.vert, tess.tese), after attributes.glsl.
+// Varyings: every attribute only for a fragment hook
+// (TLOD_ATTRIBUTE_VARYINGS 8; the built-in material reads none), and the
+// base colour texture's coordinates (u_texcoord; >= 8: none). Each varying
+// costs interpolation per fragment (llvmpipe: measurably).
+uniform uint u_texcoord;
+out vec2 v_texcoord;
+#if TLOD_ATTRIBUTE_VARYINGS > 0
+out vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
+#endif
+void write_varyings(uint patch_id, Patch P, uint kind, uint num, vec2 uv) {
+  v_texcoord = point_attribute(patch_id, P, kind, num, uv, u_texcoord).xy;
+#if TLOD_ATTRIBUTE_VARYINGS > 0
+  point_attributes(patch_id, P, kind, num, uv, v_attr);
+#endif
+}
