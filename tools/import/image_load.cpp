@@ -2,6 +2,7 @@
 // Owned by the import/export layer.
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 
 #include "contained_file.h"
@@ -50,8 +51,9 @@ void image_decode(_tlod_import_budget* budget, Image& im) {
   char detail[128];
   const _tlod_image_status st =
       _tlod_image_decode(im.encoded.data(), im.encoded.size(), budget, &img, detail, sizeof detail);
+  const char* phrase = _tlod_image_message(st);
   if (st != _TLOD_IMAGE_OK)
-    fail(TLOD_ERROR_PARSE, detail[0] ? format("%s (%s)", _tlod_image_message(st), detail) : _tlod_image_message(st));
+    fail(TLOD_ERROR_PARSE, detail[0] && std::strcmp(detail, phrase) ? format("%s (%s)", phrase, detail) : phrase);
   const std::unique_ptr<unsigned char, void (*)(void*)> hold(img.rgba, std::free);
   const size_t bytes = size_t(img.width) * img.height * 4;
   take(budget, bytes, "the decoded image");
