@@ -138,6 +138,20 @@ TEST(truncated_files_fail_without_pixels) {
   free(d);
 }
 
+/* fuzz_image: a zTXt chunk whose length field (925 MB) runs past the 123-byte file made
+ * png_read_info allocate it. Refused by the chunk scan before libpng sees the file. */
+TEST(chunk_length_past_the_end_refused_before_libpng) {
+  size_t n = 0;
+  unsigned char* d = read_data("fuzz/fuzz_image/ztxt_length_past_end.png", &n);
+  CHECK(d != NULL && n == 123);
+  _tlod_import_budget b = {(size_t)64 << 20, 0, false};
+  _tlod_image img;
+  char detail[128];
+  CHECK(_tlod_image_decode(d, n, &b, &img, detail, sizeof detail) == _TLOD_IMAGE_CORRUPT && img.rgba == NULL);
+  CHECK_MSG(strstr(detail, "runs past the end") != NULL && b.used == 0, "%s", detail);
+  free(d);
+}
+
 /* The JPEG's source pattern (README in tests/data/images), within JPEG's loss. */
 TEST(jpeg_pixels_match_their_source) {
   size_t n = 0;
@@ -166,6 +180,7 @@ int main(void) {
   RUN(png_past_the_budget_refused_before_allocating);
   RUN(jpeg_past_the_pixel_limit_and_budget_refused_before_allocating);
   RUN(truncated_files_fail_without_pixels);
+  RUN(chunk_length_past_the_end_refused_before_libpng);
   RUN(jpeg_pixels_match_their_source);
   TEST_END();
 }
