@@ -11,26 +11,72 @@
  *       applied; TRIANGLE_STRIP and TRIANGLE_FAN converted to triangles;
  *       sparse accessors applied; u8/u16/u32 or no indices;
  *     - Wavefront OBJ: triangles and quads kept, larger polygons
- *       fan-triangulated, one output vertex per distinct (v, vn) pair;
+ *       fan-triangulated, one output vertex per distinct (v, vt, vn);
  *     - PLY (ascii, binary little and big endian): vertex x y z [nx ny nz],
  *       face lists; triangles and quads kept, larger polygons fan-triangulated.
+ *   Besides geometry (issue 11, "real assets"):
+ *     - attributes[]: glTF TEXCOORD_0, TEXCOORD_1 (float or normalised u8/u16),
+ *       COLOR_0 (VEC3 gets alpha 1, VEC4; float or normalised u8/u16) and
+ *       TANGENT (float VEC4); OBJ vt as "TEXCOORD_0" with v flipped to glTF's
+ *       top-left origin (v' = 1 - v; a corner without vt gets 0, 0); PLY
+ *       u v / s t / texture_u texture_v as "TEXCOORD_0" (as stored) and red
+ *       green blue [alpha] as "COLOR_0" (integers / their type's maximum,
+ *       uchar / 255). An attribute covers every vertex of the result: parts
+ *       without it hold zeros (COLOR_0: ones). A glTF layout the spec does not
+ *       allow for these is a warning (attribute ignored).
+ *     - joints/weights: glTF JOINTS_0 (u8/u16) and WEIGHTS_0 (float or
+ *       normalised u8/u16), 4 per vertex; weights summing within 2e-2 of 1 are
+ *       renormalised (counted in weights_renormalised and a warning).
+ *     - meshes[], nodes[] (glTF: every node of the file, same indices, with
+ *       parent, TRS, local and rest-pose world matrices; a node given by a
+ *       matrix gets its decomposition as TRS), materials[], textures[],
+ *       images[] (same indices as the file), animations[] (translation,
+ *       rotation, scale channels; STEP, LINEAR, CUBICSPLINE), skins[]
+ *       (inverse bind matrices, identity when absent). OBJ/PLY: one mesh of
+ *       every part at one identity node; OBJ materials from mtllib (Kd, d;
+ *       d < 1: BLEND; map_Kd: a texture whose image is read and decoded; OBJ
+ *       materials are double-sided).
+ *     - keep_scene (tlod_import_desc): each glTF mesh's primitives once, in
+ *       mesh space (positions bitwise as stored), meshes[i] naming its parts,
+ *       parts' node TLOD_IMPORT_NONE; the caller instances them with nodes[].
+ *       Without it (flattened, as before): one part per node x primitive in
+ *       world space, part.node the node, meshes[i] naming the parts of the
+ *       mesh's first instance (part_count 0 if never instanced).
+ *     - images: the bytes of every image are kept (encoded, for re-export);
+ *       those some material uses as its base colour texture are decoded to
+ *       RGBA8 (libpng, libjpeg-turbo; docs/security.md section 5).
  *   tlod_export_file() writes a triangle mesh as OBJ, binary PLY, .gltf
  *   (one embedded base64 buffer) or .glb. Everything it writes reads back
  *   through tlod_import_file() with bitwise equal positions and indices.
  *
+ *   Refused (an error naming the accessor or node): a node graph that is not
+ *   a forest; a JOINTS_0 index at or past the joint count of a skin the mesh
+ *   is drawn with; a negative or non-finite weight, or weights summing more
+ *   than 2e-2 away from 1; an inverse bind matrix that is not finite or not
+ *   invertible (|det| below 1e-6 x the product of its column lengths); an
+ *   animation whose key times are not finite and strictly increasing, whose
+ *   value count does not match its keys x (1 or 3 for CUBICSPLINE), or whose
+ *   channel targets a node that does not exist.
+ *
  * DOES NOT
  *   - validate mesh topology or repair normals (tlod_mesh_create() does);
- *   - read textures, skins, morph targets, animations or cameras (a skinned
- *     mesh comes in its bind pose);
+ *   - pose skins or sample animations (a skinned mesh comes in its bind pose;
+ *     flattened mode warns about it, keep_scene does not: the caller animates);
+ *   - read morph targets (a warning names the mesh; a "weights" animation
+ *     channel is a warning "morph target animation ignored"), cameras, or
+ *     material inputs besides base colour, alpha and double-sidedness;
+ *   - decode images other than base colour ones, or images past
+ *     TLOD_IMPORT_MAX_IMAGE_PIXELS or the memory budget: a missing, refused
+ *     or undecodable image is a warning naming it, its rgba is NULL, and the
+ *     model still loads;
  *   - trust the file: every offset, count and index is range-checked before
  *     it is read, and a malformed file gives an error naming the file and
- *     the element at fault, never a crash, a hang or unbounded memory;
- *   - decode images (glTF images are never decoded nor opened).
+ *     the element at fault, never a crash, a hang or unbounded memory.
  *
  * SECURITY RULE (docs/security.md)
  *   A model file is untrusted input. An import
  *     - reads only files inside the model's folder: an external reference (glTF
- *       buffer URI, OBJ mtllib) is percent-decoded, refused if absolute or with
+ *       buffer or image URI, OBJ mtllib or map_Kd) is percent-decoded, refused if absolute or with
  *       a scheme ("/x", "file:", "http:"), resolved with symlinks (realpath)
  *       and refused unless the result lies inside the realpath of the model's
  *       folder; it is opened non-blocking and read only if fstat says it is a
@@ -80,21 +126,122 @@
 extern "C" {
 #endif
 
-/* One imported piece: a glTF primitive instance (node x primitive), an OBJ
- * shape (o / g), or the whole PLY. Its faces and vertices are contiguous. */
+/* One imported piece: a glTF primitive instance (node x primitive; with
+ * keep_scene: one per primitive of each mesh, in mesh space), an OBJ shape
+ * (o / g; its material is that of its first face), or the whole PLY. Its
+ * faces and vertices are contiguous. */
 typedef struct tlod_import_part {
   char name[64]; /* node, mesh or shape name; may be truncated */
   uint32_t first_face, face_count;
   uint32_t first_vertex, vertex_count;
   float base_color[4]; /* glTF baseColorFactor; OBJ Kd + d; default 1,1,1,1 */
   bool had_normals;    /* false: this part's normals are zero (core recomputes) */
+  uint32_t mesh;       /* index into meshes[] */
+  uint32_t material;   /* index into materials[]; UINT32_MAX: none */
+  uint32_t node;       /* flattened mode: the node it was instanced at; keep_scene: UINT32_MAX */
 } tlod_import_part;
+
+#define TLOD_IMPORT_NONE UINT32_MAX
+#define TLOD_IMPORT_MAX_ATTRIBUTES 8
+/* Decoded images larger than this many pixels are refused (a warning), before anything is allocated. */
+#define TLOD_IMPORT_MAX_IMAGE_PIXELS ((uint64_t)64 << 20)
+
+/* A vertex attribute besides position and normal, for ALL vertices of the
+ * result: parts without it hold zeros (COLOR_0: ones). */
+typedef struct tlod_import_attribute {
+  char name[32];       /* "TEXCOORD_0", "TEXCOORD_1", "COLOR_0", "TANGENT" */
+  uint32_t components; /* TEXCOORD 2, COLOR 4 (vec3 colours get alpha 1), TANGENT 4 (xyz, w = handedness) */
+  float* data;         /* components floats per vertex (normalised integers converted to float) */
+} tlod_import_attribute;
+
+/* A glTF mesh (OBJ/PLY: the one mesh): its parts are contiguous. */
+typedef struct tlod_import_mesh {
+  char name[64];
+  uint32_t first_part, part_count;
+} tlod_import_mesh;
+
+/* A glTF node (OBJ/PLY: one node holding the one mesh), rest pose. */
+typedef struct tlod_import_node {
+  char name[64];
+  uint32_t parent, mesh, skin; /* TLOD_IMPORT_NONE: none */
+  float translation[3];
+  float rotation[4]; /* unit quaternion x y z w */
+  float scale[3];    /* TRS as in the file; a node given by matrix: decomposed (exact for T*R*S matrices) */
+  float local[16];   /* column-major: the file's matrix, or T * R * S */
+  float world[16];   /* column-major: parent's world * local */
+} tlod_import_node;
+
+typedef enum tlod_import_alpha_mode {
+  TLOD_IMPORT_ALPHA_OPAQUE = 0,
+  TLOD_IMPORT_ALPHA_MASK,
+  TLOD_IMPORT_ALPHA_BLEND
+} tlod_import_alpha_mode;
+
+typedef struct tlod_import_material {
+  char name[64];
+  float base_color[4];          /* baseColorFactor (OBJ: Kd, d), linear */
+  uint32_t base_color_texture;  /* index into textures[]; TLOD_IMPORT_NONE: none */
+  uint32_t base_color_texcoord; /* index into the result's attributes[] of its UVs; TLOD_IMPORT_NONE: none */
+  tlod_import_alpha_mode alpha_mode;
+  float alpha_cutoff; /* MASK: default 0.5 */
+  bool double_sided;
+} tlod_import_material;
+
+typedef struct tlod_import_texture {
+  uint32_t image;                             /* index into images[]; TLOD_IMPORT_NONE: none */
+  int wrap_s, wrap_t, min_filter, mag_filter; /* glTF sampler values (GL enums); 0: unset */
+} tlod_import_texture;
+
+typedef struct tlod_import_image {
+  char uri[256]; /* as written in the file, possibly truncated; "" when embedded (bufferView, data: URI) */
+  char mime[32]; /* "image/png", "image/jpeg" (from the file or sniffed), "" unknown */
+  uint32_t width, height;
+  uint8_t* rgba;    /* width * height RGBA8, top row first; NULL: missing, refused or undecodable (a warning) */
+  uint8_t* encoded; /* the image file's bytes (for re-embedding on export); NULL when it could not be read */
+  size_t encoded_size;
+} tlod_import_image;
+
+typedef enum tlod_import_anim_path {
+  TLOD_IMPORT_PATH_TRANSLATION = 0,
+  TLOD_IMPORT_PATH_ROTATION,
+  TLOD_IMPORT_PATH_SCALE
+} tlod_import_anim_path;
+
+typedef enum tlod_import_interp {
+  TLOD_IMPORT_INTERP_LINEAR = 0,
+  TLOD_IMPORT_INTERP_STEP,
+  TLOD_IMPORT_INTERP_CUBICSPLINE
+} tlod_import_interp;
+
+typedef struct tlod_import_channel {
+  uint32_t node;
+  tlod_import_anim_path path;
+  tlod_import_interp interp;
+  uint32_t key_count; /* >= 1 */
+  float* times;       /* key_count seconds, finite, strictly increasing */
+  /* key_count * n floats, n = 3 (translation, scale) or 4 (rotation x y z w);
+   * CUBICSPLINE: key_count * 3 * n, per key in-tangent, value, out-tangent */
+  float* values;
+} tlod_import_channel;
+
+typedef struct tlod_import_animation {
+  char name[64];
+  uint32_t channel_count;
+  tlod_import_channel* channels;
+} tlod_import_animation;
+
+typedef struct tlod_import_skin {
+  char name[64];
+  uint32_t joint_count;
+  uint32_t* joints;    /* node indices */
+  float* inverse_bind; /* 16 per joint, column-major; identity when the file has none */
+} tlod_import_skin;
 
 #define TLOD_IMPORT_WARNINGS_SIZE 1024
 
 typedef struct tlod_import_result {
   uint32_t vertex_count;
-  float* positions; /* xyz, world space (node transforms applied) */
+  float* positions; /* xyz, world space (node transforms applied); keep_scene: mesh space */
   /* xyz, or NULL when no part had normals; parts without normals are
    * zero-filled (core recomputes those). Normals of transformed glTF nodes
    * are renormalised; untransformed ones are passed through as stored. */
@@ -105,9 +252,28 @@ typedef struct tlod_import_result {
   uint8_t* face_sizes; /* NULL when every face is a triangle; else 3 or 4 per face */
   uint32_t part_count;
   tlod_import_part* parts;
-  uint32_t polygons_triangulated;           /* OBJ/PLY faces with > 4 corners fan-triangulated */
-  uint32_t strips_fans_converted;           /* glTF primitives in TRIANGLE_STRIP/FAN mode converted to triangles */
-  uint32_t primitives_skipped;              /* glTF primitives left out (no POSITION, lines, points; see warnings) */
+  uint32_t polygons_triangulated; /* OBJ/PLY faces with > 4 corners fan-triangulated */
+  uint32_t strips_fans_converted; /* glTF primitives in TRIANGLE_STRIP/FAN mode converted to triangles */
+  uint32_t primitives_skipped;    /* glTF primitives left out (no POSITION, lines, points; see warnings) */
+  uint32_t attribute_count;       /* 0..TLOD_IMPORT_MAX_ATTRIBUTES */
+  tlod_import_attribute attributes[TLOD_IMPORT_MAX_ATTRIBUTES];
+  uint16_t* joints; /* 4 per vertex (JOINTS_0, indices into the part's skin's joints); NULL when no part is skinned */
+  float* weights;   /* 4 per vertex (WEIGHTS_0, sum 1); zeros for unskinned parts */
+  uint32_t mesh_count;
+  tlod_import_mesh* meshes;
+  uint32_t node_count;
+  tlod_import_node* nodes;
+  uint32_t material_count;
+  tlod_import_material* materials;
+  uint32_t texture_count;
+  tlod_import_texture* textures;
+  uint32_t image_count;
+  tlod_import_image* images;
+  uint32_t animation_count;
+  tlod_import_animation* animations;
+  uint32_t skin_count;
+  tlod_import_skin* skins;
+  uint32_t weights_renormalised;            /* vertices whose weights summed within 2e-2 of 1, rescaled */
   uint32_t warning_count;                   /* warnings issued, also those that did not fit below */
   char warnings[TLOD_IMPORT_WARNINGS_SIZE]; /* human-readable, newline-separated, may be empty */
   tlod_allocator _allocator;                /* private: the allocator the arrays came from */
@@ -127,6 +293,11 @@ typedef struct tlod_import_result {
 typedef struct tlod_import_desc {
   tlod_allocator allocator; /* result memory; both hooks NULL: malloc/free */
   size_t memory_limit;      /* bytes the import may allocate in all; 0: the default rule above */
+  /* false: geometry flattened into world space, one part per node x primitive
+   * (as before). true: each glTF mesh's geometry once, in mesh space, and
+   * the nodes instancing it; skinned meshes keep their bind pose without the
+   * bind-pose warning (the caller animates). */
+  bool keep_scene;
 } tlod_import_desc;
 
 /* Reads a mesh file; the format comes from the extension (.gltf .glb .obj
