@@ -209,21 +209,11 @@ TEST(test_world_matrices_any_order) {
 #define CYL_HEIGHT 4.0f
 #define CYL_PIVOT 2.0 /* joint 1, at half the height */
 
-/* Skinning matrices of the cylinder's pose at t: joint 0 fixed at the
- * origin, joint 1 (its child, at the pivot) turned by the channel. */
-static void cylinder_pose(const anim_channel* turn, float t, float mats[2][16]) {
+/* The cylinder's skinning matrices at t: the channel turns joint 1. */
+static void cylinder_pose(const skin_cylinder* c, const anim_channel* turn, float t, float mats[2][16]) {
   anim_trs trs[2] = {{{0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1}}, {{0, (float)CYL_PIVOT, 0}, {0, 0, 0, 1}, {1, 1, 1}}};
   anim_apply(turn, 1, t, trs, 2);
-  float local[2][16], world[2][16], inverse_bind[2][16];
-  const uint32_t parent[2] = {UINT32_MAX, 0};
-  uint32_t scratch[4];
-  anim_trs_matrix(&trs[0], local[0]);
-  anim_trs_matrix(&trs[1], local[1]);
-  anim_world_matrices(2, parent, (const float(*)[16])local, world, scratch);
-  anim_trs inv[2] = {{{0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1}}, {{0, -(float)CYL_PIVOT, 0}, {0, 0, 0, 1}, {1, 1, 1}}};
-  anim_trs_matrix(&inv[0], inverse_bind[0]);
-  anim_trs_matrix(&inv[1], inverse_bind[1]);
-  skin_joint_matrices(2, (const float(*)[16])world, (const float(*)[16])inverse_bind, mats);
+  skin_cylinder_pose(c, trs[1].rotation, mats);
 }
 
 /* The same pose by hand in double: joint 1 turns by a about z round the
@@ -376,7 +366,7 @@ TEST(test_skinned_cylinder) {
   uint32_t patches = tlod_surface_patch_count(f.surf), updated = 0;
   for (uint32_t k = 0; k < 5; k++) {
     float mats[2][16];
-    cylinder_pose(&turn, frames[k], mats);
+    cylinder_pose(&f.cyl, &turn, frames[k], mats);
     skin_apply(f.ctx, &sv, 2, (const float(*)[16])mats, f.pos, f.nrm);
     CHECK(tlod_mesh_update(f.mesh, f.pos, 0, f.nrm, 0) == TLOD_SUCCESS);
     CHECK(tlod_surface_refresh(f.surf, &updated) == TLOD_SUCCESS);
@@ -400,7 +390,7 @@ TEST(test_skin_thread_independent) {
   const float t[2] = {0.0f, 1.0f};
   anim_channel turn = channel(ANIM_PATH_ROTATION, ANIM_INTERP_LINEAR, 2, t, rv);
   turn.node = 1;
-  cylinder_pose(&turn, 0.7f, mats);
+  cylinder_pose(&cyl, &turn, 0.7f, mats);
   size_t bytes = sizeof(float) * 3 * cyl.vertex_count;
   float *p1 = malloc(bytes), *n1 = malloc(bytes), *p2 = malloc(bytes), *n2 = malloc(bytes);
   skin_vertices sv = cylinder_vertices(&cyl);

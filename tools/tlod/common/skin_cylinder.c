@@ -4,6 +4,9 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "common/anim_sample.h"
+#include "common/skin_apply.h"
+
 float skin_cylinder_weight(const skin_cylinder* c, float y) {
   float s = (y / c->height - 0.3f) / 0.4f;
   s = s < 0.0f ? 0.0f : s > 1.0f ? 1.0f : s;
@@ -88,4 +91,20 @@ void skin_cylinder_free(skin_cylinder* c) {
   free(c->weights);
   free(c->indices);
   *c = (skin_cylinder){0};
+}
+
+void skin_cylinder_pose(const skin_cylinder* c, const float rotation[4], float mats[2][16]) {
+  float half = 0.5f * c->height, local[2][16], world[2][16], inverse_bind[2][16];
+  anim_trs trs[2] = {{{0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1}}, {{0, half, 0}, {0, 0, 0, 1}, {1, 1, 1}}};
+  anim_trs inv[2] = {{{0, 0, 0}, {0, 0, 0, 1}, {1, 1, 1}}, {{0, -half, 0}, {0, 0, 0, 1}, {1, 1, 1}}};
+  for (int i = 0; i < 4; i++)
+    trs[1].rotation[i] = rotation[i];
+  const uint32_t parent[2] = {UINT32_MAX, 0};
+  uint32_t scratch[4];
+  for (int j = 0; j < 2; j++) {
+    anim_trs_matrix(&trs[j], local[j]);
+    anim_trs_matrix(&inv[j], inverse_bind[j]);
+  }
+  anim_world_matrices(2, parent, (const float(*)[16])local, world, scratch);
+  skin_joint_matrices(2, (const float(*)[16])world, (const float(*)[16])inverse_bind, mats);
 }

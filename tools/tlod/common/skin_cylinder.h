@@ -23,6 +23,10 @@ typedef struct skin_cylinder {
  * counts overflow 32 bits. */
 bool skin_cylinder_create(uint32_t segments, uint32_t rings, float radius, float height, skin_cylinder* out);
 void skin_cylinder_free(skin_cylinder* c);
+/* Skinning matrices (skin_joint_matrices) of the pose where joint 1 turns
+ * by the unit quaternion `rotation` about its rest place, joint 0 fixed:
+ * world = {I, T(0, h/2, 0) R}, inverse bind = {I, T(0, -h/2, 0)}. */
+void skin_cylinder_pose(const skin_cylinder* c, const float rotation[4], float mats[2][16]);
 /* Weight of joint 1 at height y. */
 float skin_cylinder_weight(const skin_cylinder* c, float y);
 
