@@ -440,6 +440,10 @@ private:
     part.first_face = uint32_t(out_.indices.size() / 3);
     part.face_count = uint32_t(d.triangles.size() / 3);
     part.had_normals = !d.normals.empty();
+    part.mesh = uint32_t(inst.mesh);
+    part.node = inst.node >= 0 ? uint32_t(inst.node) : TLOD_IMPORT_NONE;
+    part.material =
+        prim.material >= 0 && size_t(prim.material) < m_.materials.size() ? uint32_t(prim.material) : TLOD_IMPORT_NONE;
     base_color(prim, where, part.base_color);
     append_vertices(inst, d, where);
     append_triangles(inst, d.triangles, uint32_t(first_vertex));

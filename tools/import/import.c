@@ -153,92 +153,6 @@ tlod_result _tlod_import_read_file(const _tlod_import_job* job, unsigned char** 
 }
 
 /* ------------------------------------------------------------------------ */
-/* Result                                                                   */
-/* ------------------------------------------------------------------------ */
-
-static void* _tlod_copy(const tlod_allocator* a, const void* src, size_t size, bool* ok) {
-  if (!src || size == 0) return NULL;
-  void* p = a->alloc_fn(size, a->user_data);
-  if (!p) {
-    *ok = false;
-    return NULL;
-  }
-  memcpy(p, src, size);
-  return p;
-}
-
-/* Keeps whole lines: a truncated list ends with "...". */
-static void _tlod_copy_warnings(char* dst, size_t size, const char* src) {
-  dst[0] = 0;
-  if (!src) return;
-  size_t n = strlen(src);
-  if (n < size) {
-    memcpy(dst, src, n + 1);
-    return;
-  }
-  size_t keep = size - 5; /* room for "...\n" and the terminator */
-  while (keep > 0 && src[keep - 1] != '\n')
-    keep--;
-  memcpy(dst, src, keep);
-  memcpy(dst + keep, "...\n", 5);
-}
-
-/* What the result's arrays take: vertex_count x 24 (positions, normals) +
- * indices + face sizes + parts, overflow-checked (false: does not fit). */
-static bool _tlod_result_bytes(const _tlod_import_data* d, size_t* bytes) {
-  size_t v, i, p, sum;
-  return _tlod_size_mul(d->vertex_count, 24u, &v) && _tlod_size_mul(d->index_count, 4u, &i) &&
-         _tlod_size_mul(d->part_count, sizeof(tlod_import_part), &p) && _tlod_size_add(v, i, &sum) &&
-         _tlod_size_add(sum, p, &sum) && _tlod_size_add(sum, d->face_count + sizeof(tlod_import_result), bytes);
-}
-
-tlod_result _tlod_import_finish(const _tlod_import_job* job, const _tlod_import_data* d) {
-  const tlod_allocator* a = &job->allocator;
-  size_t bytes = 0;
-  if (!_tlod_result_bytes(d, &bytes) || !_tlod_budget_take(job->budget, bytes))
-    return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY,
-                             "result: %u vertices and %u indices exceed the import's memory budget (%zu bytes; "
-                             "tlod_import_desc.memory_limit)",
-                             d->vertex_count, d->index_count, job->budget->limit);
-  tlod_import_result* r = (tlod_import_result*)a->alloc_fn(sizeof *r, a->user_data);
-  if (!r) return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory");
-  memset(r, 0, sizeof *r);
-  r->_allocator = *a;
-  bool ok = true;
-  r->vertex_count = d->vertex_count;
-  r->positions = (float*)_tlod_copy(a, d->positions, (size_t)d->vertex_count * 12u, &ok);
-  r->normals = (float*)_tlod_copy(a, d->normals, (size_t)d->vertex_count * 12u, &ok);
-  r->index_count = d->index_count;
-  r->indices = (uint32_t*)_tlod_copy(a, d->indices, (size_t)d->index_count * 4u, &ok);
-  r->face_count = d->face_count;
-  r->face_sizes = (uint8_t*)_tlod_copy(a, d->face_sizes, d->face_count, &ok);
-  r->part_count = d->part_count;
-  r->parts = (tlod_import_part*)_tlod_copy(a, d->parts, d->part_count * sizeof(tlod_import_part), &ok);
-  r->polygons_triangulated = d->polygons_triangulated;
-  r->strips_fans_converted = d->strips_fans_converted;
-  r->primitives_skipped = d->primitives_skipped;
-  r->warning_count = d->warning_count;
-  _tlod_copy_warnings(r->warnings, sizeof r->warnings, d->warnings);
-  if (!ok) {
-    tlod_import_free(r);
-    return _tlod_import_fail(job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory for %u vertices", d->vertex_count);
-  }
-  *job->out = r;
-  return TLOD_SUCCESS;
-}
-
-void tlod_import_free(tlod_import_result* r) {
-  if (!r) return;
-  tlod_allocator a = r->_allocator;
-  a.free_fn(r->positions, a.user_data);
-  a.free_fn(r->normals, a.user_data);
-  a.free_fn(r->indices, a.user_data);
-  a.free_fn(r->face_sizes, a.user_data);
-  a.free_fn(r->parts, a.user_data);
-  a.free_fn(r, a.user_data);
-}
-
-/* ------------------------------------------------------------------------ */
 /* Entry point                                                              */
 /* ------------------------------------------------------------------------ */
 
@@ -261,6 +175,7 @@ static tlod_result _tlod_import_setup(_tlod_import_job* job, const tlod_import_d
   }
   const size_t limit = desc ? desc->memory_limit : 0;
   *budget = (_tlod_import_budget){limit ? limit : _tlod_budget_default(0), 0, limit == 0};
+  job->keep_scene = desc && desc->keep_scene;
   job->budget = budget;
   return TLOD_SUCCESS;
 }
@@ -305,8 +220,8 @@ static tlod_result _tlod_import_run(_tlod_import_job* job, const tlod_import_des
 tlod_result tlod_import_file_desc(const char* path, const tlod_import_desc* desc, tlod_import_result** out, char* error,
                                   size_t error_size) {
   char folder[4096];
-  _tlod_import_job job = {path,      path ? _tlod_base_name(path) : "(null)", NULL, NULL, 0, {0}, NULL, out, error,
-                          error_size};
+  _tlod_import_job job = {
+      path, path ? _tlod_base_name(path) : "(null)", NULL, NULL, 0, {0}, NULL, out, error, error_size, false};
   job.folder = path ? _tlod_folder_of(path, folder, sizeof folder) : NULL;
   return _tlod_import_run(&job, desc);
 }
@@ -331,7 +246,8 @@ tlod_result tlod_import_memory(const char* name, const void* data, size_t size, 
                           NULL,
                           out,
                           error,
-                          error_size};
+                          error_size,
+                          false};
   if (!data && size) return _tlod_import_fail(&job, TLOD_ERROR_INVALID_ARGUMENT, "data is NULL with size %zu", size);
   return _tlod_import_run(&job, desc);
 }

@@ -46,6 +46,28 @@ typedef struct _tlod_import_data {
   uint32_t primitives_skipped;
   const char* warnings; /* newline-separated, may be NULL */
   uint32_t warning_count;
+  /* The scene (tlod_import.h), every pointer in temporary memory; deep-copied.
+   * No mesh and no node: one mesh of all parts at one identity node. No
+   * material: every part's material is TLOD_IMPORT_NONE. */
+  uint32_t attribute_count;
+  const tlod_import_attribute* attributes;
+  const uint16_t* joints; /* NULL: none skinned */
+  const float* weights;
+  uint32_t mesh_count;
+  const tlod_import_mesh* meshes;
+  uint32_t node_count;
+  const tlod_import_node* nodes;
+  uint32_t material_count;
+  const tlod_import_material* materials;
+  uint32_t texture_count;
+  const tlod_import_texture* textures;
+  uint32_t image_count;
+  const tlod_import_image* images;
+  uint32_t animation_count;
+  const tlod_import_animation* animations;
+  uint32_t skin_count;
+  const tlod_import_skin* skins;
+  uint32_t weights_renormalised;
 } _tlod_import_data;
 
 /* The import's memory budget (tlod_import_desc.memory_limit): every
@@ -85,6 +107,7 @@ typedef struct _tlod_import_job {
   tlod_import_result** out;
   char* error;
   size_t error_size;
+  bool keep_scene; /* tlod_import_desc.keep_scene */
 } _tlod_import_job;
 
 /* Copies d into a new result (allocator memory) and stores it in *job->out. */

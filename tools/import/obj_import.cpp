@@ -508,7 +508,7 @@ std::string one_line(std::string s) {
   return s;
 }
 
-tlod_result finish(const _tlod_import_job* job, const Output& out) {
+tlod_result finish(const _tlod_import_job* job, Output& out) {
   _tlod_import_data d{};
   out.fill(d);
   d.face_count = uint32_t(out.face_sizes.size());

@@ -80,15 +80,116 @@
 extern "C" {
 #endif
 
-/* One imported piece: a glTF primitive instance (node x primitive), an OBJ
- * shape (o / g), or the whole PLY. Its faces and vertices are contiguous. */
+/* One imported piece: a glTF primitive instance (node x primitive; with
+ * keep_scene: one per primitive of each mesh, in mesh space), an OBJ shape
+ * (o / g, split further by material), or the whole PLY. Its faces and
+ * vertices are contiguous. */
 typedef struct tlod_import_part {
   char name[64]; /* node, mesh or shape name; may be truncated */
   uint32_t first_face, face_count;
   uint32_t first_vertex, vertex_count;
   float base_color[4]; /* glTF baseColorFactor; OBJ Kd + d; default 1,1,1,1 */
   bool had_normals;    /* false: this part's normals are zero (core recomputes) */
+  uint32_t mesh;       /* index into meshes[] */
+  uint32_t material;   /* index into materials[]; UINT32_MAX: none */
+  uint32_t node;       /* flattened mode: the node it was instanced at; keep_scene: UINT32_MAX */
 } tlod_import_part;
+
+#define TLOD_IMPORT_NONE UINT32_MAX
+#define TLOD_IMPORT_MAX_ATTRIBUTES 8
+/* Decoded images larger than this many pixels are refused (a warning), before anything is allocated. */
+#define TLOD_IMPORT_MAX_IMAGE_PIXELS ((uint64_t)64 << 20)
+
+/* A vertex attribute besides position and normal, for ALL vertices of the
+ * result: parts without it hold zeros (COLOR_0: ones). */
+typedef struct tlod_import_attribute {
+  char name[32];       /* "TEXCOORD_0", "TEXCOORD_1", "COLOR_0", "TANGENT" */
+  uint32_t components; /* TEXCOORD 2, COLOR 4 (vec3 colours get alpha 1), TANGENT 4 (xyz, w = handedness) */
+  float* data;         /* components floats per vertex (normalised integers converted to float) */
+} tlod_import_attribute;
+
+/* A glTF mesh (OBJ/PLY: the one mesh): its parts are contiguous. */
+typedef struct tlod_import_mesh {
+  char name[64];
+  uint32_t first_part, part_count;
+} tlod_import_mesh;
+
+/* A glTF node (OBJ/PLY: one node holding the one mesh), rest pose. */
+typedef struct tlod_import_node {
+  char name[64];
+  uint32_t parent, mesh, skin; /* TLOD_IMPORT_NONE: none */
+  float translation[3];
+  float rotation[4]; /* unit quaternion x y z w */
+  float scale[3];    /* TRS as in the file; a node given by matrix: decomposed (exact for T*R*S matrices) */
+  float local[16];   /* column-major: the file's matrix, or T * R * S */
+  float world[16];   /* column-major: parent's world * local */
+} tlod_import_node;
+
+typedef enum tlod_import_alpha_mode {
+  TLOD_IMPORT_ALPHA_OPAQUE = 0,
+  TLOD_IMPORT_ALPHA_MASK,
+  TLOD_IMPORT_ALPHA_BLEND
+} tlod_import_alpha_mode;
+
+typedef struct tlod_import_material {
+  char name[64];
+  float base_color[4];          /* baseColorFactor (OBJ: Kd, d), linear */
+  uint32_t base_color_texture;  /* index into textures[]; TLOD_IMPORT_NONE: none */
+  uint32_t base_color_texcoord; /* index into the result's attributes[] of its UVs; TLOD_IMPORT_NONE: none */
+  tlod_import_alpha_mode alpha_mode;
+  float alpha_cutoff; /* MASK: default 0.5 */
+  bool double_sided;
+} tlod_import_material;
+
+typedef struct tlod_import_texture {
+  uint32_t image;                             /* index into images[]; TLOD_IMPORT_NONE: none */
+  int wrap_s, wrap_t, min_filter, mag_filter; /* glTF sampler values (GL enums); 0: unset */
+} tlod_import_texture;
+
+typedef struct tlod_import_image {
+  char uri[256]; /* as written in the file, possibly truncated; "" when embedded (bufferView, data: URI) */
+  char mime[32]; /* "image/png", "image/jpeg" (from the file or sniffed), "" unknown */
+  uint32_t width, height;
+  uint8_t* rgba;    /* width * height RGBA8, top row first; NULL: missing, refused or undecodable (a warning) */
+  uint8_t* encoded; /* the image file's bytes (for re-embedding on export); NULL when it could not be read */
+  size_t encoded_size;
+} tlod_import_image;
+
+typedef enum tlod_import_anim_path {
+  TLOD_IMPORT_PATH_TRANSLATION = 0,
+  TLOD_IMPORT_PATH_ROTATION,
+  TLOD_IMPORT_PATH_SCALE
+} tlod_import_anim_path;
+
+typedef enum tlod_import_interp {
+  TLOD_IMPORT_INTERP_LINEAR = 0,
+  TLOD_IMPORT_INTERP_STEP,
+  TLOD_IMPORT_INTERP_CUBICSPLINE
+} tlod_import_interp;
+
+typedef struct tlod_import_channel {
+  uint32_t node;
+  tlod_import_anim_path path;
+  tlod_import_interp interp;
+  uint32_t key_count; /* >= 1 */
+  float* times;       /* key_count seconds, finite, strictly increasing */
+  /* key_count * n floats, n = 3 (translation, scale) or 4 (rotation x y z w);
+   * CUBICSPLINE: key_count * 3 * n, per key in-tangent, value, out-tangent */
+  float* values;
+} tlod_import_channel;
+
+typedef struct tlod_import_animation {
+  char name[64];
+  uint32_t channel_count;
+  tlod_import_channel* channels;
+} tlod_import_animation;
+
+typedef struct tlod_import_skin {
+  char name[64];
+  uint32_t joint_count;
+  uint32_t* joints;    /* node indices */
+  float* inverse_bind; /* 16 per joint, column-major; identity when the file has none */
+} tlod_import_skin;
 
 #define TLOD_IMPORT_WARNINGS_SIZE 1024
 
@@ -105,9 +206,28 @@ typedef struct tlod_import_result {
   uint8_t* face_sizes; /* NULL when every face is a triangle; else 3 or 4 per face */
   uint32_t part_count;
   tlod_import_part* parts;
-  uint32_t polygons_triangulated;           /* OBJ/PLY faces with > 4 corners fan-triangulated */
-  uint32_t strips_fans_converted;           /* glTF primitives in TRIANGLE_STRIP/FAN mode converted to triangles */
-  uint32_t primitives_skipped;              /* glTF primitives left out (no POSITION, lines, points; see warnings) */
+  uint32_t polygons_triangulated; /* OBJ/PLY faces with > 4 corners fan-triangulated */
+  uint32_t strips_fans_converted; /* glTF primitives in TRIANGLE_STRIP/FAN mode converted to triangles */
+  uint32_t primitives_skipped;    /* glTF primitives left out (no POSITION, lines, points; see warnings) */
+  uint32_t attribute_count;       /* 0..TLOD_IMPORT_MAX_ATTRIBUTES */
+  tlod_import_attribute attributes[TLOD_IMPORT_MAX_ATTRIBUTES];
+  uint16_t* joints; /* 4 per vertex (JOINTS_0, indices into the part's skin's joints); NULL when no part is skinned */
+  float* weights;   /* 4 per vertex (WEIGHTS_0, sum 1); zeros for unskinned parts */
+  uint32_t mesh_count;
+  tlod_import_mesh* meshes;
+  uint32_t node_count;
+  tlod_import_node* nodes;
+  uint32_t material_count;
+  tlod_import_material* materials;
+  uint32_t texture_count;
+  tlod_import_texture* textures;
+  uint32_t image_count;
+  tlod_import_image* images;
+  uint32_t animation_count;
+  tlod_import_animation* animations;
+  uint32_t skin_count;
+  tlod_import_skin* skins;
+  uint32_t weights_renormalised;            /* vertices whose weights summed within 2e-2 of 1, rescaled */
   uint32_t warning_count;                   /* warnings issued, also those that did not fit below */
   char warnings[TLOD_IMPORT_WARNINGS_SIZE]; /* human-readable, newline-separated, may be empty */
   tlod_allocator _allocator;                /* private: the allocator the arrays came from */
@@ -127,6 +247,11 @@ typedef struct tlod_import_result {
 typedef struct tlod_import_desc {
   tlod_allocator allocator; /* result memory; both hooks NULL: malloc/free */
   size_t memory_limit;      /* bytes the import may allocate in all; 0: the default rule above */
+  /* false: geometry flattened into world space, one part per node x primitive
+   * (as before). true: each glTF mesh's geometry once, in mesh space, and
+   * the nodes instancing it; skinned meshes keep their bind pose without the
+   * bind-pose warning (the caller animates). */
+  bool keep_scene;
 } tlod_import_desc;
 
 /* Reads a mesh file; the format comes from the extension (.gltf .glb .obj
