@@ -19,7 +19,14 @@
 #define TLOD_BINDING_PATTERN 1   /* pattern vertices of both shapes */
 #define TLOD_BINDING_INSTANCES 2 /* per visible patch of the draw: level, geomorph blends, edge levels */
 #define TLOD_BINDING_STRIPS 3    /* per connection strip of the draw: patches, edges, levels, blends */
-#define TLOD_BINDING_COUNT 4
+#define TLOD_BINDING_ATTRIBUTES 4 /* per patch and corner: the mesh attributes (tlod_mesh_patch_attributes) */
+#define TLOD_BINDING_COUNT 5
+
+/* Texture unit of the base colour texture (sampler u_base_color_texture). */
+#define TLOD_TEXTURE_UNIT_BASE_COLOR 0
+
+/* Attributes interpolated per vertex (== TLOD_MAX_ATTRIBUTES of core.h). */
+#define TLOD_SHADER_MAX_ATTRIBUTES 8
 
 /* Vertex attribute of the strip program: (strip, point) pairs. */
 #define TLOD_ATTRIB_STRIP_REF 0
@@ -71,6 +78,8 @@ layout(std430, binding = TLOD_BINDING_PATCHES) readonly buffer Patches { Patch p
 layout(std430, binding = TLOD_BINDING_PATTERN) readonly buffer Pattern { PatternVertex pattern[]; };
 layout(std430, binding = TLOD_BINDING_INSTANCES) readonly buffer Instances { Instance instances[]; };
 layout(std430, binding = TLOD_BINDING_STRIPS) readonly buffer Strips { Strip strips[]; };
+// Patch p, corner c, attribute a at [(p * 4 + c) * attribute_count + a] (corner 3 of a triangle zero).
+layout(std430, binding = TLOD_BINDING_ATTRIBUTES) readonly buffer Attributes { vec4 patch_attributes[]; };
 
 #else
 /* ---- C ------------------------------------------------------------------ */
@@ -109,6 +118,7 @@ typedef struct tlod_gl_strip { /* Strip */
   float morph[4];
 } tlod_gl_strip;
 
+_Static_assert(TLOD_SHADER_MAX_ATTRIBUTES == TLOD_MAX_ATTRIBUTES, "one varying per core attribute");
 _Static_assert(sizeof(tlod_gl_pattern_vertex) == TLOD_PATTERN_VERTEX_BYTES, "PatternVertex");
 _Static_assert(offsetof(tlod_gl_pattern_vertex, code) == 16, "PatternVertex.code");
 _Static_assert(sizeof(tlod_gl_instance) == TLOD_INSTANCE_BYTES, "Instance");

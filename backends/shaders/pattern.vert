@@ -7,6 +7,7 @@ out vec3 v_normal;
 out vec3 v_world;
 flat out uint v_level;
 flat out uint v_strip;
+out vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
 
 void main() {
   Instance ins = instances[u_first_instance + uint(gl_InstanceID)];
@@ -24,6 +25,7 @@ void main() {
       morph_point(a, p0, n0, p1, n1, pos, nrm);
     }
   }
+  point_attributes(ins.patch_id, P, kind, v.param, v.uv, v_attr);
   v_normal = world_normal(nrm);
   v_world = world_position(pos);
   v_level = ins.level;

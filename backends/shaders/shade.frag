@@ -1,8 +1,11 @@
-// Shading: Lambert on the interpolated surface normal, or a debug colour.
+// Shading: the material function tlod_shade() (the built-in one,
+// material.glsl, or the device's fragment hook, compiled after this file)
+// on the interpolated surface point, or a debug colour.
 in vec3 v_normal;
 in vec3 v_world;
 flat in uint v_level;
 flat in uint v_strip;
+in vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
 
 uniform vec3 u_light_dir;   // normalised, towards the light
 uniform vec4 u_base_color;
@@ -10,8 +13,29 @@ uniform uint u_debug;       // 0 shaded, 1 levels, 2 silhouette depth, 3 strips,
 uniform vec3 u_eye;
 uniform uint u_ortho;
 uniform vec3 u_forward;
+uniform uint u_blend;          // tlod_blend_mode
+uniform float u_alpha_cutoff;  // MASK
+uniform uint u_texcoord;       // attribute of the base colour texture's coordinates; >= 8: no texture
+uniform uint u_attribute_count;
+layout(binding = TLOD_TEXTURE_UNIT_BASE_COLOR) uniform sampler2D u_base_color_texture;
 
 layout(location = 0) out vec4 o_color;
+
+// What a material function sees of a fragment (tesslod/gl.h, docs/shaders.md).
+struct tlod_fragment {
+  vec3 position;    // world
+  vec3 normal;      // world, unit, towards the viewer's side on back faces (flipped)
+  vec3 light_dir;   // world, unit, towards the light (tlod_draw_desc.light_dir)
+  vec3 eye;         // world position of the camera
+  vec4 base_color;  // the item's colour times its base colour texture sample (linear)
+  vec4 attributes[TLOD_SHADER_MAX_ATTRIBUTES];  // the mesh attributes, (0, 0, 0, 0) past attribute_count
+  uint attribute_count;
+  uint level;       // refinement level of the patch (strips: the side's)
+  bool strip;       // a connection strip's fragment
+  bool front_facing;
+};
+
+vec4 tlod_shade(tlod_fragment f);
 
 vec3 level_color(uint l) {
   const vec3 c[8] = vec3[8](vec3(0.2, 0.3, 0.9), vec3(0.1, 0.7, 0.9), vec3(0.1, 0.8, 0.3), vec3(0.7, 0.9, 0.1),
@@ -19,8 +43,32 @@ vec3 level_color(uint l) {
   return c[min(l, 7u)];
 }
 
+tlod_fragment fragment(vec3 n) {
+  tlod_fragment f;
+  f.position = v_world;
+  f.normal = n;
+  f.light_dir = u_light_dir;
+  f.eye = u_eye;
+  f.base_color = u_base_color;
+  if (u_texcoord < uint(TLOD_SHADER_MAX_ATTRIBUTES))
+    f.base_color *= texture(u_base_color_texture, v_attr[u_texcoord].xy);
+  for (int a = 0; a < TLOD_SHADER_MAX_ATTRIBUTES; a++) f.attributes[a] = v_attr[a];
+  f.attribute_count = u_attribute_count;
+  f.level = v_level;
+  f.strip = v_strip == 1u;
+  f.front_facing = gl_FrontFacing;
+  return f;
+}
+
 void main() {
   vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;
+  if (u_debug == 0u) {
+    vec4 c = tlod_shade(fragment(n));
+    if (u_blend == 1u && c.a < u_alpha_cutoff) discard;
+    o_color = c;
+    return;
+  }
   float lambert = 0.15 + 0.85 * max(dot(n, u_light_dir), 0.0);
   vec3 base = u_base_color.rgb;
   if (u_debug == 1u) base = level_color(v_level);

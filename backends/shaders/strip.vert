@@ -8,6 +8,7 @@ out vec3 v_normal;
 out vec3 v_world;
 flat out uint v_level;
 flat out uint v_strip;
+out vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
 
 // Point i of the level-l polyline on edge e of P, with e's blend a.
 void polyline_point(Patch P, uint e, uint l, uint i, float a, out vec3 pos, out vec3 nrm) {
@@ -33,6 +34,11 @@ void main() {
     polyline_point(patches[S.patch_b], eb, lb, nb - (r - na - 1u), S.morph.y, pos, nrm);
     v_level = lb;
   }
+  // Every point takes side a's attributes at the same edge point (b's
+  // point r - na - 1 of nb, in a's direction), as the cpu tessellator does:
+  // no strip smears the two sides of an attribute seam.
+  uint num = r <= na ? r << (u_max_level - la) : (r - na - 1u) << (u_max_level - lb);
+  point_attributes(S.patch_a, patches[S.patch_a], 4u + ea, num, vec2(0.0), v_attr);
   v_normal = world_normal(nrm);
   v_world = world_position(pos);
   v_strip = 1u;

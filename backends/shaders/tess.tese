@@ -11,6 +11,7 @@ out vec3 v_normal;
 out vec3 v_world;
 flat out uint v_level;
 flat out uint v_strip;
+out vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
 
 void main() {
   Instance ins = instances[tc_inst];
@@ -37,6 +38,7 @@ void main() {
   if (kind < 4u) { pos = P.p[kind].xyz; nrm = P.n[kind].xyz; }
   else if (kind < 8u) patch_edge_point(P, kind - 4u, num, pos, nrm);
   else interior_point(P, uv, pos, nrm);
+  point_attributes(ins.patch_id, P, kind, num, uv, v_attr);
   v_normal = world_normal(nrm);
   v_world = world_position(pos);
   v_level = ins.level;

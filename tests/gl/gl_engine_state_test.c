@@ -5,16 +5,18 @@
  *
  * The test plays the engine: its own FBO (not the platform's), program,
  * VAO with its own element buffer, array / element / shader-storage /
- * uniform / draw-indirect buffers, SSBOs on binding points 0-3 (one as a
- * range), a UBO on binding point 0, blend on with a specific function,
+ * uniform / draw-indirect buffers, SSBOs on binding points 0-4 (two as
+ * ranges), a UBO on binding point 0, blend on with a specific function and
+ * equation (MAX on alpha), front face CW, a texture and a sampler of its own
+ * on unit 0 (the device's) with unit 3 active,
  * depth test GREATER with the mask off, polygon mode LINE, culling of FRONT
  * faces, polygon offset fill (1.5, 2.5), an odd viewport, a scissor box, a
  * stencil setup. It draws a triangle of its own, then calls
- * tlod_device_draw (shaded, then LEVELS + wireframe) and checks:
+ * tlod_device_draw (shaded, then LEVELS + wireframe, then a BLEND item
+ * with cull_back_faces) and checks:
  *   - every state in tesslod/gl.h's GL STATE list is exactly as it was
  *     (glGetIntegerv & co.), and the states the backend must not touch
- *     (framebuffer bindings, blend function, scissor, stencil, colour mask,
- *     front face, active texture) too;
+ *     (framebuffer bindings, scissor, stencil, colour mask) too;
  *   - no GL error is pending;
  *   - tesslod drew into the test's FBO (pixels inside its own coverage,
  *     taken from a separate render into the platform's FBO, changed);
@@ -31,8 +33,8 @@
 /* Every state the test sets and checks, as integers. */
 typedef struct gl_state {
   GLint program, vao, array_buffer, element_buffer, ssbo_generic, ubo_generic, indirect_buffer;
-  GLint ssbo[4];
-  GLint64 ssbo_start[4], ssbo_size[4];
+  GLint ssbo[5];
+  GLint64 ssbo_start[5], ssbo_size[5];
   GLint ubo0;
   GLint polygon_mode[2];
   GLboolean cull;
@@ -41,7 +43,7 @@ typedef struct gl_state {
   GLint depth_func;
   GLboolean depth_mask;
   GLboolean blend;
-  GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb;
+  GLint blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
   GLboolean offset_fill;
   GLfloat offset_factor, offset_units;
   GLint viewport[4];
@@ -52,6 +54,7 @@ typedef struct gl_state {
   GLint stencil_func, stencil_ref, stencil_writemask;
   GLboolean color_mask[4];
   GLint front_face, active_texture;
+  GLint texture_unit0, sampler_unit0; /* GL_TEXTURE_BINDING_2D, GL_SAMPLER_BINDING of unit 0 */
 } gl_state;
 
 static gl_state capture(void) {
@@ -64,7 +67,7 @@ static gl_state capture(void) {
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s.ssbo_generic);
   glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s.ubo_generic);
   glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &s.indirect_buffer);
-  for (GLuint i = 0; i < 4; ++i) {
+  for (GLuint i = 0; i < 5; ++i) {
     glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &s.ssbo[i]);
     glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &s.ssbo_start[i]);
     glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, i, &s.ssbo_size[i]);
@@ -82,6 +85,7 @@ static gl_state capture(void) {
   glGetIntegerv(GL_BLEND_SRC_ALPHA, &s.blend_src_alpha);
   glGetIntegerv(GL_BLEND_DST_ALPHA, &s.blend_dst_alpha);
   glGetIntegerv(GL_BLEND_EQUATION_RGB, &s.blend_eq_rgb);
+  glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &s.blend_eq_alpha);
   s.offset_fill = glIsEnabled(GL_POLYGON_OFFSET_FILL);
   glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &s.offset_factor);
   glGetFloatv(GL_POLYGON_OFFSET_UNITS, &s.offset_units);
@@ -97,6 +101,10 @@ static gl_state capture(void) {
   glGetBooleanv(GL_COLOR_WRITEMASK, s.color_mask);
   glGetIntegerv(GL_FRONT_FACE, &s.front_face);
   glGetIntegerv(GL_ACTIVE_TEXTURE, &s.active_texture);
+  glActiveTexture(GL_TEXTURE0);
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &s.texture_unit0);
+  glGetIntegerv(GL_SAMPLER_BINDING, &s.sampler_unit0);
+  glActiveTexture((GLenum)s.active_texture);
   return s;
 }
 
@@ -125,9 +133,9 @@ static int compare_state(const gl_state* want, const gl_state* got, const char* 
   SAME_INT(ssbo_generic, "GL_SHADER_STORAGE_BUFFER_BINDING");
   SAME_INT(ubo_generic, "GL_UNIFORM_BUFFER_BINDING");
   SAME_INT(indirect_buffer, "GL_DRAW_INDIRECT_BUFFER_BINDING");
-  static const char* const ssbo_names[4] = {"SSBO binding point 0", "SSBO binding point 1", "SSBO binding point 2",
-                                            "SSBO binding point 3"};
-  for (int i = 0; i < 4; ++i) {
+  static const char* const ssbo_names[5] = {"SSBO binding point 0", "SSBO binding point 1", "SSBO binding point 2",
+                                            "SSBO binding point 3", "SSBO binding point 4"};
+  for (int i = 0; i < 5; ++i) {
     SAME_INT(ssbo[i], ssbo_names[i]);
     SAME_INT(ssbo_start[i], "GL_SHADER_STORAGE_BUFFER_START");
     SAME_INT(ssbo_size[i], "GL_SHADER_STORAGE_BUFFER_SIZE");
@@ -145,6 +153,7 @@ static int compare_state(const gl_state* want, const gl_state* got, const char* 
   SAME_INT(blend_src_alpha, "GL_BLEND_SRC_ALPHA");
   SAME_INT(blend_dst_alpha, "GL_BLEND_DST_ALPHA");
   SAME_INT(blend_eq_rgb, "GL_BLEND_EQUATION_RGB");
+  SAME_INT(blend_eq_alpha, "GL_BLEND_EQUATION_ALPHA");
   SAME_INT(offset_fill, "GL_POLYGON_OFFSET_FILL enable");
   SAME_FLOAT(offset_factor, "GL_POLYGON_OFFSET_FACTOR");
   SAME_FLOAT(offset_units, "GL_POLYGON_OFFSET_UNITS");
@@ -164,6 +173,8 @@ static int compare_state(const gl_state* want, const gl_state* got, const char* 
     SAME_INT(color_mask[i], "GL_COLOR_WRITEMASK");
   SAME_INT(front_face, "GL_FRONT_FACE");
   SAME_INT(active_texture, "GL_ACTIVE_TEXTURE");
+  SAME_INT(texture_unit0, "GL_TEXTURE_BINDING_2D of unit 0");
+  SAME_INT(sampler_unit0, "GL_SAMPLER_BINDING of unit 0");
 #undef SAME_INT
 #undef SAME_FLOAT
   return diffs;
@@ -209,11 +220,11 @@ TEST(test_engine_state) {
   CHECK_MSG(gl_target_make(&target, W, H), "engine FBO incomplete");
   GLuint program = gl_program(tri_vs, tri_fs);
   CHECK(program);
-  GLuint vao, buffers[10];
+  GLuint vao, buffers[11], engine_texture, engine_sampler;
   glGenVertexArrays(1, &vao);
-  glGenBuffers(10, buffers);
+  glGenBuffers(11, buffers);
   GLuint vbo = buffers[0], ebo = buffers[1], ubo = buffers[2], indirect = buffers[3], loose_array = buffers[4];
-  GLuint ssbo[4] = {buffers[5], buffers[6], buffers[7], buffers[8]}, ssbo_generic = buffers[9];
+  GLuint ssbo[5] = {buffers[5], buffers[6], buffers[7], buffers[8], buffers[10]}, ssbo_generic = buffers[9];
   const float tri[6] = {-1.0f, -0.9f, 0.1f, -0.9f, -1.0f, 0.9f};
   const uint32_t idx[3] = {0, 1, 2};
   const float orange[4] = {1.0f, 0.5f, 0.0f, 1.0f};
@@ -227,7 +238,7 @@ TEST(test_engine_state) {
   glBindBuffer(GL_UNIFORM_BUFFER, ubo);
   glBufferData(GL_UNIFORM_BUFFER, sizeof orange, orange, GL_STATIC_DRAW);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo);
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < 5; ++i) {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, ssbo[i]);
     glBufferData(GL_SHADER_STORAGE_BUFFER, 1024, NULL, GL_STATIC_DRAW);
   }
@@ -237,6 +248,7 @@ TEST(test_engine_state) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, ssbo[1]);
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, ssbo[2], 256, 512);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, ssbo[3]);
+  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 4, ssbo[4], 512, 256);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, ssbo_generic);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect);
   glBufferData(GL_DRAW_INDIRECT_BUFFER, 64, NULL, GL_STATIC_DRAW);
@@ -253,7 +265,14 @@ TEST(test_engine_state) {
   glBindBuffer(GL_ARRAY_BUFFER, loose_array); /* not the VAO's attribute buffer */
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ZERO);
-  glBlendEquation(GL_FUNC_ADD);
+  glBlendEquationSeparate(GL_FUNC_ADD, GL_MAX);
+  glFrontFace(GL_CW);
+  /* a texture and a sampler of the engine's on unit 0 (the device's unit), another unit active */
+  glGenTextures(1, &engine_texture);
+  glGenSamplers(1, &engine_sampler);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, engine_texture);
+  glBindSampler(0, engine_sampler);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
   glDepthMask(GL_FALSE);
@@ -272,7 +291,9 @@ TEST(test_engine_state) {
   CHECK_MSG(glGetError() == GL_NO_ERROR, "setting the engine state failed");
   gl_state want = capture();
   CHECK(want.program == (GLint)program && want.vao == (GLint)vao && want.element_buffer == (GLint)ebo &&
-        want.ssbo[2] == (GLint)ssbo[2] && want.ssbo_start[2] == 256 && want.ssbo_generic == (GLint)ssbo_generic);
+        want.ssbo[2] == (GLint)ssbo[2] && want.ssbo_start[2] == 256 && want.ssbo_generic == (GLint)ssbo_generic &&
+        want.texture_unit0 == (GLint)engine_texture && want.sampler_unit0 == (GLint)engine_sampler &&
+        want.ssbo_start[4] == 512 && want.front_face == GL_CW && want.blend_eq_alpha == GL_MAX);
 
   /* tesslod draws into the engine's framebuffer, twice: shaded, then
    * LEVELS with the wireframe overlay */
@@ -293,7 +314,20 @@ TEST(test_engine_state) {
   diffs += compare_state(&want, &got, "after wireframe draw");
   CHECK_MSG(gl_err == GL_NO_ERROR, "tlod_device_draw (wireframe) left a GL error: %s (0x%04X)", gl_error_name(gl_err),
             gl_err);
-  printf("  %d state differences after 2 draws (%u triangles each)\n", diffs,
+  /* and a blended, back-face-culled item (the state of materials) */
+  frame.desc.debug = TLOD_DEBUG_NONE;
+  frame.desc.wireframe = false;
+  frame.item.blend = TLOD_BLEND_BLEND;
+  frame.item.cull_back_faces = true;
+  r = tlod_device_draw(gs.dev, &frame.desc);
+  CHECK_MSG(r == TLOD_SUCCESS, "tlod_device_draw (blend): %s: %s", tlod_result_string(r),
+            tlod_context_last_error(gs.ctx));
+  gl_err = glGetError();
+  got = capture();
+  diffs += compare_state(&want, &got, "after blended draw");
+  CHECK_MSG(gl_err == GL_NO_ERROR, "tlod_device_draw (blend) left a GL error: %s (0x%04X)", gl_error_name(gl_err),
+            gl_err);
+  printf("  %d state differences after 3 draws (%u triangles each)\n", diffs,
          (unsigned)(dl->pattern_triangles + dl->strip_triangles));
   CHECK_MSG(diffs == 0, "%d GL states changed by tlod_device_draw (see above)", diffs);
 
@@ -337,7 +371,9 @@ TEST(test_engine_state) {
   glBindVertexArray(0);
   glUseProgram(0);
   glDeleteVertexArrays(1, &vao);
-  glDeleteBuffers(10, buffers);
+  glDeleteBuffers(11, buffers);
+  glDeleteTextures(1, &engine_texture);
+  glDeleteSamplers(1, &engine_sampler);
   glDeleteProgram(program);
   gl_target_free(&target);
   free(alone);

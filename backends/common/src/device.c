@@ -17,6 +17,13 @@ struct tlod_device_surface {
   tlod_device_surface *prev, *next;
 };
 
+struct tlod_device_texture {
+  tlod_device* dev;
+  void* state;
+  char label[64];
+  tlod_device_texture *prev, *next;
+};
+
 struct tlod_device {
   tlod_context* ctx;
   const char* backend;
@@ -25,6 +32,7 @@ struct tlod_device {
   void* state;
   uint32_t max_level; /* of the patterns */
   tlod_device_surface* surfaces;
+  tlod_device_texture* textures;
   _tlod_draw_ref* refs;
   uint32_t ref_cap;
   tlod_draw_item_stats* item_stats;
@@ -103,10 +111,22 @@ static void free_surface(tlod_device* dev, tlod_device_surface* ds) {
   dev->stats.surfaces_destroyed++;
 }
 
+static void free_texture(tlod_device* dev, tlod_device_texture* t) {
+  if (dev->vtbl->destroy_texture) dev->vtbl->destroy_texture(dev->state, t->state);
+  if (t->prev) t->prev->next = t->next;
+  if (t->next) t->next->prev = t->prev;
+  if (dev->textures == t) dev->textures = t->next;
+  tlod_context_free(dev->ctx, t);
+  dev->stats.textures_live--;
+  dev->stats.textures_destroyed++;
+}
+
 void tlod_device_destroy(tlod_device* dev) {
   if (!dev) return;
   while (dev->surfaces)
     free_surface(dev, dev->surfaces);
+  while (dev->textures)
+    free_texture(dev, dev->textures);
   dev->vtbl->destroy(dev->state);
   tlod_context_free(dev->ctx, dev->refs);
   tlod_context_free(dev->ctx, dev->item_stats);
@@ -172,6 +192,70 @@ void tlod_device_destroy_surface(tlod_device* dev, tlod_device_surface* ds) {
     return;
   }
   free_surface(dev, ds);
+}
+
+/* ---- textures ---------------------------------------------------------------- */
+
+/* The desc's first wrong field, or NULL. */
+static const char* texture_desc_error(const tlod_texture_desc* d, char* buf, size_t size) {
+  if (!d->rgba8) return "rgba8 is NULL";
+  if (d->width == 0 || d->height == 0 || d->width > TLOD_TEXTURE_MAX_SIZE || d->height > TLOD_TEXTURE_MAX_SIZE) {
+    snprintf(buf, size, "%s %u outside [1, %u]", d->width == 0 || d->width > TLOD_TEXTURE_MAX_SIZE ? "width" : "height",
+             d->width == 0 || d->width > TLOD_TEXTURE_MAX_SIZE ? d->width : d->height, TLOD_TEXTURE_MAX_SIZE);
+    return buf;
+  }
+  const uint32_t enums[4] = {(uint32_t)d->wrap_s, (uint32_t)d->wrap_t, (uint32_t)d->min_filter,
+                             (uint32_t)d->mag_filter};
+  const uint32_t limits[4] = {TLOD_WRAP_NUM, TLOD_WRAP_NUM, TLOD_FILTER_NUM, TLOD_FILTER_NUM};
+  static const char* const names[4] = {"wrap_s", "wrap_t", "min_filter", "mag_filter"};
+  for (int k = 0; k < 4; k++) {
+    if (enums[k] < limits[k]) continue;
+    snprintf(buf, size, "%s %u is not a value of its enum (< %u)", names[k], enums[k], limits[k]);
+    return buf;
+  }
+  return NULL;
+}
+
+tlod_result tlod_device_create_texture(tlod_device* dev, const tlod_texture_desc* desc, tlod_device_texture** out) {
+  const char* fn = "tlod_device_create_texture";
+  if (out) *out = NULL;
+  if (!dev) return TLOD_ERROR_INVALID_ARGUMENT;
+  if (!desc || !out)
+    return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT, "%s: %s is NULL", fn, desc ? "out" : "desc");
+  const char* label = desc->label ? desc->label : "texture";
+  char buf[96];
+  const char* bad = texture_desc_error(desc, buf, sizeof(buf));
+  if (bad) return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT, "%s: texture '%s': %s", fn, label, bad);
+  tlod_device_texture* t = tlod_context_calloc(dev->ctx, 1, sizeof(*t));
+  if (!t) return tlod_context_fail(dev->ctx, TLOD_ERROR_OUT_OF_MEMORY, "%s: out of memory", fn);
+  snprintf(t->label, sizeof(t->label), "%s", label);
+  t->dev = dev;
+  tlod_texture_desc d = *desc;
+  d.label = t->label;
+  tlod_result r = dev->vtbl->create_texture ? dev->vtbl->create_texture(dev->state, &d, &t->state) : TLOD_SUCCESS;
+  if (r != TLOD_SUCCESS) {
+    tlod_context_free(dev->ctx, t);
+    return r;
+  }
+  t->next = dev->textures;
+  if (dev->textures) dev->textures->prev = t;
+  dev->textures = t;
+  dev->stats.textures_live++;
+  dev->stats.textures_created++;
+  dev->stats.texture_bytes += 4ull * desc->width * desc->height;
+  *out = t;
+  return TLOD_SUCCESS;
+}
+
+void tlod_device_destroy_texture(tlod_device* dev, tlod_device_texture* tex) {
+  if (!dev || !tex) return;
+  if (tex->dev != dev) {
+    tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                      "tlod_device_destroy_texture: texture '%s' belongs to another device ('%s', not '%s')",
+                      tex->label, tex->dev->label, dev->label);
+    return;
+  }
+  free_texture(dev, tex);
 }
 
 /* ---- drawing ----------------------------------------------------------------- */
@@ -250,6 +334,35 @@ static tlod_result check_draw_list(tlod_device* dev, uint32_t k, const tlod_devi
   return check_draw_refs(dev, k, ds, dl);
 }
 
+/* The material fields every backend reads: the texture's device, the
+ * attribute holding its coordinates, the blend mode and cutoff. */
+static tlod_result check_material(tlod_device* dev, uint32_t k, const tlod_draw_item* it) {
+  const char* fn = "tlod_device_draw";
+  if ((uint32_t)it->blend >= TLOD_BLEND_NUM)
+    return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT, "%s: item %u: blend %u is not a tlod_blend_mode",
+                             fn, k, (uint32_t)it->blend);
+  if (it->has_alpha_cutoff && !isfinite(it->alpha_cutoff))
+    return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT, "%s: item %u: alpha_cutoff is not finite", fn, k);
+  const tlod_device_texture* t = it->base_color_texture;
+  if (!t) return TLOD_SUCCESS;
+  if (t->dev != dev)
+    return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "%s: item %u: base_color_texture '%s' belongs to another device ('%s', not '%s')", fn, k,
+                             t->label, t->dev->label, dev->label);
+  const tlod_mesh* mesh = tlod_surface_mesh(it->surface->surface);
+  uint32_t count = tlod_mesh_attribute_count(mesh), a = it->base_color_texcoord;
+  if (a >= count)
+    return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "%s: item %u: base_color_texcoord %u is not an attribute of surface '%s' (%u attributes)",
+                             fn, k, a, it->surface->label, count);
+  tlod_attribute_info info = tlod_mesh_query_attribute(mesh, a);
+  if (info.components < 2)
+    return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "%s: item %u: base_color_texcoord %u ('%s') of surface '%s' has %u component (needs 2)",
+                             fn, k, a, info.name, it->surface->label, info.components);
+  return TLOD_SUCCESS;
+}
+
 static tlod_result check_draw(tlod_device* dev, const tlod_draw_desc* d) {
   const char* fn = "tlod_device_draw";
   if (!d) return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT, "%s: desc is NULL", fn);
@@ -289,6 +402,7 @@ static tlod_result check_draw(tlod_device* dev, const tlod_draw_desc* d) {
                                  c);
     }
     tlod_result r = check_draw_list(dev, k, it->surface, it->draw_list);
+    if (r == TLOD_SUCCESS) r = check_material(dev, k, it);
     if (r != TLOD_SUCCESS) return r;
   }
   return TLOD_SUCCESS;
@@ -304,7 +418,11 @@ tlod_result tlod_device_draw(tlod_device* dev, const tlod_draw_desc* desc) {
     return tlod_context_fail(dev->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_device_draw: out of memory for %u items", n);
   for (uint32_t k = 0; k < n; k++) {
     const tlod_device_surface* ds = desc->items[k].surface;
-    dev->refs[k] = (_tlod_draw_ref){.item = &desc->items[k], .surface = ds->surface, .surface_state = ds->state};
+    const tlod_device_texture* t = desc->items[k].base_color_texture;
+    dev->refs[k] = (_tlod_draw_ref){.item = &desc->items[k],
+                                    .surface = ds->surface,
+                                    .surface_state = ds->state,
+                                    .texture_state = t ? t->state : NULL};
   }
   memset(dev->item_stats, 0, sizeof(tlod_draw_item_stats) * n);
   dev->last_item_count = 0;

@@ -60,7 +60,8 @@ static tlod_result cpu_draw(void* state, const tlod_draw_desc* desc, const _tlod
 }
 
 /* No state per surface: the surface itself is all the cpu device needs. */
-const _tlod_device_vtbl _tlod_cpu_device_vtbl = {cpu_create, cpu_destroy, NULL, NULL, NULL, cpu_draw, NULL, false};
+const _tlod_device_vtbl _tlod_cpu_device_vtbl = {
+    .create = cpu_create, .destroy = cpu_destroy, .draw = cpu_draw, .times_draws = false};
 
 const tlod_cpu_mesh* _tlod_cpu_device_mesh(const void* state, uint32_t item) {
   const cpu_device* d = state;

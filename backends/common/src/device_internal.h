@@ -13,6 +13,7 @@ typedef struct _tlod_draw_ref {
   const tlod_draw_item* item;
   const tlod_surface* surface;
   void* surface_state;
+  void* texture_state; /* the backend's state of item->base_color_texture; NULL without one */
 } _tlod_draw_ref;
 
 typedef struct _tlod_device_vtbl {
@@ -33,6 +34,10 @@ typedef struct _tlod_device_vtbl {
   /* false: the dispatch times draw() into cpu_ms and wall_ms; true: the
    * backend does (gl: cpu_ms without the finish, wall_ms with it). */
   bool times_draws;
+  /* May be NULL: textures validated and counted, nothing kept (cpu, null).
+   * desc is validated, its label resolved. */
+  tlod_result (*create_texture)(void* state, const tlod_texture_desc* desc, void** texture_state);
+  void (*destroy_texture)(void* state, void* texture_state);
 } _tlod_device_vtbl;
 
 extern const _tlod_device_vtbl _tlod_cpu_device_vtbl;

@@ -37,4 +37,5 @@ static tlod_result null_draw(void* state, const tlod_draw_desc* desc, const _tlo
   return TLOD_SUCCESS;
 }
 
-const _tlod_device_vtbl _tlod_null_device_vtbl = {null_create, null_destroy, NULL, NULL, NULL, null_draw, NULL, false};
+const _tlod_device_vtbl _tlod_null_device_vtbl = {
+    .create = null_create, .destroy = null_destroy, .draw = null_draw, .times_draws = false};

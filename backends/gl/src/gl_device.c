@@ -34,11 +34,16 @@ enum {
   U_CORNERS,
   U_GRID,
   U_MAX_LEVEL,
+  U_BLEND,
+  U_ALPHA_CUTOFF,
+  U_TEXCOORD,
+  U_ATTRIBUTE_COUNT,
   U_COUNT
 };
 static const char* const uniform_names[U_COUNT] = {
-    "u_view_proj", "u_model", "u_normal_matrix",  "u_light_dir",  "u_base_color", "u_debug", "u_eye",
-    "u_forward",   "u_ortho", "u_first_instance", "u_shape_base", "u_corners",    "u_grid",  "u_max_level"};
+    "u_view_proj", "u_model",     "u_normal_matrix", "u_light_dir",      "u_base_color", "u_debug",
+    "u_eye",       "u_forward",   "u_ortho",         "u_first_instance", "u_shape_base", "u_corners",
+    "u_grid",      "u_max_level", "u_blend",         "u_alpha_cutoff",   "u_texcoord",   "u_attribute_count"};
 
 typedef struct gl_program {
   GLuint id;
@@ -59,6 +64,7 @@ typedef struct gl_device {
   tlod_device_stats* stats;
   uint32_t lmax;
   bool hardware;
+  const char* fragment_hook;        /* during creation only: NULL == material.glsl */
   gl_programs programs[TYPE_COUNT]; /* by resolved surface type */
   GLuint vao_pattern, vao_strip;
   GLuint buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs;
@@ -78,6 +84,11 @@ typedef struct gl_device {
   uint32_t instance_of_cap;
   tlod_patch_record* records; /* surface upload */
   uint32_t record_cap;
+  float (*attributes)[4]; /* surface upload */
+  uint32_t attribute_cap;
+  uint32_t* order; /* draw order of the items: non-BLEND in item order, then BLEND farthest first */
+  float* order_depth;
+  uint32_t order_cap, order_depth_cap;
   /* Per item of the draw: where its data starts in the staging arrays. */
   struct gl_item_range {
     uint32_t instance_first, ref_first, ref_count;
@@ -86,7 +97,9 @@ typedef struct gl_device {
 } gl_device;
 
 typedef struct gl_surface {
-  GLuint buf_patches;
+  GLuint buf_patches, buf_attributes;
+  uint32_t attribute_count;
+  float center[3]; /* of the box around the patches' bounding spheres (BLEND order) */
   tlod_surface_type type;
   uint32_t patch_count;
   const tlod_surface* surface;
@@ -120,7 +133,8 @@ static void gl_destroy(void* state) {
     glDeleteProgram(d->programs[t].tess[0].id);
     glDeleteProgram(d->programs[t].tess[1].id);
   }
-  void* arrays[] = {d->instances, d->strips, d->refs, d->instance_of, d->records, d->ranges};
+  void* arrays[] = {d->instances, d->strips, d->refs,        d->instance_of, d->records,
+                    d->ranges,    d->order,  d->order_depth, d->attributes};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(d->ctx, arrays[i]);
   tlod_context_free(d->ctx, d);
@@ -142,21 +156,28 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type) {
                         : type == TLOD_SURFACE_PHONG ? _tlod_shader_phong
                                                      : _tlod_shader_flat;
   const char* version = "#version 450 core\n#define TLOD_GLSL 1\n";
-  const char* pattern[] = {version, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_pattern_vert};
-  const char* strip[] = {version, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_strip_vert};
-  const char* frag[] = {version, _tlod_shader_shade_frag};
-  char error[1200] = "";
+  const char* attrs = _tlod_shader_attributes;
+  const char* pattern[] = {version, _tlod_shader_layout,      _tlod_shader_common, attrs,
+                           surface, _tlod_shader_pattern_vert};
+  const char* strip[] = {version, _tlod_shader_layout, _tlod_shader_common, attrs, surface, _tlod_shader_strip_vert};
+  /* The material is source string 1 from its line 1: the driver's log names its lines. */
+  const char* frag[] = {version, _tlod_shader_layout, _tlod_shader_shade_frag, "\n#line 1 1\n",
+                        d->fragment_hook ? d->fragment_hook : _tlod_shader_material};
+  char error[1600] = "";
   gl_programs* ps = &d->programs[type];
-  ps->pattern.id = _tlod_gl_program(pattern, 5, frag, 2, error, sizeof(error));
-  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, 5, frag, 2, error, sizeof(error));
+  ps->pattern.id = _tlod_gl_program(pattern, 6, frag, 5, error, sizeof(error));
+  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, 6, frag, 5, error, sizeof(error));
   bool ok = ps->pattern.id && ps->strip.id;
   for (int sh = 0; sh < 2 && d->hardware && ok; sh++) {
     const char* corners = sh ? "#define TLOD_CORNERS 4\n" : "#define TLOD_CORNERS 3\n";
-    const char* vs[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_tess_vert};
-    const char* tcs[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_tess_tesc};
-    const char* tes[] = {version, corners, _tlod_shader_layout, _tlod_shader_common, surface, _tlod_shader_tess_tese};
+    const char* vs[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
+                        attrs,   surface, _tlod_shader_tess_vert};
+    const char* tcs[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
+                         attrs,   surface, _tlod_shader_tess_tesc};
+    const char* tes[] = {version, corners, _tlod_shader_layout,   _tlod_shader_common,
+                         attrs,   surface, _tlod_shader_tess_tese};
     const char* const* stages[4] = {vs, tcs, tes, frag};
-    const int counts[4] = {6, 6, 6, 2};
+    const int counts[4] = {7, 7, 7, 5};
     ps->tess[sh].id = _tlod_gl_program_tess(stages, counts, error, sizeof(error));
     ok = ps->tess[sh].id != 0;
   }
@@ -230,6 +251,7 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   d->patterns = desc->patterns;
   d->lmax = tlod_patterns_max_level(desc->patterns);
   d->hardware = desc->gl.hardware_tessellation;
+  d->fragment_hook = desc->gl.fragment_hook;
   snprintf(d->label, sizeof(d->label), "%s", desc->label);
   /* Named objects only (DSA): creating them binds nothing of the engine's. */
   GLuint bufs[5];
@@ -251,6 +273,7 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
     if (mask & (1u << t)) r = build_programs(d, (tlod_surface_type)t);
   }
   if (r == TLOD_SUCCESS) r = upload_patterns(d);
+  d->fragment_hook = NULL; /* the caller's string: not kept */
   if (r != TLOD_SUCCESS) {
     gl_destroy(d);
     return r;
@@ -261,6 +284,42 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
 }
 
 /* ---- surfaces -------------------------------------------------------------- */
+
+/* The centre of the box around the patches' bounding spheres: where a
+ * BLEND item is, for the back-to-front order. */
+static void surface_center(const tlod_surface* s, float out[3]) {
+  tlod_surface_view v = tlod_surface_query_view(s);
+  float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (uint32_t p = 0; p < v.patch_count; p++) {
+    for (int k = 0; k < 3; k++) {
+      float a = v.patches[p].center[k] - v.patches[p].radius, b = v.patches[p].center[k] + v.patches[p].radius;
+      lo[k] = p == 0 || a < lo[k] ? a : lo[k];
+      hi[k] = p == 0 || b > hi[k] ? b : hi[k];
+    }
+  }
+  for (int k = 0; k < 3; k++)
+    out[k] = 0.5f * (lo[k] + hi[k]);
+}
+
+/* The mesh attributes per patch and corner (tlod_mesh_patch_attributes), the
+ * layout of TLOD_BINDING_ATTRIBUTES; one vec4 of zeros without any. */
+static tlod_result upload_attributes(gl_device* d, gl_surface* gs, const tlod_surface* s) {
+  const tlod_mesh* mesh = tlod_surface_mesh(s);
+  uint32_t n = gs->patch_count, count = tlod_mesh_attribute_count(mesh);
+  size_t vec4s = (size_t)n * 4u * count;
+  if (vec4s > UINT32_MAX - 1u ||
+      !_tlod_device_grow(d->ctx, (void**)&d->attributes, &d->attribute_cap, (uint32_t)vec4s + 1u, sizeof(float[4])))
+    return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory for %u patches' attributes",
+                             n);
+  memset(d->attributes, 0, sizeof(float[4]));
+  tlod_result r = count ? tlod_mesh_patch_attributes(mesh, 0, n, d->attributes) : TLOD_SUCCESS;
+  if (r != TLOD_SUCCESS) return r;
+  size_t bytes = sizeof(float[4]) * (vec4s ? vec4s : 1u);
+  glNamedBufferData(gs->buf_attributes, (GLsizeiptr)bytes, d->attributes, GL_STATIC_DRAW);
+  gs->attribute_count = count;
+  d->stats->gl.attribute_bytes += bytes;
+  return TLOD_SUCCESS;
+}
 
 static tlod_result upload_surface(gl_device* d, gl_surface* gs, const tlod_surface* s) {
   double t0 = tlod_now_ms();
@@ -273,6 +332,9 @@ static tlod_result upload_surface(gl_device* d, gl_surface* gs, const tlod_surfa
   if (!n) memset(d->records, 0, sizeof(tlod_patch_record));
   glNamedBufferData(gs->buf_patches, (GLsizeiptr)bytes, d->records, GL_STATIC_DRAW);
   d->stats->gl.patch_bytes += bytes;
+  surface_center(s, gs->center);
+  r = upload_attributes(d, gs, s);
+  if (r != TLOD_SUCCESS) return r;
   d->stats->gl.surface_upload_ms += tlod_now_ms() - t0;
   return TLOD_SUCCESS;
 }
@@ -292,9 +354,11 @@ static tlod_result gl_create_surface(void* state, const tlod_surface* s, void** 
   gs->patch_count = view.patch_count;
   gs->surface = s;
   glCreateBuffers(1, &gs->buf_patches);
+  glCreateBuffers(1, &gs->buf_attributes);
   tlod_result r = upload_surface(d, gs, s);
   if (r != TLOD_SUCCESS) {
     glDeleteBuffers(1, &gs->buf_patches);
+    glDeleteBuffers(1, &gs->buf_attributes);
     tlod_context_free(d->ctx, gs);
     return r;
   }
@@ -310,6 +374,7 @@ static void gl_destroy_surface(void* state, void* surface_state) {
   gl_device* d = state;
   gl_surface* gs = surface_state;
   glDeleteBuffers(1, &gs->buf_patches);
+  glDeleteBuffers(1, &gs->buf_attributes);
   tlod_context_free(d->ctx, gs);
 }
 
@@ -440,15 +505,43 @@ static void set_view_uniforms(gl_device* d, const tlod_draw_desc* fr) {
   }
 }
 
-static void set_item_uniforms(const gl_device* d, const gl_programs* ps, const _tlod_item_shading* sh) {
+static void set_item_uniforms(const gl_device* d, const gl_programs* ps, const _tlod_item_shading* sh,
+                              const tlod_draw_item* it, const gl_surface* gs) {
   const gl_program* progs[4];
+  uint32_t texcoord = it->base_color_texture ? it->base_color_texcoord : TLOD_SHADER_MAX_ATTRIBUTES;
+  float cutoff = it->has_alpha_cutoff ? it->alpha_cutoff : 0.5f;
   for (int k = 0, n = programs_of(d, ps, progs); k < n; k++) {
     const gl_program* p = progs[k];
     glProgramUniformMatrix4fv(p->id, p->loc[U_VIEW_PROJ], 1, GL_FALSE, sh->mvp);
     glProgramUniformMatrix4fv(p->id, p->loc[U_MODEL], 1, GL_FALSE, sh->model);
     glProgramUniformMatrix3fv(p->id, p->loc[U_NORMAL_MATRIX], 1, GL_FALSE, sh->normal_matrix);
     glProgramUniform4fv(p->id, p->loc[U_BASE_COLOR], 1, sh->color);
+    glProgramUniform1ui(p->id, p->loc[U_BLEND], (uint32_t)it->blend);
+    glProgramUniform1f(p->id, p->loc[U_ALPHA_CUTOFF], cutoff);
+    glProgramUniform1ui(p->id, p->loc[U_TEXCOORD], texcoord);
+    glProgramUniform1ui(p->id, p->loc[U_ATTRIBUTE_COUNT], gs->attribute_count);
   }
+}
+
+/* The item's fixed-function state: culling, blending and depth writes, its
+ * texture on TLOD_TEXTURE_UNIT_BASE_COLOR (the active unit while drawing). */
+static void set_item_state(const _tlod_draw_ref* it) {
+  const tlod_draw_item* item = it->item;
+  if (item->cull_back_faces) {
+    glEnable(GL_CULL_FACE);
+  } else {
+    glDisable(GL_CULL_FACE);
+  }
+  bool blend = item->blend == TLOD_BLEND_BLEND;
+  if (blend) {
+    glEnable(GL_BLEND);
+  } else {
+    glDisable(GL_BLEND);
+  }
+  glDepthMask(blend ? GL_FALSE : GL_TRUE);
+  const gl_texture* t = it->texture_state;
+  glBindTexture(GL_TEXTURE_2D, t ? t->texture : 0);
+  glBindSampler(TLOD_TEXTURE_UNIT_BASE_COLOR, t ? t->sampler : 0);
 }
 
 static void set_debug(const gl_device* d, const gl_programs* ps, uint32_t debug) {
@@ -547,6 +640,46 @@ static void read_query(gl_device* d) {
   d->stats->gl.primitives_generated = prims;
 }
 
+/* Eye-space depth (negative in front of the camera) of the item's centre. */
+static float item_depth(const tlod_draw_desc* fr, const _tlod_draw_ref* it) {
+  static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  const float* m = it->item->has_model ? it->item->model : identity;
+  const float* c = ((const gl_surface*)it->surface_state)->center;
+  float w[3];
+  for (int r = 0; r < 3; r++)
+    w[r] = m[r] * c[0] + m[4 + r] * c[1] + m[8 + r] * c[2] + m[12 + r];
+  const float* v = fr->view;
+  return v[2] * w[0] + v[6] * w[1] + v[10] * w[2] + v[14];
+}
+
+/* d->order: the non-BLEND items in item order, then the BLEND items
+ * farthest first (most negative eye z; a stable insertion sort: equal
+ * depths keep item order, and blended items are few). */
+static tlod_result order_items(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items) {
+  uint32_t n = fr->item_count, opaque = 0, blended = 0;
+  if (!_tlod_device_grow(d->ctx, (void**)&d->order, &d->order_cap, n, sizeof(uint32_t)) ||
+      !_tlod_device_grow(d->ctx, (void**)&d->order_depth, &d->order_depth_cap, n, sizeof(float)))
+    return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory ordering %u items", n);
+  for (uint32_t k = 0; k < n; k++)
+    opaque += items[k].item->blend != TLOD_BLEND_BLEND;
+  for (uint32_t k = 0, o = 0; k < n; k++) {
+    if (items[k].item->blend != TLOD_BLEND_BLEND) {
+      d->order[o++] = k;
+      continue;
+    }
+    float z = item_depth(fr, &items[k]);
+    uint32_t j = blended++;
+    while (j > 0 && d->order_depth[j - 1] > z) {
+      d->order_depth[j] = d->order_depth[j - 1];
+      d->order[opaque + j] = d->order[opaque + j - 1];
+      j--;
+    }
+    d->order_depth[j] = z;
+    d->order[opaque + j] = k;
+  }
+  return TLOD_SUCCESS;
+}
+
 /* Item k: its patterns and strips, then (wireframe) its edges over them. */
 static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, uint32_t k,
                       tlod_draw_item_stats* st) {
@@ -557,8 +690,10 @@ static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
   const struct gl_item_range* range = &d->ranges[k];
   _tlod_item_shading sh;
   _tlod_item_shading_of(fr, it->item, &sh);
-  set_item_uniforms(d, ps, &sh);
+  set_item_uniforms(d, ps, &sh, it->item, gs);
+  set_item_state(it);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TLOD_BINDING_PATCHES, gs->buf_patches);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TLOD_BINDING_ATTRIBUTES, gs->buf_attributes);
   if (fr->wireframe) {
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glEnable(GL_POLYGON_OFFSET_FILL);
@@ -588,6 +723,7 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   gl_saved_state saved;
   _tlod_gl_save_state(&saved);
   tlod_result r = stage(d, fr, items, item_stats);
+  if (r == TLOD_SUCCESS) r = order_items(d, fr, items);
   if (r != TLOD_SUCCESS) {
     _tlod_gl_restore_state(&saved);
     return r;
@@ -600,7 +736,12 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glDisable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
   glDisable(GL_BLEND);
+  glBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glActiveTexture(GL_TEXTURE0 + TLOD_TEXTURE_UNIT_BASE_COLOR);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   /* An engine may be timing the frame around us: one query per target can
    * be active, so ours stay out of its way then. */
@@ -614,8 +755,10 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
     glBeginQuery(GL_PRIMITIVES_GENERATED, d->prim_queries[d->frame % QUERY_RING]);
   }
   set_view_uniforms(d, fr);
-  for (uint32_t k = 0; k < fr->item_count; k++)
+  for (uint32_t j = 0; j < fr->item_count; j++) {
+    uint32_t k = d->order[j];
     draw_item(d, fr, &items[k], k, &item_stats[k]);
+  }
   if (timed) {
     glEndQuery(GL_PRIMITIVES_GENERATED);
     glEndQuery(GL_TIME_ELAPSED);
@@ -629,6 +772,16 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
     d->stats->wall_ms = tlod_now_ms() - t0;
   }
   return TLOD_SUCCESS;
+}
+
+static tlod_result gl_create_texture(void* state, const tlod_texture_desc* desc, void** texture_state) {
+  gl_device* d = state;
+  return _tlod_gl_texture_create(d->ctx, desc, (gl_texture**)texture_state);
+}
+
+static void gl_destroy_texture(void* state, void* texture_state) {
+  gl_device* d = state;
+  _tlod_gl_texture_destroy(d->ctx, texture_state);
 }
 
 static tlod_result gl_read_image(void* state, uint32_t width, uint32_t height, uint8_t* rgba) {
@@ -649,5 +802,13 @@ static tlod_result gl_read_image(void* state, uint32_t width, uint32_t height, u
   return TLOD_SUCCESS;
 }
 
-const _tlod_device_vtbl _tlod_gl_device_vtbl = {gl_create,          gl_destroy, gl_create_surface, gl_update_surface,
-                                                gl_destroy_surface, gl_draw,    gl_read_image,     true};
+const _tlod_device_vtbl _tlod_gl_device_vtbl = {.create = gl_create,
+                                                .destroy = gl_destroy,
+                                                .create_surface = gl_create_surface,
+                                                .update_surface = gl_update_surface,
+                                                .destroy_surface = gl_destroy_surface,
+                                                .draw = gl_draw,
+                                                .read_image = gl_read_image,
+                                                .times_draws = true,
+                                                .create_texture = gl_create_texture,
+                                                .destroy_texture = gl_destroy_texture};

@@ -11,7 +11,9 @@
 #include "tesslod/gl.h"
 
 #if TLOD_GL_BINDING_PATCHES != TLOD_BINDING_PATCHES || TLOD_GL_BINDING_PATTERNS != TLOD_BINDING_PATTERN ||             \
-    TLOD_GL_BINDING_INSTANCES != TLOD_BINDING_INSTANCES || TLOD_GL_BINDING_STRIPS != TLOD_BINDING_STRIPS
+    TLOD_GL_BINDING_INSTANCES != TLOD_BINDING_INSTANCES || TLOD_GL_BINDING_STRIPS != TLOD_BINDING_STRIPS ||            \
+    TLOD_GL_BINDING_ATTRIBUTES != TLOD_BINDING_ATTRIBUTES ||                                                           \
+    TLOD_GL_TEXTURE_UNIT_BASE_COLOR != TLOD_TEXTURE_UNIT_BASE_COLOR
 #error "tesslod/gl.h and backends/shaders/layout.h disagree on the binding points"
 #endif
 
@@ -26,10 +28,20 @@ typedef struct gl_saved_state {
   GLboolean cull, depth_test, depth_mask, blend, offset_fill;
   GLfloat offset_factor, offset_units;
   GLint patch_vertices;
+  GLint front_face, blend_src_rgb, blend_dst_rgb, blend_src_alpha, blend_dst_alpha, blend_eq_rgb, blend_eq_alpha;
+  GLint active_texture, texture_2d, sampler; /* the last two: of TLOD_TEXTURE_UNIT_BASE_COLOR */
 } gl_saved_state;
 
 void _tlod_gl_save_state(gl_saved_state* s);
 void _tlod_gl_restore_state(const gl_saved_state* s);
+
+/* A texture and its sampler (gl_texture.c). */
+typedef struct gl_texture {
+  GLuint texture, sampler;
+} gl_texture;
+
+tlod_result _tlod_gl_texture_create(tlod_context* ctx, const tlod_texture_desc* desc, gl_texture** out);
+void _tlod_gl_texture_destroy(tlod_context* ctx, gl_texture* t);
 
 /* Compiles and links a program from the shader sources; on failure writes
  * the driver's log to error and returns 0. */
@@ -47,6 +59,8 @@ extern const char* const _tlod_shader_flat;
 extern const char* const _tlod_shader_pattern_vert;
 extern const char* const _tlod_shader_strip_vert;
 extern const char* const _tlod_shader_shade_frag;
+extern const char* const _tlod_shader_attributes;
+extern const char* const _tlod_shader_material;
 extern const char* const _tlod_shader_tess_vert;
 extern const char* const _tlod_shader_tess_tesc;
 extern const char* const _tlod_shader_tess_tese;

@@ -17,6 +17,23 @@ static const char* stage_name(GLenum stage) {
   }
 }
 
+/* Writes the driver's log with source string 1 (the fragment stage's
+ * material: the device's fragment hook) named "fragment_hook": Mesa writes
+ * "1:LINE(COL): ...", NVIDIA "1(LINE) : ...". */
+static void name_sources(const char* log, char* out, size_t size) {
+  size_t o = 0;
+  for (const char* p = log; *p && o + 1 < size; p++) {
+    bool line_start = p == log || p[-1] == '\n';
+    if (line_start && p[0] == '1' && (p[1] == ':' || p[1] == '(')) {
+      o += (size_t)snprintf(out + o, size - o, "fragment_hook");
+      if (o >= size) break;
+      continue;
+    }
+    out[o++] = *p;
+  }
+  out[o < size ? o : size - 1] = '\0';
+}
+
 static GLuint compile(GLenum stage, const char* const* src, int count, char* error, size_t error_size) {
   GLuint sh = glCreateShader(stage);
   glShaderSource(sh, count, src, NULL);
@@ -24,9 +41,10 @@ static GLuint compile(GLenum stage, const char* const* src, int count, char* err
   GLint ok = 0;
   glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
   if (!ok) {
-    char log[1024] = "";
+    char log[1024] = "", named[1200] = "";
     glGetShaderInfoLog(sh, sizeof(log), NULL, log);
-    snprintf(error, error_size, "%s shader: %s", stage_name(stage), log);
+    if (stage == GL_FRAGMENT_SHADER) name_sources(log, named, sizeof(named));
+    snprintf(error, error_size, "%s shader: %s", stage_name(stage), stage == GL_FRAGMENT_SHADER ? named : log);
     glDeleteShader(sh);
     return 0;
   }

@@ -26,6 +26,19 @@ void _tlod_gl_save_state(gl_saved_state* s) {
   glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &s->offset_factor);
   glGetFloatv(GL_POLYGON_OFFSET_UNITS, &s->offset_units);
   glGetIntegerv(GL_PATCH_VERTICES, &s->patch_vertices);
+  glGetIntegerv(GL_FRONT_FACE, &s->front_face);
+  glGetIntegerv(GL_BLEND_SRC_RGB, &s->blend_src_rgb);
+  glGetIntegerv(GL_BLEND_DST_RGB, &s->blend_dst_rgb);
+  glGetIntegerv(GL_BLEND_SRC_ALPHA, &s->blend_src_alpha);
+  glGetIntegerv(GL_BLEND_DST_ALPHA, &s->blend_dst_alpha);
+  glGetIntegerv(GL_BLEND_EQUATION_RGB, &s->blend_eq_rgb);
+  glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &s->blend_eq_alpha);
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &s->active_texture);
+  /* Per unit: read on the device's unit, the engine's active unit restored after. */
+  glActiveTexture(GL_TEXTURE0 + TLOD_TEXTURE_UNIT_BASE_COLOR);
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &s->texture_2d);
+  glGetIntegerv(GL_SAMPLER_BINDING, &s->sampler);
+  glActiveTexture((GLenum)s->active_texture);
 }
 
 static void set_enabled(GLenum cap, GLboolean on) {
@@ -64,4 +77,13 @@ void _tlod_gl_restore_state(const gl_saved_state* s) {
   set_enabled(GL_POLYGON_OFFSET_FILL, s->offset_fill);
   glPolygonOffset(s->offset_factor, s->offset_units);
   glPatchParameteri(GL_PATCH_VERTICES, s->patch_vertices);
+  glFrontFace((GLenum)s->front_face);
+  glBlendFuncSeparate((GLenum)s->blend_src_rgb, (GLenum)s->blend_dst_rgb, (GLenum)s->blend_src_alpha,
+                      (GLenum)s->blend_dst_alpha);
+  glBlendEquationSeparate((GLenum)s->blend_eq_rgb, (GLenum)s->blend_eq_alpha);
+  /* Only the 2D target of the unit: glBindTextureUnit would unbind the others. */
+  glActiveTexture(GL_TEXTURE0 + TLOD_TEXTURE_UNIT_BASE_COLOR);
+  glBindTexture(GL_TEXTURE_2D, (GLuint)s->texture_2d);
+  glBindSampler(TLOD_TEXTURE_UNIT_BASE_COLOR, (GLuint)s->sampler);
+  glActiveTexture((GLenum)s->active_texture);
 }

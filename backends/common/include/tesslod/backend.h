@@ -95,6 +95,7 @@ extern "C" {
 
 typedef struct tlod_device tlod_device;
 typedef struct tlod_device_surface tlod_device_surface;
+typedef struct tlod_device_texture tlod_device_texture;
 
 typedef enum tlod_debug_view {
   TLOD_DEBUG_NONE = 0,   /* shaded */
@@ -123,6 +124,14 @@ typedef struct tlod_device_gl_desc {
    * TLOD_ERROR_UNSUPPORTED. Each type costs two program links (four with
    * hardware_tessellation) at creation, none later. */
   uint32_t surface_types;
+  /* GLSL (version 450 core) defining `vec4 tlod_shade(tlod_fragment f)`,
+   * the material of every item drawn by this device; NULL: the built-in
+   * shading (tlod_draw_item). tlod_fragment and what the hook may use are
+   * documented in tesslod/gl.h. Compiled into every program at creation: a
+   * hook that does not compile is TLOD_ERROR_BACKEND, the last error
+   * carrying the driver's log with the hook's own line numbers
+   * ("fragment_hook:LINE"). Copied: need not outlive the call. */
+  const char* fragment_hook;
 } tlod_device_gl_desc;
 
 typedef struct tlod_device_desc {
@@ -140,7 +149,8 @@ typedef struct tlod_device_desc {
 TLOD_API const char* tlod_backend_names(void);
 /* Creates a device: shared state made once (see WHAT IT DOES). */
 TLOD_API tlod_result tlod_device_create(tlod_context* ctx, const tlod_device_desc* desc, tlod_device** out);
-/* Destroys a device and any device surface still made from it; NULL is a no-op. */
+/* Destroys a device and any device surface and texture still made from
+ * it; NULL is a no-op. */
 TLOD_API void tlod_device_destroy(tlod_device* dev);
 /* The backend's name ("gl"); "" for NULL. */
 TLOD_API const char* tlod_device_backend(const tlod_device* dev);
@@ -161,8 +171,67 @@ TLOD_API tlod_result tlod_device_update_surface(tlod_device* dev, tlod_device_su
 TLOD_API void tlod_device_destroy_surface(tlod_device* dev, tlod_device_surface* ds);
 
 /* ------------------------------------------------------------------------ */
+/* Textures                                                                 */
+/* ------------------------------------------------------------------------ */
+
+typedef enum tlod_wrap {
+  TLOD_WRAP_DEFAULT = 0, /* REPEAT (glTF's default) */
+  TLOD_WRAP_REPEAT,
+  TLOD_WRAP_CLAMP_TO_EDGE,
+  TLOD_WRAP_MIRRORED_REPEAT,
+  TLOD_WRAP_NUM,
+  _TLOD_WRAP_FORCE_U32 = 0x7FFFFFFF
+} tlod_wrap;
+
+typedef enum tlod_filter {
+  TLOD_FILTER_DEFAULT = 0, /* LINEAR (minification: linear between linear mipmaps) */
+  TLOD_FILTER_NEAREST,     /* minification with mipmaps: nearest texel of the nearest mipmap */
+  TLOD_FILTER_LINEAR,
+  TLOD_FILTER_NUM,
+  _TLOD_FILTER_FORCE_U32 = 0x7FFFFFFF
+} tlod_filter;
+
+#define TLOD_TEXTURE_MAX_SIZE 16384
+
+/* An RGBA8 image for tlod_draw_item.base_color_texture. */
+typedef struct tlod_texture_desc {
+  uint32_t width, height; /* texels, 1..TLOD_TEXTURE_MAX_SIZE each */
+  /* Required: width * height RGBA8 texels, TOP row first (as PNG and JPEG
+   * decode), tightly packed; copied, need not outlive the call. Texture
+   * coordinate (0, 0) is the top-left texel's corner, as in glTF. */
+  const uint8_t* rgba8;
+  bool srgb; /* sRGB-encoded colour (glTF base colour textures): decoded to linear when sampled */
+  tlod_wrap wrap_s, wrap_t;
+  tlod_filter min_filter, mag_filter;
+  bool mipmaps_off;  /* default: a full mipmap chain, generated from rgba8 */
+  const char* label; /* names the texture in messages; default "texture" */
+} tlod_texture_desc;
+
+/* Makes the device's copy of an image. Refused with
+ * TLOD_ERROR_INVALID_ARGUMENT naming the field: NULL desc, out or rgba8, a
+ * width or height of 0 or past TLOD_TEXTURE_MAX_SIZE, a wrap or filter
+ * value >= its _NUM. "cpu" and "null" validate, count (stats.textures_*)
+ * and keep nothing of the texels. A texture may be drawn by any number of
+ * items; tlod_device_destroy() destroys the textures still made from the
+ * device. */
+TLOD_API tlod_result tlod_device_create_texture(tlod_device* dev, const tlod_texture_desc* desc,
+                                                tlod_device_texture** out);
+/* NULL is a no-op. A texture of another device is not destroyed (the
+ * context's last error says so). */
+TLOD_API void tlod_device_destroy_texture(tlod_device* dev, tlod_device_texture* tex);
+
+/* ------------------------------------------------------------------------ */
 /* Drawing                                                                  */
 /* ------------------------------------------------------------------------ */
+
+/* How an item's alpha is used (glTF alphaMode). */
+typedef enum tlod_blend_mode {
+  TLOD_BLEND_OPAQUE = 0, /* alpha ignored (written as the colour's alpha, as before) */
+  TLOD_BLEND_MASK,       /* fragments of alpha < alpha_cutoff are discarded, the rest opaque */
+  TLOD_BLEND_BLEND,      /* straight (not premultiplied) alpha over what is drawn: see tlod_device_draw */
+  TLOD_BLEND_NUM,
+  _TLOD_BLEND_FORCE_U32 = 0x7FFFFFFF
+} tlod_blend_mode;
 
 /* One object of a draw. */
 typedef struct tlod_draw_item {
@@ -177,6 +246,20 @@ typedef struct tlod_draw_item {
    * light grey (0.8, 0.8, 0.8, 1). */
   float color[4];
   bool has_color;
+  /* Optional, a texture of the device drawn with: its sample multiplies
+   * color. Its coordinates are mesh attribute base_color_texcoord (the
+   * attribute's first two components), which must exist and have at least
+   * two components. */
+  const tlod_device_texture* base_color_texture;
+  uint32_t base_color_texcoord;
+  tlod_blend_mode blend;
+  /* MASK: read only when has_alpha_cutoff is true, otherwise 0.5; finite. */
+  float alpha_cutoff;
+  bool has_alpha_cutoff;
+  /* true: back faces (clockwise in the window) are culled (glTF
+   * doubleSided false). false (a zeroed item): both sides are drawn, back
+   * faces shaded with the flipped normal. */
+  bool cull_back_faces;
 } tlod_draw_item;
 
 typedef struct tlod_draw_desc {
@@ -192,8 +275,19 @@ typedef struct tlod_draw_desc {
   bool finish;    /* wait for the GPU and measure wall time (llvmpipe's timer queries miss most work) */
 } tlod_draw_desc;
 
-/* Draws every item for one view, in item order (GL: per item its patterns,
- * then its strips, then, with wireframe, its edges). */
+/* Draws every item for one view: first every item whose blend is not
+ * TLOD_BLEND_BLEND, in item order, then the BLEND items farthest first (by
+ * the eye-space depth of the model-transformed centre of their surface's
+ * bounding box of patch spheres; equal depths keep item order) with depth
+ * writes off (depth test on), blending straight alpha:
+ * rgb = src.rgb * src.a + dst.rgb * (1 - src.a),
+ * a = src.a + dst.a * (1 - src.a). GL: per item its patterns, then its
+ * strips, then, with wireframe, its edges.
+ * Besides the CONTRACT checks, an item is refused naming it when its
+ * texture belongs to another device, its base_color_texcoord is not an
+ * attribute of the surface's mesh with >= 2 components (checked only with a
+ * texture), its blend is >= TLOD_BLEND_NUM or its alpha_cutoff (when
+ * has_alpha_cutoff) is not finite. */
 TLOD_API tlod_result tlod_device_draw(tlod_device* dev, const tlod_draw_desc* desc);
 /* Reads width x height RGBA8 pixels at (0, 0) of the bound read framebuffer,
  * bottom row first. Devices without an image ("cpu", "null"):
@@ -213,6 +307,8 @@ typedef struct tlod_device_gl_stats {
   uint32_t pattern_uploads; /* pattern vertex + index buffer uploads since creation (1) */
   uint64_t pattern_bytes;   /* bytes of those uploads */
   uint64_t patch_bytes;     /* patch record bytes uploaded since creation (surface create + update) */
+  uint64_t attribute_bytes; /* attribute bytes (TLOD_GL_BINDING_ATTRIBUTES) uploaded since creation; 16 per
+                               upload of a mesh without attributes */
   double create_ms;         /* device creation: programs linked, patterns uploaded */
   double surface_upload_ms; /* since creation: time in surface create + update */
   uint32_t buffer_streams;  /* per-draw buffer uploads of the last draw (instances, strips, strip refs) */
@@ -232,6 +328,8 @@ typedef struct tlod_device_stats {
   uint32_t surfaces_live;
   uint64_t surfaces_created, surfaces_destroyed, surface_updates;
   uint64_t draws, items_drawn, triangles_drawn;
+  uint32_t textures_live;
+  uint64_t textures_created, textures_destroyed, texture_bytes; /* bytes: width * height * 4 of those created */
   tlod_device_gl_stats gl;
 } tlod_device_stats;
 

@@ -77,10 +77,15 @@
 
 #include "tesslod/core.h" /* tlod_patch_record: the layout at TLOD_GL_BINDING_PATCHES */
 
-#define TLOD_GL_BINDING_PATCHES 0   /* per patch: tlod_patch_record (corners, normals, weld ids, PN data) */
-#define TLOD_GL_BINDING_PATTERNS 1  /* pattern vertices of both shapes */
-#define TLOD_GL_BINDING_INSTANCES 2 /* per visible patch: level, geomorph blends, edge levels */
-#define TLOD_GL_BINDING_STRIPS 3    /* per connection strip: patches, edges, levels, blends */
+#define TLOD_GL_BINDING_PATCHES 0    /* per patch: tlod_patch_record (corners, normals, weld ids, PN data) */
+#define TLOD_GL_BINDING_PATTERNS 1   /* pattern vertices of both shapes */
+#define TLOD_GL_BINDING_INSTANCES 2  /* per visible patch: level, geomorph blends, edge levels */
+#define TLOD_GL_BINDING_STRIPS 3     /* per connection strip: patches, edges, levels, blends */
+#define TLOD_GL_BINDING_ATTRIBUTES 4 /* per patch and corner: vec4 mesh attributes (tlod_mesh_patch_attributes) */
+
+/* Texture unit of the base colour texture while drawing (sampler2D
+ * u_base_color_texture of the fragment stage). */
+#define TLOD_GL_TEXTURE_UNIT_BASE_COLOR 0
 
 /* GLSL version of the shaders (backends/shaders), compiled at device creation. */
 #define TLOD_GL_GLSL_VERSION 450
