@@ -211,6 +211,7 @@ static int play_modes(play_session* p) {
   int rc = CLI_OK;
   for (uint32_t k = 0; k < o->mode_count && rc == CLI_OK && (k == 0 || !play_interrupted); k++)
     rc = play_one_mode(p, &run, k);
+  free(run.items);
   return rc;
 }
 

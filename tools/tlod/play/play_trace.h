@@ -34,7 +34,8 @@ typedef struct play_frame {
   uint32_t frame;
   double time_s;
   float eye[3], target[3], up[3], fovy, near_z, far_z;
-  double at_ms, frame_ms; /* start since the run started; scheduler + draws, wall clock */
+  double at_ms, frame_ms; /* start since the run started; animation + scheduler + draws, wall clock */
+  double anim_ms;         /* node animation and skinning (play_scene_pose), wall clock; 0 when nothing moves */
   double screenshot_at_ms, screenshot_ms;
   char screenshot[48]; /* "screenshots/frame_00025.png" or "" */
 } play_frame;
@@ -53,6 +54,10 @@ typedef struct play_object_info {
   char source[256];
   uint32_t vertices, faces, patches;
   float color[4];
+  uint32_t surface; /* objects drawing one surface share it (glTF instances) */
+  int64_t node;     /* glTF node index, -1: none */
+  bool skinned;     /* skinned on the CPU every frame (its own surface) */
+  bool textured;    /* draws a base colour texture */
 } play_object_info;
 
 /* Frames held in memory: when the window is full, its frames are appended
