@@ -34,20 +34,23 @@ def obj(fields):
     return ("obj", fields)
 
 
-OBJECT_INFO = obj({"name": STR, "source": STR, "vertices": INT, "faces": INT, "patches": INT, "color": vec(4)})
+OBJECT_INFO = obj({"name": STR, "source": STR, "vertices": INT, "faces": INT, "patches": INT, "color": vec(4),
+                   "surface": INT, "node": INT, "skinned": BOOL, "textured": BOOL})
 STAGE_MS = obj({s: NUM for s in STAGES})
 COUNTS = {"backend_cpu_ms": NUM, "backend_gpu_ms": NUM, "backend_wall_ms": NUM, "patches": INT, "visible": INT,
           "culled": INT, "strips": INT, "pattern_triangles": INT, "strip_triangles": INT, "triangles": INT,
           "drawn_triangles": INT, "draw_calls": INT, "effective_epsilon": NUM, "level_histogram": ("ints", LEVELS)}
 FRAME_OBJECT = obj(dict({"name": STR, "scheduler_ms": NUM, "stage_ms": STAGE_MS}, **COUNTS))
 FRAME = obj(dict({"frame": INT, "time_s": NUM, "eye": vec(3), "target": vec(3), "up": vec(3), "fovy": NUM,
-                  "near": NUM, "far": NUM, "frame_ms": NUM, "scheduler_ms": NUM, "stage_ms": STAGE_MS,
+                  "near": NUM, "far": NUM, "frame_ms": NUM, "anim_ms": NUM, "scheduler_ms": NUM, "stage_ms": STAGE_MS,
                   "screenshot_ms": NUM, "screenshot": STR, "objects": ("list", FRAME_OBJECT)}, **COUNTS))
 TRACE = obj({"schema": STR, "tool": STR, "scene": STR, "mode": STR, "backend": STR, "renderer": STR, "surface": STR,
              "policy": STR, "epsilon_px": NUM, "max_level": INT, "path": STR, "path_duration_s": NUM, "loop": BOOL,
              "fps": NUM, "dt_ms": NUM, "width": INT, "height": INT, "screenshot_every": INT,
              "frames_requested": INT, "frames_completed": INT, "stopped": STR, "wall_s": NUM,
-             "objects": ("list", OBJECT_INFO), "frames": ("list", FRAME)})
+             "objects": ("list", OBJECT_INFO), "frames": ("list", FRAME), "objects_inline": INT,
+             "object_counts_file": STR, "animation": STR, "animation_duration_s": NUM, "warning_count": INT,
+             "warnings": ("list", STR)})
 DIST = obj({k: NUM for k in ("mean", "p50", "p95", "p99", "max", "min")})
 RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level": INT, "frames_requested": INT,
            "frames": INT, "stopped": STR, "wall_s": NUM, "frame_ms": DIST, "fps": NUM, "first_frame_ms": NUM,
@@ -59,7 +62,7 @@ RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level
 GL_OBJECTS = obj({k: INT for k in ("buffers", "textures", "renderbuffers", "framebuffers", "vertex_arrays", "programs",
                                    "shaders", "queries")})
 SUMMARY = obj({"schema": STR, "status": STR, "error": STR, "tool": STR, "scene": STR, "backend": STR, "renderer": STR, "surface": STR, "path": STR,
-               "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN)})
+               "animation": STR, "warning_count": INT, "warnings": ("list", STR), "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN)})
 
 
 def is_num(v):
@@ -185,7 +188,7 @@ def check_run(name, out, frames, backend, screenshots_every=0):
     if problems:
         return None
     check(name + ": schema name, backend, frame counts",
-          t["schema"] == "tlod-play-trace/1" and t["backend"] == backend and t["frames_completed"] == frames
+          t["schema"] == "tlod-play-trace/2" and t["backend"] == backend and t["frames_completed"] == frames
           and len(t["frames"]) == frames and t["frames_requested"] == frames and t["stopped"] == "completed",
           (t["schema"], t["backend"], t["frames_completed"], len(t["frames"]), t["stopped"]))
     bad = []

@@ -143,6 +143,10 @@ static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t f
                       .screenshot_every = o->screenshot_every,
                       .objects = p->scene.infos,
                       .object_count = p->scene.count,
+                      .animation = p->scene.animation.channel_count ? p->scene.animation.name : "",
+                      .animation_duration_s = p->scene.animation.duration_s,
+                      .warnings = p->scene.warnings,
+                      .warning_count = p->scene.warning_count,
                       .dir = o->compare ? m->dir : ".",
                       .stopped = "completed"};
 }
