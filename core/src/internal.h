@@ -62,6 +62,12 @@ struct tlod_mesh {
    * v - input_vertex_count); NULL when nothing was split. */
   uint32_t* split_source;
 
+  /* Vertex attributes (mesh_attributes.c): vertex-major vec4s, padded
+   * (0, 0, 0, 1); NULL when attribute_count is 0. */
+  uint32_t attribute_count;
+  float (*attributes)[4];
+  tlod_attribute_info attribute_info[TLOD_MAX_ATTRIBUTES];
+
   tlod_mesh_info info;
   tlod_finding findings[TLOD_MAX_FINDINGS];
 };
@@ -81,6 +87,14 @@ tlod_result _tlod_mesh_build_adjacency(tlod_mesh* mesh);
 /* mesh_normals.c: computes normals of the vertices marked in normal_computed
  * (all when mode is ANGLE/AREA), with the desc's crease angle. */
 tlod_result _tlod_mesh_compute_normals(tlod_mesh* mesh);
+
+/* mesh_attributes.c: the desc's attributes checked before anything is
+ * allocated (label names the mesh); copied after the crease splits (split
+ * vertices take their source's values); whether two vertices carry bitwise
+ * equal attributes (true without attributes). */
+tlod_result _tlod_mesh_check_attributes(tlod_context* ctx, const char* label, const tlod_mesh_desc* d);
+tlod_result _tlod_mesh_copy_attributes(tlod_mesh* mesh, const tlod_mesh_desc* d);
+bool _tlod_mesh_same_attributes(const tlod_mesh* mesh, uint32_t a, uint32_t b);
 
 /* Per-patch precomputed data of a PN triangle: 10 cubic control points and
  * the 3 quadratic normal-field mid-edge normals. Order:

@@ -199,6 +199,7 @@ static tlod_result validate(tlod_context* ctx, const tlod_mesh_desc* in, mesh_pl
   if (r == TLOD_SUCCESS) r = count_faces(ctx, p);
   if (r == TLOD_SUCCESS) r = check_indices(ctx, p);
   if (r == TLOD_SUCCESS) r = check_vertices(ctx, p);
+  if (r == TLOD_SUCCESS) r = _tlod_mesh_check_attributes(ctx, p->label, &p->d);
   return r;
 }
 
@@ -414,6 +415,7 @@ static void store_desc(tlod_mesh* m, const mesh_plan* p) {
   m->desc.alphas = NULL;
   m->desc.indices = NULL;
   m->desc.face_sizes = NULL;
+  m->desc.attributes = NULL;
   m->desc.face_count = p->input_faces;
   m->desc.label = m->label;
 }
@@ -429,7 +431,10 @@ static tlod_result build(tlod_mesh* m, const mesh_plan* p) {
   if (r == TLOD_SUCCESS) r = copy_faces(m, p);
   if (r == TLOD_SUCCESS) r = count_unused(m);
   if (r == TLOD_SUCCESS) r = _tlod_mesh_compute_normals_split(m, &m->split_source);
-  /* Adjacency last: its smooth flags compare the final normals. */
+  /* After the splits, so split vertices get their source's values. */
+  if (r == TLOD_SUCCESS) r = _tlod_mesh_copy_attributes(m, &p->d);
+  /* Adjacency last: its smooth and seam flags compare the final normals
+   * and the attributes. */
   if (r == TLOD_SUCCESS) r = _tlod_mesh_build_adjacency(m);
   if (r == TLOD_SUCCESS) finish_info(m);
   return r;
@@ -475,6 +480,7 @@ void tlod_mesh_destroy(tlod_mesh* mesh) {
   _tlod_free(ctx, mesh->face_input);
   _tlod_free(ctx, mesh->links);
   _tlod_free(ctx, mesh->split_source);
+  _tlod_free(ctx, mesh->attributes);
   _tlod_free(ctx, mesh);
 }
 
@@ -516,7 +522,7 @@ uint32_t tlod_mesh_vertex_weld_id(const tlod_mesh* mesh, uint32_t vertex) {
 
 tlod_edge_link tlod_mesh_edge_link(const tlod_mesh* mesh, uint32_t face, uint32_t edge) {
   if (!mesh || face >= mesh->face_count || edge >= mesh->face_corners[face])
-    return (tlod_edge_link){.face = _TLOD_NONE, .edge = UINT8_MAX, .smooth = false};
+    return (tlod_edge_link){.face = _TLOD_NONE, .edge = UINT8_MAX, .smooth = false, .seam = false};
   return mesh->links[face][edge];
 }
 
@@ -644,5 +650,7 @@ tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* m) {
       .face_corners = m->face_corners,
       .links = (const tlod_edge_link(*)[4])m->links,
       .face_input_index = m->face_input,
+      .attribute_count = m->attribute_count,
+      .attributes = (const float(*)[4])m->attributes,
   };
 }

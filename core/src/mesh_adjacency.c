@@ -196,16 +196,26 @@ static bool edge_smooth(const tlod_mesh* m, uint32_t f, uint32_t e, uint32_t g, 
          same_vertex_data(m, edge_end(m, f, e), edge_start(m, g, ge));
 }
 
+/* A smooth edge whose two sides carry different attribute values at a
+ * corner: the geometry is shared, the attributes are not (a UV seam). */
+static bool edge_seam(const tlod_mesh* m, uint32_t f, uint32_t e, uint32_t g, uint32_t ge) {
+  return !_tlod_mesh_same_attributes(m, edge_start(m, f, e), edge_end(m, g, ge)) ||
+         !_tlod_mesh_same_attributes(m, edge_end(m, f, e), edge_start(m, g, ge));
+}
+
 void _tlod_mesh_refresh_smooth(tlod_mesh* m) {
-  uint32_t creases = 0;
+  uint32_t creases = 0, seams = 0;
   for (uint32_t f = 0; f < m->face_count; f++)
     for (uint32_t e = 0; e < m->face_corners[f]; e++) {
       tlod_edge_link* l = &m->links[f][e];
       if (l->face == _TLOD_NONE) continue;
       l->smooth = edge_smooth(m, f, e, l->face, l->edge);
+      l->seam = l->smooth && edge_seam(m, f, e, l->face, l->edge);
       creases += !l->smooth && f < l->face; /* each edge once */
+      seams += l->seam && f < l->face;
     }
   m->info.crease_edges = creases;
+  m->info.attribute_seam_edges = seams;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -316,9 +326,11 @@ static void link_pair(tlod_mesh* m, uint32_t s, uint32_t t) {
     return;
   }
   bool smooth = edge_smooth(m, f, e, g, ge);
-  m->links[f][e] = (tlod_edge_link){.face = g, .edge = (uint8_t)ge, .smooth = smooth};
-  m->links[g][ge] = (tlod_edge_link){.face = f, .edge = (uint8_t)e, .smooth = smooth};
+  bool seam = smooth && edge_seam(m, f, e, g, ge);
+  m->links[f][e] = (tlod_edge_link){.face = g, .edge = (uint8_t)ge, .smooth = smooth, .seam = seam};
+  m->links[g][ge] = (tlod_edge_link){.face = f, .edge = (uint8_t)e, .smooth = smooth, .seam = seam};
   m->info.crease_edges += !smooth;
+  m->info.attribute_seam_edges += seam;
 }
 
 /* Edges in (smaller, larger welded end) order, so findings are too. */
@@ -351,11 +363,12 @@ tlod_result _tlod_mesh_build_adjacency(tlod_mesh* m) {
   /* Boundary, non-manifold and a triangle's unused fourth slot: no link. */
   for (uint32_t f = 0; f < m->face_count; f++)
     for (uint32_t e = 0; e < 4; e++)
-      m->links[f][e] = (tlod_edge_link){.face = _TLOD_NONE, .edge = UINT8_MAX, .smooth = false};
+      m->links[f][e] = (tlod_edge_link){.face = _TLOD_NONE, .edge = UINT8_MAX, .smooth = false, .seam = false};
   edge_buckets b;
   r = buckets_build(m, &b);
   if (r != TLOD_SUCCESS) return r;
   m->info.boundary_edges = m->info.non_manifold_edges = m->info.crease_edges = 0;
+  m->info.attribute_seam_edges = 0;
   classify_edges(m, &b);
   _tlod_free(m->ctx, b.first);
   _tlod_free(m->ctx, b.half);

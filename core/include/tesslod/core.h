@@ -232,6 +232,30 @@ typedef enum tlod_normal_mode {
  * between them stay below 1.1e38 < FLT_MAX (3.4e38). */
 #define TLOD_POSITION_LIMIT 1e18f
 
+/* ---- Vertex attributes (issue 11) ----
+ * Extra per-vertex data carried through tessellation: texture coordinates,
+ * colours, tangents, a scalar result field. Each attribute is 1..4 floats a
+ * vertex; core stores it as a vec4 (components past the attribute's are
+ * (0, 0, 0, 1), as GL fills a vertex attribute). Across a patch an attribute
+ * is interpolated with the patch's corner weights: barycentric (u, v, w) on
+ * triangles, bilinear on quads (PARAMETERS above), whatever the surface
+ * type; the curved geometry does not bend it. On an edge the value comes
+ * from one canonical edge function (the linear blend of the two end
+ * vertices' values from the smaller weld id), so both patches of an edge
+ * whose corners carry bitwise equal values produce bitwise equal values.
+ * Vertices with one position, normal and alpha but different attribute
+ * values (a UV or colour seam) keep the geometry closed: such an edge stays
+ * smooth and is flagged seam (tlod_edge_link), and each side interpolates
+ * its own values. Attributes are copied at creation; tlod_mesh_update()
+ * leaves them as they are (crease-split vertices carry their source's). */
+#define TLOD_MAX_ATTRIBUTES 8
+typedef struct tlod_attribute_desc {
+  const float* data;   /* required: `components` floats per vertex, finite */
+  uint32_t components; /* 1..4 */
+  uint32_t stride;     /* bytes; 0 == 4 * components; below that: refused */
+  const char* name;    /* optional ("TEXCOORD_0"); copied, at most 31 chars kept */
+} tlod_attribute_desc;
+
 typedef struct tlod_mesh_desc {
   const float* positions;   /* required: xyz per vertex, finite, |x| <= TLOD_POSITION_LIMIT */
   uint32_t position_stride; /* bytes; 0 == 12 */
@@ -256,6 +280,13 @@ typedef struct tlod_mesh_desc {
    * adjacency. 0 == bitwise-equal positions only. */
   float weld_epsilon;
   const char* label; /* names the mesh in messages; default "mesh" */
+  /* Optional vertex attributes (see above), 0..TLOD_MAX_ATTRIBUTES. More,
+   * attributes NULL with a count, components outside 1..4, NULL data or a
+   * stride below 4 * components: TLOD_ERROR_INVALID_ARGUMENT naming the
+   * attribute ("attribute 2 'COLOR_0': components 5 (1..4)"); a value not
+   * finite: TLOD_ERROR_INVALID_MESH naming the vertex and the attribute. */
+  const tlod_attribute_desc* attributes;
+  uint32_t attribute_count;
 } tlod_mesh_desc;
 
 /* What validation found and repaired. Counts are of input elements. */
@@ -274,6 +305,7 @@ typedef struct tlod_mesh_info {
   uint32_t boundary_edges;           /* one face */
   uint32_t non_manifold_edges;       /* three or more faces, or inconsistent orientation */
   uint32_t crease_edges;             /* two faces, but split normals (or alphas) */
+  uint32_t attribute_seam_edges;     /* smooth edges with split attributes (tlod_edge_link.seam) */
   uint32_t finding_count;            /* findings stored (at most TLOD_MAX_FINDINGS) */
   uint32_t findings_dropped;         /* findings past the limit */
   bool closed;                       /* no boundary and no non-manifold edge */
@@ -326,8 +358,20 @@ typedef struct tlod_edge_link {
   uint32_t face; /* neighbouring kept face, UINT32_MAX if none */
   uint8_t edge;  /* its edge index */
   bool smooth;   /* both sides have bitwise equal normals and alphas */
+  /* smooth geometry, but some attribute differs (bitwise) between the two
+   * sides at a corner: a UV or colour seam. Always false when !smooth. */
+  bool seam;
 } tlod_edge_link;
 TLOD_API tlod_edge_link tlod_mesh_edge_link(const tlod_mesh* mesh, uint32_t face, uint32_t edge);
+
+/* The mesh's attributes: their count, and attribute a's name (as given, at
+ * most 31 chars; "" without one) and components; zeroed past the end. */
+typedef struct tlod_attribute_info {
+  char name[32];
+  uint32_t components;
+} tlod_attribute_info;
+TLOD_API uint32_t tlod_mesh_attribute_count(const tlod_mesh* mesh);
+TLOD_API tlod_attribute_info tlod_mesh_query_attribute(const tlod_mesh* mesh, uint32_t a);
 
 /* Updates positions and/or normals of every vertex in place (dynamic meshes:
  * skinning, FEM). Topology is kept; either pointer may be NULL. NULL
@@ -540,8 +584,22 @@ typedef struct tlod_mesh_view {
   const uint8_t* face_corners;      /* 3 or 4 */
   const tlod_edge_link (*links)[4]; /* per face edge, see tlod_mesh_edge_link() */
   const uint32_t* face_input_index; /* input face of each kept face */
+  uint32_t attribute_count;         /* 0..TLOD_MAX_ATTRIBUTES */
+  /* vertex-major: attribute a of vertex v at [v * attribute_count + a];
+   * components past the attribute's are (0, 0, 0, 1) as in GL; NULL when
+   * attribute_count is 0. Never changed by an update. */
+  const float (*attributes)[4];
 } tlod_mesh_view;
 TLOD_API tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* mesh);
+
+/* Per patch and corner, the attribute vec4s as GPU shaders read them: patch
+ * p (counted from first), corner c, attribute a at
+ * out[(p * 4 + c) * attribute_count + a]; corner 3 of a triangle zero. A
+ * mesh without attributes writes nothing. NULL mesh:
+ * TLOD_ERROR_INVALID_ARGUMENT; patches past the end, or out NULL with
+ * something to write: TLOD_ERROR_INVALID_ARGUMENT (last error recorded),
+ * nothing written. */
+TLOD_API tlod_result tlod_mesh_patch_attributes(const tlod_mesh* mesh, uint32_t first, uint32_t count, float (*out)[4]);
 
 /* Read-only arrays of a surface. Valid until the surface is refreshed or
  * destroyed (refresh rewrites the patch data in place). */
@@ -601,6 +659,21 @@ TLOD_API uint32_t tlod_grid_point_kind(uint32_t corner_count, uint32_t grid_log2
 TLOD_API tlod_result tlod_surface_eval_grid(const tlod_surface* surface, uint32_t patch, uint32_t grid_log2,
                                             const uint16_t* ij, size_t ij_stride, uint32_t count, float* positions,
                                             float* normals);
+
+/* Attributes at count grid points of one patch, with the grid and ij
+ * arguments of tlod_surface_eval_grid(): corners are the vertex's values
+ * exactly, edge points come from the canonical edge function (bitwise equal
+ * on both patches of an edge that is not a seam), interior points are
+ * barycentric (triangles: u * A_i + v * A_j + (1 - u - v) * A_k, u = i /
+ * 2^g) or bilinear (quads). out: count * attribute_count vec4s, point k's
+ * attribute a at out[k * attribute_count + a]. A mesh without attributes
+ * writes nothing. Thread-safe; the checks of tlod_surface_eval_grid()
+ * (NULL mesh, patch >= the patch count, grid_log2 > 15, ij NULL with count
+ * > 0, a point off the grid; out NULL with attributes to write):
+ * TLOD_ERROR_INVALID_ARGUMENT, nothing written, no last error recorded. */
+TLOD_API tlod_result tlod_mesh_eval_attributes_grid(const tlod_mesh* mesh, uint32_t patch, uint32_t grid_log2,
+                                                    const uint16_t* ij, size_t ij_stride, uint32_t count,
+                                                    float (*out)[4]);
 
 #ifdef __cplusplus
 }
