@@ -60,8 +60,11 @@ static int tessellate(const tess_options* o, tess_run* r) {
 static int write_output(const tess_options* o, tess_run* r) {
   char err[512];
   double w0 = cli_now_ms();
-  tlod_export_mesh em = {r->out->vertex_count, r->out->positions, r->out->normals, r->out->triangle_count,
-                         r->out->indices};
+  tlod_export_mesh em = {.vertex_count = r->out->vertex_count,
+                         .positions = r->out->positions,
+                         .normals = r->out->normals,
+                         .triangle_count = r->out->triangle_count,
+                         .indices = r->out->indices};
   int rc = tlod_export_file(o->out, &em, err, sizeof(err)) == TLOD_SUCCESS ? CLI_OK : cli_error(CLI_FAILED, "%s", err);
   r->t.write = cli_now_ms() - w0;
   return rc;
