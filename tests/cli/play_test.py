@@ -515,8 +515,9 @@ if have_gl:
           rc == 0 and len(runs) == 1 and "frame ms" in out and "adaptive" in out, (rc, err, runs))
     if len(runs) == 1:
         files = sorted(os.listdir(runs[0]))
-        check("no arguments: the run folder holds the five files",
-              files == ["chrome_trace.json", "summary.json", "summary.txt", "trace.csv", "trace.json"], files)
+        check("no arguments: the run folder holds the six files",
+              files == ["chrome_trace.json", "objects.csv", "summary.json", "summary.txt", "trace.csv", "trace.json"],
+              files)
         t = load_json(os.path.join(runs[0], "trace.json"))
         check("no arguments: demo scene, gl, adaptive, orbit, 240 frames at 1280x720",
               isinstance(t, dict) and t["backend"] == "gl" and t["mode"] == "adaptive" and t["path"] == "orbit"

@@ -3,13 +3,15 @@
  * instancing it); every (node, part) is an object with the part's material
  * and the node's world matrix; the parts of a mesh are surfaces made once
  * and drawn by every node using the mesh; a skinned node gets its own copy
- * of each part's surface (its vertices move every frame). */
+ * of each part's surface (its vertices move every frame). Parts become
+ * meshes through the loading layer (cli_create_part_mesh). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include "cli.h"
+#include "common/mesh_load.h"
 #include "play_scene.h"
 #include "tlod_import.h"
 
@@ -18,67 +20,11 @@ bool play_scene_is_gltf(const char* scene) {
   return strncmp(scene, "demo:", 5) != 0 && ext && (!strcasecmp(ext, ".gltf") || !strcasecmp(ext, ".glb"));
 }
 
-/* First index of every face (face_count + 1 entries). */
-static uint32_t* face_starts(const tlod_import_result* r) {
-  uint32_t* st = malloc(sizeof(uint32_t) * ((size_t)r->face_count + 1));
-  for (uint32_t f = 0, at = 0; st && f <= r->face_count; f++) {
-    st[f] = at;
-    if (f < r->face_count) at += r->face_sizes ? r->face_sizes[f] : 3u;
-  }
-  return st;
-}
-
-/* The part's indices, rebased to its first vertex; NULL (error printed) when one falls outside the part. */
-static uint32_t* part_indices(const play_scene* s, const tlod_import_part* p, const uint32_t* starts, uint32_t* count) {
-  const tlod_import_result* r = s->import;
-  uint32_t first = starts[p->first_face];
-  *count = starts[p->first_face + p->face_count] - first;
-  uint32_t* ix = malloc(sizeof(uint32_t) * (*count ? *count : 1));
-  if (!ix) return cli_error(CLI_FAILED, "out of memory"), NULL;
-  for (uint32_t i = 0; i < *count; i++) {
-    uint32_t v = r->indices[first + i];
-    if (v < p->first_vertex || v - p->first_vertex >= p->vertex_count) {
-      free(ix);
-      return cli_error(CLI_FAILED, "%s: part '%s': index %u outside its vertices", s->name, p->name, v), NULL;
-    }
-    ix[i] = v - p->first_vertex;
-  }
-  return ix;
-}
-
-/* The core mesh of part `part` with its attributes. */
-static int part_mesh(play_scene* s, uint32_t part, const uint32_t* starts, tlod_mesh** out) {
-  const tlod_import_result* r = s->import;
-  const tlod_import_part* p = &r->parts[part];
-  uint32_t count = 0, *ix = part_indices(s, p, starts, &count);
-  if (!ix) return CLI_FAILED;
-  tlod_attribute_desc attrs[TLOD_IMPORT_MAX_ATTRIBUTES];
-  for (uint32_t a = 0; a < r->attribute_count; a++)
-    attrs[a] =
-        (tlod_attribute_desc){.data = r->attributes[a].data + (size_t)r->attributes[a].components * p->first_vertex,
-                              .components = r->attributes[a].components,
-                              .name = r->attributes[a].name};
-  tlod_mesh_desc d = {.positions = r->positions + (size_t)3 * p->first_vertex,
-                      .normals = r->normals ? r->normals + (size_t)3 * p->first_vertex : NULL,
-                      .vertex_count = p->vertex_count,
-                      .indices = ix,
-                      .index_count = count,
-                      .face_type = r->face_sizes ? TLOD_FACE_MIXED : TLOD_FACE_TRIANGLES,
-                      .face_sizes = r->face_sizes ? r->face_sizes + p->first_face : NULL,
-                      .face_count = r->face_sizes ? p->face_count : 0,
-                      .attributes = attrs,
-                      .attribute_count = r->attribute_count,
-                      .label = p->name};
-  tlod_result res = tlod_mesh_create(s->ctx, &d, out);
-  free(ix);
-  if (res != TLOD_SUCCESS) return cli_error(CLI_FAILED, "%s: %s", s->name, tlod_context_last_error(s->ctx));
-  return CLI_OK;
-}
-
 /* Surface of part `part` into s->surfaces[s->surface_count]. */
-static int add_surface(play_scene* s, const play_options* o, uint32_t part, const uint32_t* starts) {
+static int add_surface(play_scene* s, const play_options* o, uint32_t part) {
   play_surface* sf = &s->surfaces[s->surface_count];
-  int rc = part_mesh(s, part, starts, &sf->setup.mesh);
+  cli_part_options po = {.split_quads = o->surface == TLOD_SURFACE_PN};
+  int rc = cli_create_part_mesh(s->ctx, s->import, part, &po, &sf->setup.mesh);
   if (rc != CLI_OK) return rc;
   s->surface_count++; /* play_scene_free frees it from here on */
   tlod_surface_desc sd = {
@@ -135,8 +81,7 @@ static void add_object(play_scene* s, uint32_t n, uint32_t part, uint32_t sf) {
 }
 
 /* Surfaces of mesh m's parts, made at the first node using it. */
-static int node_objects(play_scene* s, const play_options* o, uint32_t n, uint32_t* part_surface,
-                        const uint32_t* starts) {
+static int node_objects(play_scene* s, const play_options* o, uint32_t n, uint32_t* part_surface) {
   const tlod_import_result* r = s->import;
   const tlod_import_node* nd = &r->nodes[n];
   const tlod_import_mesh* m = &r->meshes[nd->mesh];
@@ -145,11 +90,11 @@ static int node_objects(play_scene* s, const play_options* o, uint32_t n, uint32
     uint32_t part = m->first_part + k;
     int rc = CLI_OK;
     if (skinned) {
-      rc = add_surface(s, o, part, starts);
+      rc = add_surface(s, o, part);
       if (rc == CLI_OK) rc = add_skinning(s, &s->surfaces[s->surface_count - 1], part, nd->skin);
       if (rc == CLI_OK) add_object(s, n, part, s->surface_count - 1);
     } else {
-      if (part_surface[part] == UINT32_MAX && (rc = add_surface(s, o, part, starts)) == CLI_OK)
+      if (part_surface[part] == UINT32_MAX && (rc = add_surface(s, o, part)) == CLI_OK)
         part_surface[part] = s->surface_count - 1;
       if (rc == CLI_OK) add_object(s, n, part, part_surface[part]);
     }
@@ -176,14 +121,12 @@ static int make_objects(play_scene* s, const play_options* o) {
   if (objects == 0) return cli_error(CLI_FAILED, "%s: no node draws a mesh", s->name);
   int rc = play_scene_reserve(s, r->part_count + skinned, objects);
   uint32_t* part_surface = malloc(sizeof(uint32_t) * (r->part_count ? r->part_count : 1));
-  uint32_t* starts = face_starts(r);
-  if (rc == CLI_OK && (!part_surface || !starts)) rc = cli_error(CLI_FAILED, "out of memory");
+  if (rc == CLI_OK && !part_surface) rc = cli_error(CLI_FAILED, "out of memory");
   for (uint32_t p = 0; rc == CLI_OK && p < r->part_count; p++)
     part_surface[p] = UINT32_MAX;
   for (uint32_t n = 0; rc == CLI_OK && n < r->node_count; n++)
-    if (r->nodes[n].mesh < r->mesh_count) rc = node_objects(s, o, n, part_surface, starts);
+    if (r->nodes[n].mesh < r->mesh_count) rc = node_objects(s, o, n, part_surface);
   free(part_surface);
-  free(starts);
   return rc;
 }
 
@@ -199,12 +142,10 @@ static void keep_warnings(play_scene* s, const play_options* o) {
 }
 
 int play_gltf_load(const play_options* o, play_scene* s) {
-  char err[1024];
-  if (tlod_import_file_desc(o->scene, &(tlod_import_desc){.keep_scene = true}, &s->import, err, sizeof(err)) !=
-      TLOD_SUCCESS)
-    return cli_error(CLI_FAILED, "%s", err);
+  int rc = cli_load_scene(o->scene, &s->import);
+  if (rc != CLI_OK) return rc;
   keep_warnings(s, o);
-  int rc = make_objects(s, o);
+  rc = make_objects(s, o);
   if (rc == CLI_OK) rc = play_anim_setup(s, o);
   if (rc == CLI_OK) rc = play_scene_pose(s, 0.0);
   for (uint32_t i = 0; rc == CLI_OK && i < s->count; i++) {

@@ -2,6 +2,7 @@
  * camera path, a scheduler update per object and one device draw of every
  * object, every figure recorded in the trace. */
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,16 +72,39 @@ static void record_draw_list(const tlod_draw_list* dl, play_object_stats* st) {
   st->effective_epsilon = dl->effective_epsilon;
 }
 
+/* The scheduler's view of an object: view * world made rigid. It measures
+ * errors in object units and takes the camera from a rigid view, so a
+ * world matrix scaling by s is taken out of the view (its rows divided by
+ * s: eye coordinates 1/s of the true ones) and the projection's near and
+ * far planes scaled to match (proj[14] / s): the frustum and the pixels
+ * per object unit come out as in world space. A non-uniform scale uses
+ * the largest axis (levels err on the fine side). Identity: exact copy. */
+static void object_view(const tlod_view_desc* view, const float world[16], tlod_view_desc* out) {
+  *out = *view;
+  anim_mat4_mul(view->view, world, out->view);
+  double s = 0.0;
+  for (int c = 0; c < 3; c++) {
+    double n = sqrt((double)world[c * 4] * world[c * 4] + (double)world[c * 4 + 1] * world[c * 4 + 1] +
+                    (double)world[c * 4 + 2] * world[c * 4 + 2]);
+    s = n > s ? n : s;
+  }
+  if (s == 1.0 || !(s > 0.0)) return;
+  for (int c = 0; c < 4; c++)
+    for (int r = 0; r < 3; r++)
+      out->view[c * 4 + r] = (float)(out->view[c * 4 + r] / s);
+  out->proj[14] = (float)(out->proj[14] / s);
+}
+
 /* Levels depend on each instance's view of it: the scheduler plans in
- * object space with view * world (identity for the demo scene: exact). */
+ * object space with its object_view (the view itself for the demo scene). */
 static int update_objects(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start,
                           play_object_stats* os) {
   play_scene* s = r->scene;
-  tlod_view_desc ov = *view;
+  tlod_view_desc ov;
   tlod_frame_desc fd = {.views = &ov, .view_count = 1, .dt_ms = (float)(1000.0 / r->o->fps)};
   for (uint32_t i = 0; i < s->count; i++) {
     double t0 = cli_now_ms();
-    anim_mat4_mul(view->view, s->objects[i].world, ov.view);
+    object_view(view, s->objects[i].world, &ov);
     if (tlod_scheduler_update(s->objects[i].scheduler, &fd) != TLOD_SUCCESS)
       return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
     os[i].update_at_ms = t0 - run_start;
