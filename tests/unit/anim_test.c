@@ -267,39 +267,21 @@ static void check_corners_present(const tlod_cpu_mesh* m, const float* pos, uint
 }
 
 typedef struct cylinder_fixture {
-  skin_cylinder cyl;
   tlod_context* ctx;
-  tlod_mesh* mesh;
-  tlod_surface* surf;
+  skin_cylinder_model m;
   tlod_patterns* pat;
-  float *pos, *nrm;
 } cylinder_fixture;
 
 static void cylinder_free(cylinder_fixture* f) {
   tlod_patterns_destroy(f->pat);
-  tlod_surface_destroy(f->surf);
-  tlod_mesh_destroy(f->mesh);
+  skin_cylinder_model_free(&f->m);
   tlod_context_destroy(f->ctx);
-  skin_cylinder_free(&f->cyl);
-  free(f->pos);
-  free(f->nrm);
 }
 
 static bool cylinder_make(cylinder_fixture* f, uint32_t segments, uint32_t rings) {
   memset(f, 0, sizeof *f);
-  if (!skin_cylinder_create(segments, rings, 0.5f, CYL_HEIGHT, &f->cyl) || !(f->ctx = new_context(2, NULL, NULL)))
-    return false;
-  tlod_mesh_desc md = {.positions = f->cyl.positions,
-                       .normals = f->cyl.normals,
-                       .vertex_count = f->cyl.vertex_count,
-                       .indices = f->cyl.indices,
-                       .index_count = f->cyl.index_count,
-                       .label = "cylinder"};
-  f->pos = malloc(sizeof(float) * 3 * f->cyl.vertex_count);
-  f->nrm = malloc(sizeof(float) * 3 * f->cyl.vertex_count);
-  return f->pos && f->nrm && tlod_mesh_create(f->ctx, &md, &f->mesh) == TLOD_SUCCESS &&
-         tlod_surface_create(f->ctx, f->mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &f->surf) ==
-             TLOD_SUCCESS &&
+  return (f->ctx = new_context(2, NULL, NULL)) &&
+         skin_cylinder_model_create(f->ctx, segments, rings, 0.5f, CYL_HEIGHT, &f->m) &&
          tlod_patterns_create(f->ctx, &(tlod_patterns_desc){.max_level = 4}, &f->pat) == TLOD_SUCCESS;
 }
 
@@ -311,7 +293,7 @@ static skin_vertices cylinder_vertices(const skin_cylinder* c) {
  * uniformly at 3: closed after welding by exact position, every skinned
  * vertex among the corners. */
 static void check_tessellations(const cylinder_fixture* f, uint32_t frame) {
-  uint32_t patches = tlod_surface_patch_count(f->surf);
+  uint32_t patches = tlod_surface_patch_count(f->m.surface);
   int8_t* levels = malloc(patches);
   CHECK(levels);
   uint32_t x = 0x9E3779B9u * (frame + 1);
@@ -320,11 +302,11 @@ static void check_tessellations(const cylinder_fixture* f, uint32_t frame) {
   for (int k = 0; k < 2; k++) {
     tlod_cpu_tessellate_desc d = {.level = 3, .levels = k ? NULL : levels, .no_weld = k == 1};
     tlod_cpu_mesh* m = NULL;
-    CHECK(tlod_cpu_tessellate(f->ctx, f->surf, f->pat, &d, &m) == TLOD_SUCCESS);
+    CHECK(tlod_cpu_tessellate(f->ctx, f->m.surface, f->pat, &d, &m) == TLOD_SUCCESS);
     char why[256] = "";
     bool closed = shape_closed_manifold(m->positions, m->vertex_count, m->indices, m->triangle_count, m->triangle_patch,
                                         why, sizeof why);
-    check_corners_present(m, f->pos, f->cyl.vertex_count);
+    check_corners_present(m, f->m.positions, f->m.cyl.vertex_count);
     tlod_cpu_mesh_destroy(f->ctx, m);
     CHECK_MSG(closed, "frame %u, %s: %s", frame, k ? "uniform level 3" : "levels 0..4", why);
   }
@@ -333,13 +315,13 @@ static void check_tessellations(const cylinder_fixture* f, uint32_t frame) {
 
 /* Corners of every patch evaluate to the skinned vertices exactly. */
 static void check_surface_corners(const cylinder_fixture* f) {
-  tlod_mesh_view mv = tlod_mesh_query_view(f->mesh);
+  tlod_mesh_view mv = tlod_mesh_query_view(f->m.mesh);
   for (uint32_t p = 0; p < mv.face_count; p++) {
     const float uv[3][2] = {{1, 0}, {0, 1}, {0, 0}};
     for (int c = 0; c < 3; c++) {
       tlod_surface_point sp;
-      CHECK(tlod_surface_eval(f->surf, p, uv[c][0], uv[c][1], &sp) == TLOD_SUCCESS);
-      CHECK_MSG(!memcmp(sp.position, f->pos + 3 * mv.faces[p][c], 12), "patch %u corner %d", p, c);
+      CHECK(tlod_surface_eval(f->m.surface, p, uv[c][0], uv[c][1], &sp) == TLOD_SUCCESS);
+      CHECK_MSG(!memcmp(sp.position, f->m.positions + 3 * mv.faces[p][c], 12), "patch %u corner %d", p, c);
     }
   }
 }
@@ -353,7 +335,7 @@ TEST(test_skinned_cylinder) {
   cylinder_fixture f;
   bool made = cylinder_make(&f, 16, 8);
   CHECK_MSG(made, "cylinder set-up: %s", f.ctx ? tlod_context_last_error(f.ctx) : "no context");
-  tlod_mesh_info info = tlod_mesh_query_info(f.mesh);
+  tlod_mesh_info info = tlod_mesh_query_info(f.m.mesh);
   CHECK_MSG(info.closed && info.crease_edges == 32, "closed %d, %u crease edges", info.closed, info.crease_edges);
   const float t[2] = {0.0f, 1.0f};
   float rv[8];
@@ -361,17 +343,17 @@ TEST(test_skinned_cylinder) {
   axis_angle(0, 0, 1, 90, rv + 4);
   anim_channel turn = channel(ANIM_PATH_ROTATION, ANIM_INTERP_LINEAR, 2, t, rv);
   turn.node = 1;
-  skin_vertices sv = cylinder_vertices(&f.cyl);
+  skin_vertices sv = cylinder_vertices(&f.m.cyl);
   const float frames[5] = {0.0f, 0.2f, 0.5f, 0.8f, 1.0f};
-  uint32_t patches = tlod_surface_patch_count(f.surf), updated = 0;
+  uint32_t patches = tlod_surface_patch_count(f.m.surface), updated = 0;
   for (uint32_t k = 0; k < 5; k++) {
     float mats[2][16];
-    cylinder_pose(&f.cyl, &turn, frames[k], mats);
-    skin_apply(f.ctx, &sv, 2, (const float(*)[16])mats, f.pos, f.nrm);
-    CHECK(tlod_mesh_update(f.mesh, f.pos, 0, f.nrm, 0) == TLOD_SUCCESS);
-    CHECK(tlod_surface_refresh(f.surf, &updated) == TLOD_SUCCESS);
+    cylinder_pose(&f.m.cyl, &turn, frames[k], mats);
+    skin_apply(f.ctx, &sv, 2, (const float(*)[16])mats, f.m.positions, f.m.normals);
+    CHECK(tlod_mesh_update(f.m.mesh, f.m.positions, 0, f.m.normals, 0) == TLOD_SUCCESS);
+    CHECK(tlod_surface_refresh(f.m.surface, &updated) == TLOD_SUCCESS);
     if (k > 0) CHECK_MSG(updated > 0 && updated + 80 <= patches, "frame %u: %u of %u patches", k, updated, patches);
-    CALL(check_reference(&f.cyl, f.pos, f.nrm, 0.5 * PI * frames[k]));
+    CALL(check_reference(&f.m.cyl, f.m.positions, f.m.normals, 0.5 * PI * frames[k]));
     CALL(check_surface_corners(&f));
     CALL(check_tessellations(&f, k));
   }

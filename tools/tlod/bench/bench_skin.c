@@ -18,39 +18,21 @@
 enum { STAGE_SKIN, STAGE_UPDATE, STAGE_REFRESH, STAGE_COUNT };
 
 typedef struct skin_case {
-  skin_cylinder cyl;
   tlod_context* ctx;
-  tlod_mesh* mesh;
-  tlod_surface* surf;
-  float *pos, *nrm;
+  skin_cylinder_model m;
 } skin_case;
 
 static void case_free(skin_case* c) {
-  tlod_surface_destroy(c->surf);
-  tlod_mesh_destroy(c->mesh);
+  skin_cylinder_model_free(&c->m);
   tlod_context_destroy(c->ctx);
-  skin_cylinder_free(&c->cyl);
-  free(c->pos);
-  free(c->nrm);
 }
 
 static int case_make(uint32_t segments, uint32_t threads, skin_case* c) {
   *c = (skin_case){0};
-  if (!skin_cylinder_create(segments, segments, 0.5f, 4.0f, &c->cyl) ||
-      tlod_context_create(&(tlod_context_desc){.thread_count = threads, .label = "bench"}, &c->ctx) != TLOD_SUCCESS)
-    return case_free(c), cli_error(CLI_FAILED, "skin: cannot set up the cylinder");
-  tlod_mesh_desc md = {.positions = c->cyl.positions,
-                       .normals = c->cyl.normals,
-                       .vertex_count = c->cyl.vertex_count,
-                       .indices = c->cyl.indices,
-                       .index_count = c->cyl.index_count,
-                       .label = "cylinder"};
-  c->pos = malloc(sizeof(float) * 3 * c->cyl.vertex_count);
-  c->nrm = malloc(sizeof(float) * 3 * c->cyl.vertex_count);
-  if (!c->pos || !c->nrm || tlod_mesh_create(c->ctx, &md, &c->mesh) != TLOD_SUCCESS ||
-      tlod_surface_create(c->ctx, c->mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &c->surf) !=
-          TLOD_SUCCESS) {
-    int rc = cli_error(CLI_FAILED, "skin: %s", c->ctx ? tlod_context_last_error(c->ctx) : "out of memory");
+  if (tlod_context_create(&(tlod_context_desc){.thread_count = threads, .label = "bench"}, &c->ctx) != TLOD_SUCCESS)
+    return cli_error(CLI_FAILED, "skin: cannot create a context");
+  if (!skin_cylinder_model_create(c->ctx, segments, segments, 0.5f, 4.0f, &c->m)) {
+    int rc = cli_error(CLI_FAILED, "skin: cannot set up the cylinder: %s", tlod_context_last_error(c->ctx));
     return case_free(c), rc;
   }
   return CLI_OK;
@@ -59,14 +41,14 @@ static int case_make(uint32_t segments, uint32_t threads, skin_case* c) {
 /* One frame at pose angle a; wall and CPU ms of each stage into t[stage]. */
 static int run_frame(skin_case* c, double a, double wall[STAGE_COUNT], double cpu[STAGE_COUNT]) {
   float q[4] = {0.0f, 0.0f, (float)sin(0.5 * a), (float)cos(0.5 * a)}, mats[2][16];
-  skin_cylinder_pose(&c->cyl, q, mats);
-  skin_vertices sv = {c->cyl.vertex_count, c->cyl.positions, c->cyl.normals, c->cyl.joints, c->cyl.weights};
+  skin_cylinder_pose(&c->m.cyl, q, mats);
+  skin_vertices sv = {c->m.cyl.vertex_count, c->m.cyl.positions, c->m.cyl.normals, c->m.cyl.joints, c->m.cyl.weights};
   double w0 = cli_now_ms(), c0 = bench_cpu_ms();
-  skin_apply(c->ctx, &sv, 2, (const float(*)[16])mats, c->pos, c->nrm);
+  skin_apply(c->ctx, &sv, 2, (const float(*)[16])mats, c->m.positions, c->m.normals);
   double w1 = cli_now_ms(), c1 = bench_cpu_ms();
-  tlod_result r = tlod_mesh_update(c->mesh, c->pos, 0, c->nrm, 0);
+  tlod_result r = tlod_mesh_update(c->m.mesh, c->m.positions, 0, c->m.normals, 0);
   double w2 = cli_now_ms(), c2 = bench_cpu_ms();
-  if (r == TLOD_SUCCESS) r = tlod_surface_refresh(c->surf, NULL);
+  if (r == TLOD_SUCCESS) r = tlod_surface_refresh(c->m.surface, NULL);
   double w3 = cli_now_ms(), c3 = bench_cpu_ms();
   wall[0] = w1 - w0, wall[1] = w2 - w1, wall[2] = w3 - w2;
   cpu[0] = c1 - c0, cpu[1] = c2 - c1, cpu[2] = c3 - c2;
@@ -75,15 +57,16 @@ static int run_frame(skin_case* c, double a, double wall[STAGE_COUNT], double cp
 
 static void report(const skin_case* c, uint32_t threads, uint32_t n, double* samples, FILE* csv) {
   static const char* const names[STAGE_COUNT] = {"skin", "mesh_update", "refresh"};
-  double per10k = 1e4 / (double)c->cyl.vertex_count;
-  printf("skin       %7u vertices %7u patches T%-2u", c->cyl.vertex_count, tlod_surface_patch_count(c->surf), threads);
+  double per10k = 1e4 / (double)c->m.cyl.vertex_count;
+  printf("skin       %7u vertices %7u patches T%-2u", c->m.cyl.vertex_count, tlod_surface_patch_count(c->m.surface),
+         threads);
   for (int s = 0; s < STAGE_COUNT; s++) {
     double wall[2], cpu[2];
     bench_min_median(samples + (size_t)(2 * s) * n, n, per10k, wall);
     bench_min_median(samples + (size_t)(2 * s + 1) * n, n, per10k, cpu);
     printf("  %s wall %.3f/%.3f cpu %.3f/%.3f", names[s], wall[0], wall[1], cpu[0], cpu[1]);
     if (csv)
-      fprintf(csv, "skin,%u,%u,%s,%.5f,%.5f,%.5f,%.5f\n", c->cyl.vertex_count, threads, names[s], wall[0], wall[1],
+      fprintf(csv, "skin,%u,%u,%s,%.5f,%.5f,%.5f,%.5f\n", c->m.cyl.vertex_count, threads, names[s], wall[0], wall[1],
               cpu[0], cpu[1]);
   }
   printf("\n");

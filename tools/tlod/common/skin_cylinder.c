@@ -108,3 +108,32 @@ void skin_cylinder_pose(const skin_cylinder* c, const float rotation[4], float m
   anim_world_matrices(2, parent, (const float(*)[16])local, world, scratch);
   skin_joint_matrices(2, (const float(*)[16])world, (const float(*)[16])inverse_bind, mats);
 }
+
+void skin_cylinder_model_free(skin_cylinder_model* m) {
+  tlod_surface_destroy(m->surface);
+  tlod_mesh_destroy(m->mesh);
+  skin_cylinder_free(&m->cyl);
+  free(m->positions);
+  free(m->normals);
+  *m = (skin_cylinder_model){0};
+}
+
+bool skin_cylinder_model_create(tlod_context* ctx, uint32_t segments, uint32_t rings, float radius, float height,
+                                skin_cylinder_model* out) {
+  *out = (skin_cylinder_model){0};
+  if (!skin_cylinder_create(segments, rings, radius, height, &out->cyl)) return false;
+  const skin_cylinder* c = &out->cyl;
+  tlod_mesh_desc md = {.positions = c->positions,
+                       .normals = c->normals,
+                       .vertex_count = c->vertex_count,
+                       .indices = c->indices,
+                       .index_count = c->index_count,
+                       .label = "cylinder"};
+  out->positions = malloc(sizeof(float) * 3 * c->vertex_count);
+  out->normals = malloc(sizeof(float) * 3 * c->vertex_count);
+  bool ok = out->positions && out->normals && tlod_mesh_create(ctx, &md, &out->mesh) == TLOD_SUCCESS &&
+            tlod_surface_create(ctx, out->mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &out->surface) ==
+                TLOD_SUCCESS;
+  if (!ok) skin_cylinder_model_free(out);
+  return ok;
+}

@@ -10,6 +10,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "tesslod/core.h"
+
 typedef struct skin_cylinder {
   uint32_t vertex_count, index_count; /* triangles, counter-clockwise seen from outside */
   float *positions, *normals;         /* xyz per vertex */
@@ -27,6 +29,19 @@ void skin_cylinder_free(skin_cylinder* c);
  * by the unit quaternion `rotation` about its rest place, joint 0 fixed:
  * world = {I, T(0, h/2, 0) R}, inverse bind = {I, T(0, -h/2, 0)}. */
 void skin_cylinder_pose(const skin_cylinder* c, const float rotation[4], float mats[2][16]);
+/* The cylinder as a tesslod mesh and Phong surface in ctx, with buffers
+ * for its skinned positions and normals (xyz per vertex). */
+typedef struct skin_cylinder_model {
+  skin_cylinder cyl;
+  tlod_mesh* mesh;
+  tlod_surface* surface;
+  float *positions, *normals;
+} skin_cylinder_model;
+
+/* False (ctx's last error, or out of memory) when a step fails; out then holds nothing. */
+bool skin_cylinder_model_create(tlod_context* ctx, uint32_t segments, uint32_t rings, float radius, float height,
+                                skin_cylinder_model* out);
+void skin_cylinder_model_free(skin_cylinder_model* m);
 /* Weight of joint 1 at height y. */
 float skin_cylinder_weight(const skin_cylinder* c, float y);
 
