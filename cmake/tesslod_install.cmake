@@ -9,6 +9,8 @@
 #   ${CMAKE_INSTALL_LIBDIR}/cmake/tesslod/                tesslodConfig.cmake, tesslodConfigVersion.cmake,
 #                                                         tesslodTargets[-<config>].cmake
 #   ${CMAKE_INSTALL_LIBDIR}/pkgconfig/tesslod.pc          relocatable (prefix from ${pcfiledir})
+#   ${CMAKE_INSTALL_DATADIR}/tesslod/glsl/*.glsl          patch evaluation for engines' shaders
+#                                                         (docs/shaders.md)
 #
 # Consumers:
 #   find_package(tesslod 1.0 CONFIG REQUIRED)  # optionally COMPONENTS core lod cpu
@@ -67,6 +69,17 @@ endforeach()
 install(DIRECTORY ${_tlod_header_dirs}
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
+
+# --- GLSL for engines' own shaders (docs/shaders.md) ---------------------------------------
+# layout.h is C and GLSL; installed as layout.glsl, so the include directory holds only the
+# public C headers.
+get_property(_tlod_glsl GLOBAL PROPERTY TLOD_GLSL_FILES)
+set(TLOD_INSTALL_GLSLDIR "${CMAKE_INSTALL_DATADIR}/tesslod/glsl")
+foreach(_f IN LISTS _tlod_glsl)
+  get_filename_component(_name "${_f}" NAME)
+  string(REGEX REPLACE "\\.h$" ".glsl" _name "${_name}")
+  install(FILES "${_f}" DESTINATION ${TLOD_INSTALL_GLSLDIR} RENAME "${_name}")
+endforeach()
 
 # --- CMake package files -------------------------------------------------------------------
 set(TLOD_PACKAGE_COMPONENTS "")
@@ -143,6 +156,7 @@ endforeach()
 configure_file("${PROJECT_SOURCE_DIR}/cmake/tesslod.pc.in" "${_tlod_pkg_dir}/tesslod.pc" @ONLY)
 install(FILES "${_tlod_pkg_dir}/tesslod.pc" DESTINATION ${TLOD_INSTALL_PKGCONFIGDIR})
 
+unset(_tlod_glsl)
 unset(_tlod_targets)
 unset(_tlod_header_dirs)
 unset(_tlod_header_names)

@@ -455,7 +455,58 @@ TEST(test_hardware_path_no_holes) {
   CHECK_MSG(failures == 0, "hardware path: %u frames with holes (see above)", failures);
 }
 
+/* A UV seam (shape_seam_sphere's copied column and pole copies, whose
+ * TEXCOORD_0 differs across the edge while positions and normals are
+ * bitwise equal) is smooth geometry: the attribute split opens no crack. */
+TEST(test_uv_seam_no_holes) {
+  gl_env env;
+  tlod_context* ctx;
+  tlod_patterns* pat;
+  tlod_device* dev;
+  CALL(cracks_open(&env, &ctx, &pat, &dev, (tlod_device_gl_desc){0}));
+  enum { NLON = 20, SEAM_CAMERAS = 30 };
+  uv_sphere us;
+  CHECK(uv_sphere_make(&us, 10, NLON));
+  const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
+  uint32_t failures = 0, mixed = 0;
+  for (int ti = 0; ti < 2; ++ti) {
+    fixture fx;
+    CHECK(fixture_make_desc(&fx, ctx, &us.desc, types[ti], pat, dev));
+    uint32_t seams = tlod_mesh_query_info(fx.mesh).attribute_seam_edges;
+    CHECK_MSG(seams >= NLON, "only %u attribute seam edges: the mesh does not exercise seams", seams);
+    tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
+    CHECK(sch);
+    shape_rng rng = {0x5EA40000u + (uint64_t)ti};
+    uint32_t case_failures = 0;
+    for (int k = 0; k < SEAM_CAMERAS; ++k) {
+      camera cam = random_camera(&rng);
+      tlod_view_desc v = make_view(&cam);
+      const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
+      CHECK(dl);
+      mixed += dl->strip_count > 0;
+      bool ok;
+      hole_count hc = find_holes(&env, dev, &fx, dl, dl, &cam, &ok);
+      CHECK_MSG(ok, "seam sphere %s camera %d: draw failed", type_name(types[ti]), k);
+      if (hc.enclosed + hc.back > 0) {
+        fprintf(stderr, "seam sphere %s camera %d: %u hole pixels, first at (%d, %d)\n", type_name(types[ti]), k,
+                hc.enclosed + hc.back, hc.x, hc.y);
+        case_failures++;
+      }
+    }
+    printf("  seam_sphere %-5s %d cameras (%u attribute seam edges): %u with holes\n", type_name(types[ti]),
+           SEAM_CAMERAS, seams, case_failures);
+    failures += case_failures;
+    tlod_scheduler_destroy(sch);
+    fixture_free(&fx);
+  }
+  uv_sphere_free(&us);
+  cracks_close(&env, ctx, pat, dev);
+  CHECK_MSG(mixed >= SEAM_CAMERAS, "only %u of %d frames had strips", mixed, 2 * SEAM_CAMERAS);
+  CHECK_MSG(failures == 0, "%u frames with holes (see above)", failures);
+}
+
 int main(void) {
+  RUN(test_uv_seam_no_holes);
   RUN(test_detector_sees_missing_strips);
   RUN(test_no_holes);
   RUN(test_hardware_path_no_holes);

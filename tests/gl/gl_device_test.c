@@ -29,19 +29,6 @@ static void place(uint32_t k, float model[16]) {
   model[15] = 1.0f;
 }
 
-/* The scheduler plans in the object's own space: its view is view * model. */
-static tlod_view_desc object_view(const tlod_view_desc* v, const float model[16]) {
-  tlod_view_desc o = *v;
-  for (int c = 0; c < 4; c++)
-    for (int r = 0; r < 4; r++) {
-      float s = 0.0f;
-      for (int k = 0; k < 4; k++)
-        s += v->view[k * 4 + r] * model[c * 4 + k];
-      o.view[c * 4 + r] = s;
-    }
-  return o;
-}
-
 static bool play(tlod_device* dev, object* objs, tlod_draw_item* items, const tlod_view_desc* v, uint32_t* covered,
                  uint64_t* triangles) {
   for (int f = 0; f < FRAMES; f++) {

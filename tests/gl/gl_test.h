@@ -177,24 +177,77 @@ static inline void fixture_free(fixture* fx) {
   fx->surf = NULL, fx->mesh = NULL, fx->pat = NULL, fx->ds = NULL, fx->dev = NULL;
 }
 
-/* dev may be NULL (no device surface). */
-static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type,
-                                const tlod_patterns* patterns, tlod_device* dev) {
+/* A fixture of any mesh desc (attributes, say); dev may be NULL (no device surface). */
+static inline bool fixture_make_desc(fixture* fx, tlod_context* ctx, const tlod_mesh_desc* md, tlod_surface_type type,
+                                     const tlod_patterns* patterns, tlod_device* dev) {
   memset(fx, 0, sizeof *fx);
   fx->ctx = ctx;
   fx->pat = patterns;
   fx->dev = dev;
-  tlod_mesh_desc md = shape_mesh_desc(s);
-  tlod_result r = tlod_mesh_create(ctx, &md, &fx->mesh);
+  tlod_result r = tlod_mesh_create(ctx, md, &fx->mesh);
   if (r == TLOD_SUCCESS)
-    r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type, .label = s->name}, &fx->surf);
+    r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type, .label = md->label}, &fx->surf);
   if (r == TLOD_SUCCESS && dev) r = tlod_device_create_surface(dev, fx->surf, &fx->ds);
   if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "fixture %s: %s: %s\n", s->name, tlod_result_string(r), tlod_context_last_error(ctx));
+    fprintf(stderr, "fixture %s: %s: %s\n", md->label, tlod_result_string(r), tlod_context_last_error(ctx));
     fixture_free(fx);
     return false;
   }
   return true;
+}
+
+/* A shape's fixture; dev may be NULL (no device surface). */
+static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type,
+                                const tlod_patterns* patterns, tlod_device* dev) {
+  tlod_mesh_desc md = shape_mesh_desc(s);
+  return fixture_make_desc(fx, ctx, &md, type, patterns, dev);
+}
+
+/* shape_seam_sphere(nlat, nlon) with TEXCOORD_0 = lat-long UVs: vertex
+ * (i, j) has (j / nlon, i / nlat) (v = 0 at the +z pole, glTF's top), so
+ * the copied column and the pole copies are UV seams. desc points into the
+ * struct: keep it where it is (do not copy it). */
+typedef struct uv_sphere {
+  shape sph;
+  float* uv;
+  tlod_attribute_desc attr;
+  tlod_mesh_desc desc;
+} uv_sphere;
+
+static inline void uv_sphere_free(uv_sphere* u) {
+  free(u->uv);
+  shape_free(&u->sph);
+  memset(u, 0, sizeof *u);
+}
+
+static inline bool uv_sphere_make(uv_sphere* u, uint32_t nlat, uint32_t nlon) {
+  memset(u, 0, sizeof *u);
+  u->sph = shape_seam_sphere(nlat, nlon);
+  u->uv = malloc(sizeof(float) * 2 * (nlat + 1) * (nlon + 1));
+  for (uint32_t i = 0; u->uv && i <= nlat; ++i)
+    for (uint32_t j = 0; j <= nlon; ++j) {
+      u->uv[2 * (i * (nlon + 1) + j)] = (float)j / (float)nlon;
+      u->uv[2 * (i * (nlon + 1) + j) + 1] = (float)i / (float)nlat;
+    }
+  u->attr = (tlod_attribute_desc){.data = u->uv, .components = 2, .name = "TEXCOORD_0"};
+  u->desc = shape_mesh_desc(&u->sph);
+  u->desc.attributes = &u->attr;
+  u->desc.attribute_count = 1;
+  return u->uv != NULL;
+}
+
+/* The scheduler plans in an object's own space: its view is view * model
+ * (column-major). */
+static inline tlod_view_desc object_view(const tlod_view_desc* v, const float model[16]) {
+  tlod_view_desc o = *v;
+  for (int c = 0; c < 4; c++)
+    for (int r = 0; r < 4; r++) {
+      float s = 0.0f;
+      for (int k = 0; k < 4; k++)
+        s += v->view[k * 4 + r] * model[c * 4 + k];
+      o.view[c * 4 + r] = s;
+    }
+  return o;
 }
 
 static inline tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {

@@ -160,8 +160,8 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type) {
   const char* pattern[] = {version, _tlod_shader_layout,      _tlod_shader_common, attrs,
                            surface, _tlod_shader_pattern_vert};
   const char* strip[] = {version, _tlod_shader_layout, _tlod_shader_common, attrs, surface, _tlod_shader_strip_vert};
-  /* The material is source string 1 from its line 1: the driver's log names its lines. */
-  const char* frag[] = {version, _tlod_shader_layout, _tlod_shader_shade_frag, "\n#line 1 1\n",
+  /* The material's lines are numbered from TLOD_GL_HOOK_LINE: the driver's log names them. */
+  const char* frag[] = {version, _tlod_shader_layout, _tlod_shader_shade_frag, TLOD_GL_HOOK_LINE_DIRECTIVE,
                         d->fragment_hook ? d->fragment_hook : _tlod_shader_material};
   char error[1600] = "";
   gl_programs* ps = &d->programs[type];

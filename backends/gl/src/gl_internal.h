@@ -43,6 +43,11 @@ typedef struct gl_texture {
 tlod_result _tlod_gl_texture_create(tlod_context* ctx, const tlod_texture_desc* desc, gl_texture** out);
 void _tlod_gl_texture_destroy(tlod_context* ctx, gl_texture* t);
 
+/* The first line number of the fragment stage's material source (its
+ * #line directive): the log's lines from here on are the hook's. */
+#define TLOD_GL_HOOK_LINE 100001
+#define TLOD_GL_HOOK_LINE_DIRECTIVE "\n#line 100001\n"
+
 /* Compiles and links a program from the shader sources; on failure writes
  * the driver's log to error and returns 0. */
 GLuint _tlod_gl_program(const char* const* vert, int vert_count, const char* const* frag, int frag_count, char* error,

@@ -1,6 +1,7 @@
 /* tesslod::gl -- shader compilation with the driver's log on failure. */
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "gl_internal.h"
 
@@ -17,16 +18,24 @@ static const char* stage_name(GLenum stage) {
   }
 }
 
-/* Writes the driver's log with source string 1 (the fragment stage's
- * material: the device's fragment hook) named "fragment_hook": Mesa writes
- * "1:LINE(COL): ...", NVIDIA "1(LINE) : ...". */
+/* Writes the driver's log with the lines of the fragment stage's material
+ * (the device's fragment hook, numbered from TLOD_GL_HOOK_LINE by a #line
+ * directive) named "fragment_hook:LINE": Mesa writes "S:LINE(COL): ...",
+ * NVIDIA "S(LINE) : ..."; the source string number S is not used (Mesa
+ * applies a #line string number to some messages only). */
 static void name_sources(const char* log, char* out, size_t size) {
   size_t o = 0;
   for (const char* p = log; *p && o + 1 < size; p++) {
+    const char* q = p;
+    while (*q >= '0' && *q <= '9')
+      q++;
+    char* end = NULL;
+    unsigned long line = (q > p && (*q == ':' || *q == '(')) ? strtoul(q + 1, &end, 10) : 0;
     bool line_start = p == log || p[-1] == '\n';
-    if (line_start && p[0] == '1' && (p[1] == ':' || p[1] == '(')) {
-      o += (size_t)snprintf(out + o, size - o, "fragment_hook");
+    if (line_start && line >= TLOD_GL_HOOK_LINE && end) {
+      o += (size_t)snprintf(out + o, size - o, "fragment_hook%c%lu", *q, line - TLOD_GL_HOOK_LINE + 1);
       if (o >= size) break;
+      p = end - 1;
       continue;
     }
     out[o++] = *p;

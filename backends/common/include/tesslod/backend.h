@@ -6,11 +6,12 @@
  *   creation it takes the refinement patterns and makes everything that is
  *   shared by all objects (GL: programs linked, pattern buffers uploaded,
  *   vertex arrays and queries made). Per object the caller creates a device
- *   surface (GL: the patch records in a storage buffer), updates it after
- *   tlod_surface_refresh(), and destroys it. One tlod_device_draw() draws a
- *   list of items (device surface, model matrix, colour, the scheduler's draw
- *   list) for one view; then the image can be read back and statistics
- *   queried. Backends are chosen by name at run time; tlod_backend_names()
+ *   surface (GL: the patch records and mesh attributes in storage buffers),
+ *   updates it after tlod_surface_refresh(), and destroys it; images become
+ *   device textures. One tlod_device_draw() draws a list of items (device
+ *   surface, model matrix, the scheduler's draw list, a material: colour,
+ *   base colour texture, alpha mode, culling) for one view; then the image
+ *   can be read back and statistics queried. Backends are chosen by name at run time; tlod_backend_names()
  *   lists the ones this build has:
  *     "cpu"  the reference: realises each item's draw list as a mesh
  *            (tlod_cpu_device_mesh() below), draws no image;
@@ -41,8 +42,9 @@
  *      tlod_device_draw(dev, &(tlod_draw_desc){ .items = items,
  *      .item_count = n, .view = ..., .proj = ..., .viewport = ... });
  *   5. optionally tlod_device_read_image(), tlod_device_query_stats();
- *   6. tlod_device_destroy_surface() per object, tlod_device_destroy(dev),
- *      with the same GL context current.
+ *   6. tlod_device_destroy_surface() per object, tlod_device_destroy_texture()
+ *      per texture, tlod_device_destroy(dev) (which also destroys what is
+ *      left), with the same GL context current.
  *   Wrong use (NULL desc, items NULL with a count, item_count 0, a surface
  *   of another device, a draw list that does not fit its surface or the
  *   device's patterns, a draw before any surface exists, an empty viewport)
@@ -268,7 +270,10 @@ typedef struct tlod_draw_desc {
   float view[16], proj[16]; /* column-major world -> eye -> clip (the scheduler's view of the world) */
   uint32_t viewport[4];     /* x, y, width, height in the bound framebuffer; width, height > 0 */
   /* World direction towards the light; (0, 0, 0) (no direction) == (0.3, 0.8, 0.5).
-   * Normalised by the device. Shading: colour * (0.15 + 0.85 * max(dot(n, l), 0)). */
+   * Normalised by the device. Shading (the built-in material; "gl": a
+   * fragment hook replaces it): base * (0.15 + 0.85 * max(dot(n, l), 0)),
+   * base = the item's colour times its texture sample (alpha likewise), n
+   * the unit normal, flipped on back faces. */
   float light_dir[3];
   tlod_debug_view debug;
   bool wireframe; /* overlay edges */
