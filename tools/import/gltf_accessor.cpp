@@ -161,6 +161,12 @@ const tinygltf::BufferView& Accessors::buffer_view(int index, const std::string&
   return bv;
 }
 
+const unsigned char* Accessors::view_bytes(int index, const std::string& what, size_t* size) const {
+  const tinygltf::BufferView& bv = buffer_view(index, what);
+  *size = bv.byteLength;
+  return view_data(bv);
+}
+
 const unsigned char* Accessors::view_data(const tinygltf::BufferView& bv) const {
   return m_.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset;
 }
@@ -202,15 +208,49 @@ std::vector<float> Accessors::read_floats(int index, const std::string& what, in
   if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.type != type)
     fail(TLOD_ERROR_UNSUPPORTED, format("%s: accessor %d is %s %s (float %s required)", what.c_str(), index,
                                         component_name(a.componentType), type_name(a.type), type_name(type)));
-  const size_t nc = size_t(components);
-  const Span s = resolve(index, what, 4 * nc);
+  return read_numbers(index, what, type);
+}
+
+namespace {
+
+float load_number(const unsigned char* p, int component_type, bool normalized) {
+  switch (component_type) {
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+    return normalized ? float(p[0]) / 255.0f : float(p[0]);
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+    return normalized ? float(load_index(p, component_type)) / 65535.0f : float(load_index(p, component_type));
+  default:
+    return load_f32(p);
+  }
+}
+
+} // namespace
+
+std::vector<float> Accessors::read_numbers(int index, const std::string& what, int type) const {
+  check_ref(index, what);
+  const tinygltf::Accessor& a = m_.accessors[size_t(index)];
+  const int ct = a.componentType;
+  const int nc_int = tinygltf::GetNumComponentsInType(uint32_t(type));
+  if (a.type != type || nc_int <= 0 ||
+      (ct != TINYGLTF_COMPONENT_TYPE_FLOAT && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+       ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))
+    fail(TLOD_ERROR_UNSUPPORTED, format("%s: accessor %d is %s %s (float, unsigned byte or short %s required)",
+                                        what.c_str(), index, component_name(ct), type_name(a.type), type_name(type)));
+  const size_t nc = size_t(nc_int), cs = component_size(ct);
+  const Span s = resolve(index, what, cs * nc);
   take(s.count, 4 * nc, format("%s: accessor %d", what.c_str(), index));
   std::vector<float> out(s.count * nc, 0.0f);
   if (s.base)
     for (size_t i = 0; i < s.count; ++i)
       for (size_t c = 0; c < nc; ++c)
-        out[i * nc + c] = load_f32(s.base + i * s.stride + 4 * c);
-  apply_sparse_floats(index, what, nc, out);
+        out[i * nc + c] = load_number(s.base + i * s.stride + cs * c, ct, a.normalized);
+  if (!a.sparse.isSparse) return out;
+  const SparseSpans sp = resolve_sparse(index, what, cs * nc);
+  for (size_t i = 0; i < sp.count; ++i) {
+    const size_t t = sparse_target(sp, i, index, what);
+    for (size_t c = 0; c < nc; ++c)
+      out[t * nc + c] = load_number(sp.values + (i * nc + c) * cs, ct, a.normalized);
+  }
   return out;
 }
 
@@ -269,16 +309,6 @@ size_t Accessors::sparse_target(const SparseSpans& s, size_t i, int index, const
     fail(TLOD_ERROR_PARSE, format("%s: accessor %d: sparse index %zu is %u, out of range (%zu elements)", what.c_str(),
                                   index, i, t, count));
   return t;
-}
-
-void Accessors::apply_sparse_floats(int index, const std::string& what, size_t nc, std::vector<float>& out) const {
-  if (!m_.accessors[size_t(index)].sparse.isSparse) return;
-  const SparseSpans s = resolve_sparse(index, what, 4 * nc);
-  for (size_t i = 0; i < s.count; ++i) {
-    const size_t t = sparse_target(s, i, index, what);
-    for (size_t c = 0; c < nc; ++c)
-      out[t * nc + c] = load_f32(s.values + (i * nc + c) * 4);
-  }
 }
 
 void Accessors::apply_sparse_indices(int index, const std::string& what, std::vector<uint32_t>& out) const {

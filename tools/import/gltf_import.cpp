@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "gltf_load.hpp"
+#include "gltf_scene.hpp"
 #include "import_error.hpp"
 #include "import_internal.h"
 #include "import_output.hpp"
@@ -28,44 +29,14 @@ using tlod_import_detail::fail;
 using tlod_import_detail::format;
 using tlod_import_detail::ImportError;
 
-// ---------------------------------------------------------------------------
-// Matrices: column-major 4x4 in double, like glTF's node.matrix.
-
-struct Mat4 {
-  double m[16];
-};
-
-Mat4 identity() {
-  Mat4 r{};
-  r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0;
-  return r;
-}
-
-bool is_identity(const Mat4& a) {
-  const Mat4 i = identity();
-  return std::memcmp(a.m, i.m, sizeof a.m) == 0;
-}
-
-Mat4 multiply(const Mat4& a, const Mat4& b) {
-  Mat4 r{};
-  for (int c = 0; c < 4; ++c)
-    for (int row = 0; row < 4; ++row) {
-      double s = 0.0;
-      for (int k = 0; k < 4; ++k)
-        s += a.m[k * 4 + row] * b.m[c * 4 + k];
-      r.m[c * 4 + row] = s;
-    }
-  return r;
-}
+using tlod_gltf::det3;
+using tlod_gltf::identity;
+using tlod_gltf::is_identity;
+using tlod_gltf::Mat4;
+using tlod_gltf::multiply;
 
 // Upper 3x3 entry at (row, col).
 double at(const Mat4& a, int row, int col) { return a.m[col * 4 + row]; }
-
-double det3(const Mat4& a) {
-  return at(a, 0, 0) * (at(a, 1, 1) * at(a, 2, 2) - at(a, 1, 2) * at(a, 2, 1)) -
-         at(a, 0, 1) * (at(a, 1, 0) * at(a, 2, 2) - at(a, 1, 2) * at(a, 2, 0)) +
-         at(a, 0, 2) * (at(a, 1, 0) * at(a, 2, 1) - at(a, 1, 1) * at(a, 2, 0));
-}
 
 // Normal matrix as the cofactor matrix times sign(det): it equals
 // |det| * inverse-transpose, so the direction after renormalising is the
@@ -99,6 +70,7 @@ struct PrimitiveData {
   std::vector<float> positions;
   std::vector<float> normals; // empty: none
   std::vector<uint32_t> triangles;
+  tlod_gltf::Extras extras;
 };
 
 const char* mode_name(int mode) {
@@ -111,15 +83,24 @@ const char* mode_name(int mode) {
 
 class Reader {
 public:
-  Reader(const tinygltf::Model& model, Output& out, _tlod_import_budget* budget)
-      : m_(model), out_(out), acc_(model, budget) {}
+  Reader(const tinygltf::Model& model, Output& out, _tlod_import_budget* budget, bool keep_scene)
+      : m_(model), out_(out), acc_(model, budget), keep_scene_(keep_scene) {}
 
   void run() {
     check_required_extensions();
     acc_.check_buffer_views();
-    const std::vector<Instance> instances = collect_instances();
-    for (const Instance& inst : instances)
-      add_instance(inst);
+    joint_limits();
+    acc_.take(m_.meshes.size(), sizeof(tlod_import_mesh), "meshes");
+    for (size_t i = 0; i < m_.meshes.size(); ++i)
+      out_.meshes.push_back(mesh_record(i));
+    if (keep_scene_) {
+      // Each mesh once, in mesh space: the nodes say where it goes.
+      for (size_t i = 0; i < m_.meshes.size(); ++i)
+        add_mesh_parts({-1, int(i), identity()});
+    } else {
+      for (const Instance& inst : collect_instances())
+        add_mesh_parts(inst);
+    }
     if (out_.parts.empty()) fail_nothing_imported();
     if (first_line_mode_ >= 0)
       out_.warn(format("%s: mode %d (%s) is not a surface: skipped (%u point/line primitive(s) "
@@ -131,64 +112,50 @@ private:
   const tinygltf::Model& m_;
   Output& out_;
   tlod_gltf::Accessors acc_;
-  int first_line_mode_ = -1; // first POINTS/LINES primitive seen, for the error
+  bool keep_scene_;
+  std::vector<uint32_t> joint_limit_; // per mesh: fewest joints of a skin it is used with
+  int first_line_mode_ = -1;          // first POINTS/LINES primitive seen, for the error
   std::string first_line_where_;
   uint32_t lines_skipped_ = 0;
   std::string first_skip_reason_;
 
   // -- scene graph ----------------------------------------------------------
 
+  tlod_import_mesh mesh_record(size_t i) const {
+    tlod_import_mesh r{};
+    std::snprintf(r.name, sizeof r.name, "%s", m_.meshes[i].name.c_str());
+    return r;
+  }
+
+  // JOINTS_0 of a mesh index the joints of every skin it is drawn with.
+  void joint_limits() {
+    joint_limit_.assign(m_.meshes.size(), 65536u);
+    for (const tinygltf::Node& n : m_.nodes)
+      if (n.skin >= 0 && n.mesh >= 0 && size_t(n.mesh) < m_.meshes.size()) {
+        if (size_t(n.skin) >= m_.skins.size())
+          fail(TLOD_ERROR_PARSE,
+               format("node %d: skin %d does not exist (%zu skins)", int(&n - &m_.nodes[0]), n.skin, m_.skins.size()));
+        const size_t j = m_.skins[size_t(n.skin)].joints.size();
+        if (j < joint_limit_[size_t(n.mesh)]) joint_limit_[size_t(n.mesh)] = uint32_t(j);
+      }
+  }
+
+  // The first instance of a mesh names its parts in meshes[] (flattened mode).
+  void add_mesh_parts(const Instance& inst) {
+    tlod_import_mesh& rec = out_.meshes[size_t(inst.mesh)];
+    const size_t first = out_.parts.size();
+    add_instance(inst);
+    if (rec.part_count == 0) {
+      rec.first_part = uint32_t(first);
+      rec.part_count = uint32_t(out_.parts.size() - first);
+    }
+  }
+
   void check_required_extensions() const {
     for (const std::string& e : m_.extensionsRequired) {
       if (e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression")
         fail(TLOD_ERROR_UNSUPPORTED, format("requires extension %s, which this importer does not support", e.c_str()));
     }
-  }
-
-  Mat4 local_matrix(int index) const {
-    const tinygltf::Node& n = m_.nodes[size_t(index)];
-    if (!n.matrix.empty()) {
-      if (n.matrix.size() != 16)
-        fail(TLOD_ERROR_PARSE, format("node %d: matrix has %zu numbers (16 expected)", index, n.matrix.size()));
-      Mat4 r{};
-      for (int i = 0; i < 16; ++i)
-        r.m[i] = n.matrix[size_t(i)];
-      return r;
-    }
-    return trs_matrix(index, n);
-  }
-
-  static void check_size(int index, const char* what, size_t got, size_t want) {
-    if (got != 0 && got != want)
-      fail(TLOD_ERROR_PARSE, format("node %d: %s has %zu numbers (%zu expected)", index, what, got, want));
-  }
-
-  // T * R * S with R from the (renormalised) unit quaternion.
-  static Mat4 trs_matrix(int index, const tinygltf::Node& n) {
-    check_size(index, "translation", n.translation.size(), 3);
-    check_size(index, "rotation", n.rotation.size(), 4);
-    check_size(index, "scale", n.scale.size(), 3);
-    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
-    for (size_t i = 0; i < n.translation.size(); ++i)
-      t[i] = n.translation[i];
-    for (size_t i = 0; i < n.rotation.size(); ++i)
-      q[i] = n.rotation[i];
-    for (size_t i = 0; i < n.scale.size(); ++i)
-      s[i] = n.scale[i];
-    const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (!(len > 0.0) || !std::isfinite(len))
-      fail(TLOD_ERROR_PARSE, format("node %d: rotation is not a unit quaternion", index));
-    const double x = q[0] / len, y = q[1] / len, z = q[2] / len, w = q[3] / len;
-    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    Mat4 out = identity();
-    for (int c = 0; c < 3; ++c)
-      for (int row = 0; row < 3; ++row)
-        out.m[c * 4 + row] = r[row][c] * s[c];
-    for (int row = 0; row < 3; ++row)
-      out.m[12 + row] = t[row];
-    return out;
   }
 
   std::vector<int> root_nodes() const {
@@ -237,7 +204,7 @@ private:
         fail(TLOD_ERROR_PARSE, format("node %d is reached twice (the node hierarchy must be a tree)", item.node));
       visited[size_t(item.node)] = 1;
       const tinygltf::Node& n = m_.nodes[size_t(item.node)];
-      const Mat4 world = multiply(item.world, local_matrix(item.node));
+      const Mat4 world = multiply(item.world, tlod_gltf::local_matrix(m_, item.node));
       if (n.mesh != -1) instances.push_back(make_instance(item.node, world));
       for (size_t i = n.children.size(); i-- > 0;)
         stack.push_back({n.children[i], item.node, world});
@@ -255,7 +222,7 @@ private:
     const tinygltf::Node& n = m_.nodes[size_t(node)];
     if (n.mesh < 0 || size_t(n.mesh) >= m_.meshes.size())
       fail(TLOD_ERROR_PARSE, format("node %d: mesh %d does not exist (%zu meshes)", node, n.mesh, m_.meshes.size()));
-    if (n.skin >= 0) {
+    if (n.skin >= 0 && !keep_scene_) {
       // glTF: a skinned mesh ignores its node's transform; without posing
       // the joints the mesh-space positions are the bind pose.
       out_.warn(format("node %d: skinned mesh %d imported in its bind pose", node, n.mesh));
@@ -325,6 +292,7 @@ private:
     data.positions = acc_.read_floats(pos->second, where + ": POSITION", 3);
     check_finite(data.positions, pos->second, where);
     data.normals = read_normals(prim, where, vcount);
+    data.extras = tlod_gltf::read_extras(m_, acc_, prim, where, joint_limit_[size_t(inst.mesh)], out_);
     std::vector<uint32_t> idx = read_indices(prim, where, vcount);
     data.triangles = triangulate(prim.mode, std::move(idx), where);
     if (data.triangles.empty()) {
@@ -447,7 +415,22 @@ private:
     base_color(prim, where, part.base_color);
     append_vertices(inst, d, where);
     append_triangles(inst, d.triangles, uint32_t(first_vertex));
+    append_extras(d.extras, first_vertex, vcount, where);
     out_.parts.push_back(part);
+  }
+
+  // Attributes are per vertex, not per node: an instance copies them unchanged.
+  void append_extras(const tlod_gltf::Extras& e, size_t first_vertex, size_t vcount, const std::string& where) {
+    for (const tlod_gltf::Extras::Attr& a : e.attributes) {
+      acc_.take(vcount, 8u * a.components, where + ": output " + a.name);
+      out_.add_attribute(a.name, a.components, first_vertex, a.data);
+    }
+    if (!e.joints.empty()) {
+      acc_.take(vcount, 2 * 24, where + ": output joints and weights");
+      out_.add_skin_weights(first_vertex, e.joints, e.weights);
+      out_.weights_renormalised += e.renormalised;
+    }
+    out_.pad_attributes();
   }
 
   void append_vertices(const Instance& inst, const PrimitiveData& d, const std::string& where) {
@@ -536,13 +519,29 @@ private:
   }
 };
 
-void warn_unused_features(const tinygltf::Model& model, Output& out) {
-  for (const tinygltf::Mesh& mesh : model.meshes)
-    for (const tinygltf::Primitive& prim : mesh.primitives)
+// The base shape is imported; the caller is told which meshes lose their targets.
+void warn_morph_targets(const tinygltf::Model& model, Output& out) {
+  for (size_t i = 0; i < model.meshes.size(); ++i)
+    for (const tinygltf::Primitive& prim : model.meshes[i].primitives)
       if (!prim.targets.empty()) {
-        out.warn("morph targets ignored (base shape imported)");
-        return;
+        out.warn(
+            format("mesh %zu '%.64s': morph targets ignored (base shape imported)", i, model.meshes[i].name.c_str()));
+        break;
       }
+}
+
+// Everything besides geometry, after it (texture coordinates resolve against the attributes made).
+void read_scene(const _tlod_import_job* job, const tinygltf::Model& model, const tlod_gltf::DataImages& images,
+                Output& out) {
+  const tlod_gltf::Accessors acc(model, job->budget);
+  acc.take(model.nodes.size(), sizeof(tlod_import_node) + sizeof(Mat4) + 16, "nodes");
+  tlod_gltf::read_nodes(model, out);
+  acc.take(model.materials.size() + model.textures.size(), sizeof(tlod_import_material), "materials");
+  tlod_gltf::read_materials(model, out);
+  tlod_gltf::resolve_texcoords(out);
+  tlod_gltf::read_skins(model, acc, out);
+  tlod_gltf::read_animations(model, acc, out);
+  tlod_gltf::read_images(model, acc, job->folder, job->budget, images, out);
 }
 
 tlod_result finish(const _tlod_import_job* job, Output& out) {
@@ -562,9 +561,12 @@ tlod_result import_gltf(const _tlod_import_job* job) {
   const std::unique_ptr<unsigned char, void (*)(void*)> file(bytes, std::free);
   Output out;
   tinygltf::Model model;
-  tlod_gltf::load(bytes, size, _tlod_str_ends_with_nocase(job->path, ".glb"), job->folder, job->budget, model, out);
-  warn_unused_features(model, out);
-  Reader(model, out, job->budget).run();
+  tlod_gltf::DataImages images;
+  tlod_gltf::load(bytes, size, _tlod_str_ends_with_nocase(job->path, ".glb"), job->folder, job->budget, model, out,
+                  &images);
+  warn_morph_targets(model, out);
+  Reader(model, out, job->budget, job->keep_scene).run();
+  read_scene(job, model, images, out);
   return finish(job, out);
 }
 

@@ -136,13 +136,6 @@ tlod_result refusal_code(_tlod_contained_status st) {
   }
 }
 
-// Largest external file the budget can still hold twice (our copy and tinygltf's).
-size_t external_limit(const _tlod_import_budget* b) {
-  const size_t limit = b->proportional ? size_t(TLOD_IMPORT_MEMORY_CAP) : b->limit;
-  const size_t room = limit > b->used ? (limit - b->used) / 2 : 0;
-  return room < _TLOD_IMPORT_MAX_FILE_BYTES ? room : _TLOD_IMPORT_MAX_FILE_BYTES;
-}
-
 void read_buffer(const char* folder, size_t i, const std::string& uri, _tlod_import_budget* budget, Files& files) {
   const std::string where = format("buffers[%zu].uri '%.200s'", i, uri.c_str());
   if (!folder) fail(TLOD_ERROR_IO, where + ": refused: an external file of a model imported from memory");
@@ -193,8 +186,21 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
   return false;
 }
 
-// Images are not needed for geometry: never decoded (and never opened).
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// tinygltf never decodes an image. The bytes of a data: URI image reach only this callback
+// (tinygltf keeps no URI for them), so they are kept for gltf_images.cpp, within the budget
+// (over it: not kept, which reads as a missing image). Files get a dummy byte, bufferViews are
+// read by gltf_images.cpp itself.
+struct ImageCapture {
+  std::map<int, std::vector<unsigned char>>* images;
+  _tlod_import_budget* budget;
+};
+
+bool capture_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                   const unsigned char* bytes, int size, void* user) {
+  const ImageCapture* c = static_cast<const ImageCapture*>(user);
+  if (!c || !c->images || image->bufferView != -1 || !image->uri.empty() || size <= 0) return true;
+  if (!_tlod_budget_take(c->budget, size_t(size))) return true;
+  (*c->images)[index].assign(bytes, bytes + size);
   return true;
 }
 
@@ -222,13 +228,21 @@ void prepare(const unsigned char* json, size_t json_size, const char* folder, _t
 
 } // namespace
 
+size_t external_limit(const _tlod_import_budget* b) {
+  const size_t limit = b->proportional ? size_t(TLOD_IMPORT_MEMORY_CAP) : b->limit;
+  const size_t room = limit > b->used ? (limit - b->used) / 2 : 0;
+  return room < _TLOD_IMPORT_MAX_FILE_BYTES ? room : _TLOD_IMPORT_MAX_FILE_BYTES;
+}
+
 void load(const unsigned char* file, size_t size, bool glb_name, const char* folder, _tlod_import_budget* budget,
-          tinygltf::Model& model, tlod_import_detail::OutputBase& warnings) {
+          tinygltf::Model& model, tlod_import_detail::OutputBase& warnings,
+          std::map<int, std::vector<unsigned char>>* data_images) {
   if (size > 0xFFFFFFFFu) fail(TLOD_ERROR_UNSUPPORTED, "glTF file larger than 4 GiB");
   const bool glb = glb_name || (size >= 4 && std::memcmp(file, "glTF", 4) == 0);
   Files files;
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skip_image, nullptr);
+  ImageCapture capture{data_images, budget};
+  loader.SetImageLoader(capture_image, &capture);
   loader.SetFsCallbacks({fs_exists, fs_expand, fs_read, fs_write, &files});
   std::string err, warn;
   bool ok;

@@ -7,9 +7,10 @@
 //                depth; integer fields strictly typed (gltf_validate.cpp);
 //                external buffers read under the containment rule
 //                (contained_file.h) and served to tinygltf from memory, so
-//                tinygltf opens no file itself; images never opened nor
-//                decoded; tinygltf's memory estimated and taken from the budget
-//                before it parses.
+//                tinygltf opens no file itself; images neither opened nor
+//                decoded by tinygltf (gltf_images.cpp does, under the same rule);
+//                tinygltf's memory estimated and taken from the budget before it
+//                parses.
 //   Accessors:   bufferViews inside their buffers, accessors (and sparse
 //                parts) inside their views, every count x stride x size
 //                overflow-checked and taken from the budget before the vector
@@ -23,6 +24,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -41,8 +43,13 @@ size_t mul_add(size_t a, size_t b, size_t c, const std::string& what);
 // Parses file (size bytes: GLB if it starts with "glTF" or glb_name, else
 // JSON) into model. folder: where external buffers resolve (NULL: refuse
 // them). Warnings go to warnings.
+// data_images: receives the bytes of images in data: URIs by image index (NULL: not kept).
 void load(const unsigned char* file, size_t size, bool glb_name, const char* folder, _tlod_import_budget* budget,
-          tinygltf::Model& model, tlod_import_detail::OutputBase& warnings);
+          tinygltf::Model& model, tlod_import_detail::OutputBase& warnings,
+          std::map<int, std::vector<unsigned char>>* data_images = nullptr);
+
+// Largest external file the budget can still hold twice (the read and one copy).
+size_t external_limit(const _tlod_import_budget* b);
 
 // Integer fields, JSON shape (gltf_validate.cpp): throws on the first field
 // that is not a non-negative integer; returns what tinygltf's model structs
@@ -76,11 +83,18 @@ class Accessors {
 public:
   Accessors(const tinygltf::Model& model, _tlod_import_budget* budget) : m_(model), budget_(budget) {}
 
+  const tinygltf::Model& model() const { return m_; }
   void check_ref(int index, const std::string& what) const;
+  // The bytes of bufferView index after its range check (throws naming what).
+  const unsigned char* view_bytes(int index, const std::string& what, size_t* size) const;
   // Every bufferView, used or not, inside its buffer.
   void check_buffer_views() const;
   // Float accessor of `components` per element (1 SCALAR, 3 VEC3, 4 VEC4), sparse applied.
   std::vector<float> read_floats(int index, const std::string& what, int components) const;
+  // Accessor of `type` (TINYGLTF_TYPE_*) with float, unsigned byte or unsigned short
+  // components as floats (normalised integers divided by 255 / 65535, others as their
+  // value), sparse applied; any other layout throws TLOD_ERROR_UNSUPPORTED naming what.
+  std::vector<float> read_numbers(int index, const std::string& what, int type) const;
   // Unsigned byte/short/int SCALAR accessor, sparse applied.
   std::vector<uint32_t> read_indices(int index, const std::string& what) const;
   // bytes of memory an array about to be made needs, from the budget.
@@ -100,7 +114,6 @@ private:
   SparseSpans resolve_sparse(int index, const std::string& what, size_t element) const;
   const unsigned char* sparse_range(int view, size_t offset, size_t bytes, const std::string& what) const;
   size_t sparse_target(const SparseSpans& s, size_t i, int index, const std::string& what) const;
-  void apply_sparse_floats(int index, const std::string& what, size_t nc, std::vector<float>& out) const;
   void apply_sparse_indices(int index, const std::string& what, std::vector<uint32_t>& out) const;
 
   const tinygltf::Model& m_;

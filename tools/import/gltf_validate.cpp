@@ -32,7 +32,7 @@ struct Field {
 };
 
 // Every integer field of glTF 2.0 that tinygltf parses into a struct the
-// project reads (geometry, nodes, animations, skins) or indexes with (images).
+// project reads (geometry, nodes, animations, skins, materials, samplers) or indexes with (images).
 const Field kFields[] = {
     {"", "scene", kIndex},
     {"accessors", "bufferView", kIndex},
@@ -53,6 +53,12 @@ const Field kFields[] = {
     {"buffers", "byteLength", kSize},
     {"images", "bufferView", kIndex},
     {"textures", "source", kIndex},
+    {"materials", "pbrMetallicRoughness.baseColorTexture.index", kIndex},
+    {"materials", "pbrMetallicRoughness.baseColorTexture.texCoord", kIndex},
+    {"samplers", "magFilter", kIndex},
+    {"samplers", "minFilter", kIndex},
+    {"samplers", "wrapS", kIndex},
+    {"samplers", "wrapT", kIndex},
     {"textures", "sampler", kIndex},
     {"nodes", "camera", kIndex},
     {"nodes", "mesh", kIndex},
