@@ -429,7 +429,203 @@ TEST(eval_grid_checks_its_arguments) {
   shape_free(&s);
 }
 
+/* ------------------------------------------------------------------------ */
+/* CPU tessellator: (c) UV seams, (e) vertex_patch / vertex_uv              */
+/* ------------------------------------------------------------------------ */
+
+typedef struct cpu_fixture {
+  tlod_context* ctx;
+  tlod_mesh* mesh;
+  tlod_surface* surf;
+  tlod_patterns* pat;
+} cpu_fixture;
+
+static void cpu_fixture_free(cpu_fixture* fx) {
+  tlod_surface_destroy(fx->surf);
+  tlod_mesh_destroy(fx->mesh);
+  tlod_patterns_destroy(fx->pat);
+  tlod_context_destroy(fx->ctx);
+  memset(fx, 0, sizeof(*fx));
+}
+
+static bool cpu_fixture_make(cpu_fixture* fx, const shape* s, const tlod_attribute_desc* attrs, uint32_t count,
+                             tlod_surface_type type) {
+  memset(fx, 0, sizeof(*fx));
+  fx->ctx = new_context(2, NULL, NULL);
+  fx->mesh = make_mesh(fx->ctx, s, attrs, count);
+  tlod_result r = fx->mesh ? TLOD_SUCCESS : TLOD_ERROR_INVALID_MESH;
+  if (r == TLOD_SUCCESS) r = tlod_surface_create(fx->ctx, fx->mesh, &(tlod_surface_desc){.type = type}, &fx->surf);
+  if (r == TLOD_SUCCESS) r = tlod_patterns_create(fx->ctx, &(tlod_patterns_desc){.max_level = MAX_LEVEL}, &fx->pat);
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "fixture %s: %s: %s\n", s->name, tlod_result_string(r), tlod_context_last_error(fx->ctx));
+    cpu_fixture_free(fx);
+    return false;
+  }
+  return true;
+}
+
+static tlod_cpu_mesh* cpu_run(const cpu_fixture* fx, uint32_t level, const int8_t* levels, bool no_weld) {
+  tlod_cpu_tessellate_desc d = {.level = level, .levels = levels, .no_weld = no_weld};
+  tlod_cpu_mesh* out = NULL;
+  tlod_result r = tlod_cpu_tessellate(fx->ctx, fx->surf, fx->pat, &d, &out);
+  if (r != TLOD_SUCCESS)
+    fprintf(stderr, "tlod_cpu_tessellate: %s: %s\n", tlod_result_string(r), tlod_context_last_error(fx->ctx));
+  return out;
+}
+
+static int8_t* random_levels(uint32_t patches, uint64_t seed) {
+  shape_rng rng = {seed};
+  int8_t* l = malloc(patches + 1);
+  for (uint32_t p = 0; p < patches; p++)
+    l[p] = (int8_t)(shape_rng_next(&rng) % (MAX_LEVEL + 1));
+  return l;
+}
+
+/* Closed after welding by exact position; no triangle spans the seam (its
+ * corners' u all on one side: the seam's sides are u 0 and u 1); every
+ * output position on the seam meridian (y == 0, x > 0) carries both u 0 and
+ * a u near 1 (each side kept its own vertex; towards a pole the u 1 side
+ * blends with the pole copy of the last column). With different levels a
+ * finer side's extra points belong to it alone (the strip carries its
+ * attributes), so the last check is made at one level. */
+static void check_seam_output(const tlod_cpu_mesh* o, const char* what, bool one_level) {
+  char why[160];
+  CHECK_MSG(shape_closed_manifold(o->positions, o->vertex_count, o->indices, o->triangle_count, o->triangle_patch, why,
+                                  sizeof(why)),
+            "%s: %s", what, why);
+  CHECK(o->attribute_count == 1 && o->attributes && o->vertex_patch && o->vertex_uv);
+  for (uint32_t k = 0; k < o->triangle_count; k++) {
+    float lo = 2, hi = -2;
+    for (int c = 0; c < 3; c++) {
+      float u = o->attributes[o->indices[3 * k + c]][0];
+      lo = fminf(lo, u), hi = fmaxf(hi, u);
+    }
+    CHECK_MSG(hi - lo < 0.5f, "%s: triangle %u (patch %d) spans the seam: u %g..%g", what, k, (int)o->triangle_patch[k],
+              (double)lo, (double)hi);
+  }
+  uint32_t on_seam = 0;
+  for (uint32_t v = 0; one_level && v < o->vertex_count; v++) {
+    const float* p = o->positions + 3 * v;
+    if (p[1] != 0.0f || !(p[0] > 0.0f)) continue;
+    bool zero = false, one = false;
+    for (uint32_t w = 0; w < o->vertex_count; w++) {
+      if (memcmp(o->positions + 3 * w, p, 12) != 0) continue;
+      zero = zero || o->attributes[w][0] == 0.0f;
+      one = one || o->attributes[w][0] > 0.75f; /* 1, or towards a pole copy of the last column */
+    }
+    CHECK_MSG(zero && one, "%s: seam vertex %u (%g, %g, %g) lacks u %s", what, v, (double)p[0], (double)p[1],
+              (double)p[2], zero ? "near 1" : "0");
+    on_seam++;
+  }
+  CHECK_MSG(on_seam > 0 || !one_level, "%s: no output vertex on the seam", what);
+}
+
+TEST(uv_seam_stays_closed_with_both_uvs) {
+  const uint32_t nlat = 4, nlon = 6;
+  shape s = shape_seam_sphere(nlat, nlon);
+  float* uv = seam_sphere_uv(nlat, nlon);
+  tlod_attribute_desc ad = {.data = uv, .components = 2, .name = "TEXCOORD_0"};
+  tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
+  for (int ty = 0; ty < 2; ty++) {
+    cpu_fixture fx;
+    CHECK(cpu_fixture_make(&fx, &s, &ad, 1, types[ty]));
+    char what[64];
+    for (uint32_t level = 0; level <= MAX_LEVEL; level++) {
+      tlod_cpu_mesh* o = cpu_run(&fx, level, NULL, false);
+      CHECK(o);
+      snprintf(what, sizeof(what), "type %d level %u", ty, level);
+      CALL(check_seam_output(o, what, true));
+      CHECK_MSG(o->strips == 0, "%s: %u strips on a mesh without creases at one level", what, o->strips);
+      tlod_cpu_mesh_destroy(fx.ctx, o);
+    }
+    for (uint64_t seed = 1; seed <= 4; seed++) {
+      int8_t* levels = random_levels(tlod_mesh_face_count(fx.mesh), seed);
+      tlod_cpu_mesh* o = cpu_run(&fx, 0, levels, false);
+      free(levels);
+      CHECK(o);
+      snprintf(what, sizeof(what), "type %d random levels %llu", ty, (unsigned long long)seed);
+      CALL(check_seam_output(o, what, false));
+      tlod_cpu_mesh_destroy(fx.ctx, o);
+    }
+    cpu_fixture_free(&fx);
+  }
+  free(uv);
+  shape_free(&s);
+}
+
+/* Every output vertex: tlod_surface_eval() at (vertex_patch, vertex_uv)
+ * gives its position bitwise, and the attributes evaluated there are its
+ * attributes bitwise (a mesh without seams has no strip vertices). */
+static void check_vertex_origin(const cpu_fixture* fx, const tlod_cpu_mesh* o, const char* what) {
+  uint32_t na = o->attribute_count;
+  CHECK(na == 3);
+  for (uint32_t v = 0; v < o->vertex_count; v++) {
+    uint32_t f = o->vertex_patch[v];
+    CHECK_MSG(f < tlod_mesh_face_count(fx->mesh), "%s: vertex %u: patch %u", what, v, f);
+    float u = o->vertex_uv[v][0], w = o->vertex_uv[v][1];
+    tlod_surface_point pt;
+    CHECK(tlod_surface_eval(fx->surf, f, u, w, &pt) == TLOD_SUCCESS);
+    CHECK_MSG(!memcmp(pt.position, o->positions + 3 * v, 12),
+              "%s: vertex %u (patch %u, %g, %g): (%.9g %.9g %.9g) vs (%.9g %.9g %.9g)", what, v, f, (double)u,
+              (double)w, (double)pt.position[0], (double)pt.position[1], (double)pt.position[2],
+              (double)o->positions[3 * v], (double)o->positions[3 * v + 1], (double)o->positions[3 * v + 2]);
+    uint16_t ij[2] = {(uint16_t)(u * (1 << MAX_LEVEL)), (uint16_t)(w * (1 << MAX_LEVEL))};
+    float want[3][4];
+    CHECK(tlod_mesh_eval_attributes_grid(fx->mesh, f, MAX_LEVEL, ij, 4, 1, want) == TLOD_SUCCESS);
+    CHECK_MSG(!memcmp(want, o->attributes[v * na], sizeof(want)), "%s: vertex %u attributes", what, v);
+  }
+}
+
+TEST(vertex_patch_and_uv_reproduce_the_vertex) {
+  shape shapes[3] = {shape_icosphere(1), shape_quad_sphere(2), shape_cube_split()};
+  for (int k = 0; k < 3; k++) {
+    attr_data a = attr_data_smooth(&shapes[k]);
+    cpu_fixture fx;
+    CHECK(cpu_fixture_make(&fx, &shapes[k], a.desc, 3, TLOD_SURFACE_PHONG));
+    int8_t* levels = random_levels(tlod_mesh_face_count(fx.mesh), 7 + (uint64_t)k);
+    for (int mode = 0; mode < 3; mode++) {
+      tlod_cpu_mesh* o = cpu_run(&fx, 3, mode == 2 ? levels : NULL, mode == 1);
+      CHECK(o);
+      char what[64];
+      snprintf(what, sizeof(what), "%s mode %d", shapes[k].name, mode);
+      CALL(check_vertex_origin(&fx, o, what));
+      tlod_cpu_mesh_destroy(fx.ctx, o);
+    }
+    free(levels);
+    cpu_fixture_free(&fx);
+    attr_data_free(&a);
+    shape_free(&shapes[k]);
+  }
+}
+
+/* A mesh without attributes: no attribute array; a reused mesh follows the
+ * attribute count of each call. */
+TEST(attribute_arrays_follow_the_mesh) {
+  shape s = shape_icosphere(1);
+  attr_data a = attr_data_smooth(&s);
+  cpu_fixture with, without;
+  CHECK(cpu_fixture_make(&with, &s, a.desc, 3, TLOD_SURFACE_PHONG));
+  CHECK(cpu_fixture_make(&without, &s, NULL, 0, TLOD_SURFACE_PHONG));
+  tlod_cpu_mesh* o = cpu_run(&without, 2, NULL, false);
+  CHECK(o && o->attribute_count == 0 && o->attributes == NULL && o->vertex_patch && o->vertex_uv);
+  tlod_cpu_mesh_destroy(without.ctx, o);
+  o = cpu_run(&with, 1, NULL, false);
+  CHECK(o && o->attribute_count == 3 && o->attributes);
+  tlod_cpu_tessellate_desc d = {.level = 3};
+  CHECK(tlod_cpu_tessellate_into(with.ctx, with.surf, with.pat, &d, o) == TLOD_SUCCESS);
+  CALL(check_vertex_origin(&with, o, "reused"));
+  tlod_cpu_mesh_destroy(with.ctx, o);
+  cpu_fixture_free(&with);
+  cpu_fixture_free(&without);
+  attr_data_free(&a);
+  shape_free(&s);
+}
+
 int main(void) {
+  RUN(uv_seam_stays_closed_with_both_uvs);
+  RUN(vertex_patch_and_uv_reproduce_the_vertex);
+  RUN(attribute_arrays_follow_the_mesh);
+
   RUN(shared_edges_are_bitwise_equal);
   RUN(pattern_values_match_the_corner_weights);
   RUN(eval_grid_checks_its_arguments);

@@ -1,5 +1,6 @@
 /* tesslod::cpu -- the reference tessellator: surface x refinement patterns
- * (+ connection strips, + geomorphs) -> indexed triangle mesh.
+ * (+ geomorphs) -> indexed triangle mesh; the connection strips are in
+ * cpu_strips.c.
  *
  * This work is based on:
  *   T. Boubekeur, C. Schlick. Generic mesh refinement on GPU. Graphics
@@ -8,68 +9,18 @@
  *   triangle meshes with adaptive tessellation. VMV 2006.
  *
  * Output vertex numbering (welded): corners by (welded position, normal,
- * alpha); edge points by edge slot, one slot per smooth shared edge whose
- * sides have one level (so both sides use the same vertex), one per face
- * edge otherwise; interior points per patch. Without welding each patch owns
- * its pattern vertices, as a GPU would draw them. */
+ * alpha, attributes); edge points by edge slot, one slot per smooth shared
+ * edge that is no attribute seam and whose sides have one level (so both
+ * sides use the same vertex), one per face edge otherwise; interior points
+ * per patch; then the strips' vertices carrying side a's attributes.
+ * Without welding each patch owns its pattern vertices, as a GPU would draw
+ * them. */
 #include <stdlib.h>
 #include <string.h>
 
 #include <math.h>
 
-#include "tesslod/cpu.h"
-
-enum { KIND_EDGE = TLOD_GRID_EDGE, KIND_INTERIOR = TLOD_GRID_INTERIOR };
-
-/* Per pattern vertex: what it is on the patch (corner c, edge e, interior)
- * and its parameter (edge: numerator of t_end over N; interior: ordinal). */
-typedef struct level_table {
-  uint32_t nv, interior;
-  uint8_t* kind;
-  uint32_t* param;
-} level_table;
-
-/* Per worker: pattern vertex -> output id, and the patch's evaluated points. */
-typedef struct scratch {
-  uint32_t* map;
-  float (*pos)[3];
-  float (*nrm)[3];
-} scratch;
-
-typedef struct tess {
-  tlod_context* ctx;
-  const tlod_surface* s;
-  tlod_mesh_view m;     /* read-only arrays of the surface's mesh */
-  tlod_surface_view sv; /* ... and of the surface (per-vertex alpha) */
-  const tlod_patterns* pat;
-  tlod_cpu_tessellate_desc d;
-  uint32_t lmax, n_grid;
-  int8_t* level;
-  float (*morph)[5]; /* per patch: interior blend, then per edge; NULL: no morph */
-  level_table tables[2][TLOD_MAX_LEVEL + 1];
-  uint32_t* corner_id;  /* welded: per mesh vertex */
-  uint32_t* corner_src; /* welded: output corner -> mesh vertex */
-  uint32_t corner_count;
-  uint32_t* slot_owner; /* per face * 4 + edge */
-  uint8_t* slot_level;
-  uint32_t* slot_base;
-  uint32_t* interior_base; /* welded: per patch; no_weld: patch base */
-  uint32_t* tri_base;
-  uint32_t vertex_count, pattern_tris;
-  uint32_t (*strip_tris)[3];
-  uint32_t strip_count, strip_cap;
-  scratch* work;
-  uint32_t work_count, work_stride;
-  tlod_cpu_mesh* out;
-} tess;
-
-static tlod_pattern_shape shape_of(const tess* t, uint32_t f) {
-  return t->m.face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
-}
-
-static int level_of(const tess* t, uint32_t f) { return t->level[f]; }
-
-static const level_table* table_of(const tess* t, uint32_t f) { return &t->tables[shape_of(t, f)][level_of(t, f)]; }
+#include "cpu_internal.h"
 
 static tlod_result build_table(tess* t, tlod_pattern_shape shape, uint32_t level) {
   level_table* lt = &t->tables[shape][level];
@@ -91,18 +42,26 @@ static tlod_result build_table(tess* t, tlod_pattern_shape shape, uint32_t level
 
 /* ---- welded numbering ---------------------------------------------------- */
 
-/* A corner's identity: welded position, normal and alpha bits. */
+/* A corner's identity: welded position, normal and alpha bits, and its
+ * attribute vec4s (bitwise: a seam keeps one vertex per side). */
 typedef struct corner_key {
   uint32_t key[5];
   uint32_t vertex;
+  const float (*attr)[4];
+  uint32_t na;
 } corner_key;
 
-static int cmp_corner(const void* pa, const void* pb) {
-  const corner_key *a = pa, *b = pb;
+static int cmp_key(const corner_key* a, const corner_key* b) {
   for (int i = 0; i < 5; i++) {
     if (a->key[i] != b->key[i]) return a->key[i] < b->key[i] ? -1 : 1;
   }
-  return a->vertex < b->vertex ? -1 : (a->vertex > b->vertex);
+  return a->na ? memcmp(a->attr, b->attr, sizeof(*a->attr) * a->na) : 0;
+}
+
+static int cmp_corner(const void* pa, const void* pb) {
+  const corner_key *a = pa, *b = pb;
+  int c = cmp_key(a, b);
+  return c ? c : (a->vertex < b->vertex ? -1 : (a->vertex > b->vertex));
 }
 
 static tlod_result number_corners(tess* t) {
@@ -119,11 +78,13 @@ static tlod_result number_corners(tess* t) {
     memcpy(&keys[v].key[1], m->normals[v], sizeof(float) * 3);
     memcpy(&keys[v].key[4], &t->sv.vertex_alpha[v], sizeof(float));
     keys[v].vertex = v;
+    keys[v].attr = t->na ? m->attributes + (size_t)v * t->na : NULL;
+    keys[v].na = t->na;
   }
   qsort(keys, m->vertex_count, sizeof(corner_key), cmp_corner);
   uint32_t id = 0;
   for (uint32_t x = 0; x < m->vertex_count; x++) {
-    if (x == 0 || memcmp(keys[x].key, keys[x - 1].key, sizeof(keys[x].key)) != 0) t->corner_src[id++] = keys[x].vertex;
+    if (x == 0 || cmp_key(&keys[x], &keys[x - 1]) != 0) t->corner_src[id++] = keys[x].vertex;
     t->corner_id[keys[x].vertex] = id - 1;
   }
   t->corner_count = id;
@@ -131,21 +92,17 @@ static tlod_result number_corners(tess* t) {
   return TLOD_SUCCESS;
 }
 
-static bool linked(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link) {
-  *link = t->m.links[f][e];
-  return link->face != UINT32_MAX && level_of(t, link->face) >= 0;
-}
-
-static float edge_blend(const tess* t, uint32_t f, uint32_t e) { return t->morph ? t->morph[f][1 + e] : 1.0f; }
-
-/* Both sides produce the same points on the edge (one curve: smooth), the
- * coarser side's being a subset of the finer side's: equal levels with one
- * blend, or a coarser side whose points are not blending. */
-static bool edge_shared(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link) {
+bool _tlod_cpu_edge_coincides(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link) {
   if (!linked(t, f, e, link) || !link->smooth) return false;
   int lf = level_of(t, f), lg = level_of(t, link->face);
   if (lf == lg) return edge_blend(t, f, e) == edge_blend(t, link->face, link->edge);
   return lf < lg ? edge_blend(t, f, e) == 1.0f : edge_blend(t, link->face, link->edge) == 1.0f;
+}
+
+/* Both sides use one set of vertices: the same points (the coarser side's
+ * a subset of the finer side's) with the same attributes (no seam). */
+static bool edge_shared(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link) {
+  return _tlod_cpu_edge_coincides(t, f, e, link) && !link->seam;
 }
 
 /* The side that writes a shared edge's points: the finer one (it has them
@@ -193,7 +150,7 @@ static void assign_unwelded(tess* t) {
 
 /* Output id of every pattern vertex of patch f, with the patch's corner and
  * edge-slot lookups done once. */
-static void patch_map(const tess* t, uint32_t f, uint32_t* map) {
+void _tlod_cpu_patch_map(const tess* t, uint32_t f, uint32_t* map) {
   const level_table* lt = table_of(t, f);
   uint32_t ib = t->interior_base[f];
   if (t->d.no_weld) {
@@ -249,9 +206,21 @@ static void morph_vertex(const tess* t, uint32_t f, const tlod_pattern_vertex* p
   }
 }
 
-static void put(tess* t, uint32_t id, const float* pos, const float* nrm) {
-  memcpy(t->out->positions + 3 * (size_t)id, pos, sizeof(float) * 3);
-  if (t->out->normals) memcpy(t->out->normals + 3 * (size_t)id, nrm, sizeof(float) * 3);
+/* Vertex k's attributes in a vertex-major array of na vec4s; NULL without
+ * attributes (no arithmetic on a NULL array). */
+static const float (*attr_at(const float (*base)[4], size_t k, uint32_t na))[4] { return na ? base + k * na : NULL; }
+
+/* An output vertex: position, normal, where it lies, and (with attributes)
+ * its attribute vec4s. */
+static void put(tess* t, uint32_t id, const float* pos, const float* nrm, uint32_t patch, float u, float v,
+                const float (*attr)[4]) {
+  tlod_cpu_mesh* o = t->out;
+  memcpy(o->positions + 3 * (size_t)id, pos, sizeof(float) * 3);
+  if (o->normals) memcpy(o->normals + 3 * (size_t)id, nrm, sizeof(float) * 3);
+  o->vertex_patch[id] = patch;
+  o->vertex_uv[id][0] = u;
+  o->vertex_uv[id][1] = v;
+  if (t->na) memcpy(o->attributes + (size_t)id * t->na, attr, sizeof(*attr) * t->na);
 }
 
 /* Whether this patch writes pattern vertex x (welded: corners come from
@@ -274,23 +243,41 @@ static void eval_patches(void* data, uint32_t begin, uint32_t end, uint32_t work
     uint32_t count;
     const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape_of(t, f), &count);
     const level_table* lt = table_of(t, f);
-    patch_map(t, f, w->map);
+    _tlod_cpu_patch_map(t, f, w->map);
     tlod_surface_eval_grid(t->s, f, t->lmax, &pv[0].i, sizeof(*pv), lt->nv, &w->pos[0][0], &w->nrm[0][0]);
+    if (t->na) tlod_mesh_eval_attributes_grid(t->mesh, f, t->lmax, &pv[0].i, sizeof(*pv), lt->nv, w->attr);
     if (t->morph && lv > 0) {
       for (uint32_t x = tlod_pattern_vertex_count(shape_of(t, f), (uint32_t)lv - 1); x < lt->nv; x++)
         morph_vertex(t, f, pv, x, w);
     }
     for (uint32_t x = 0; x < lt->nv; x++) {
-      if (writes(t, f, lt, x)) put(t, w->map[x], w->pos[x], w->nrm[x]);
+      if (writes(t, f, lt, x)) put(t, w->map[x], w->pos[x], w->nrm[x], f, pv[x].u, pv[x].v, attr_at(w->attr, x, t->na));
     }
   }
 }
 
+/* (u, v) of corner c of a triangle (i, j, k) or a quad (core.h PARAMETERS). */
+static const float corner_uv[2][4][2] = {{{1, 0}, {0, 1}, {0, 0}, {0, 0}}, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+
+/* Welded corners come from the mesh; their patch is the first drawn one
+ * having them (a sequential pass: the result is the same for any thread
+ * count). */
 static void eval_corners(tess* t) {
   if (t->d.no_weld) return;
+  tlod_cpu_mesh* o = t->out;
   for (uint32_t c = 0; c < t->corner_count; c++) {
     uint32_t v = t->corner_src[c];
-    put(t, c, t->m.positions[v], t->m.normals[v]);
+    put(t, c, t->m.positions[v], t->m.normals[v], UINT32_MAX, 0.0f, 0.0f, attr_at(t->m.attributes, v, t->na));
+  }
+  for (uint32_t f = 0; f < t->m.face_count; f++) {
+    if (level_of(t, f) < 0) continue;
+    uint32_t n = t->m.face_corners[f];
+    for (uint32_t k = 0; k < n; k++) {
+      uint32_t id = t->corner_id[t->m.faces[f][k]];
+      if (o->vertex_patch[id] != UINT32_MAX) continue;
+      o->vertex_patch[id] = f;
+      memcpy(o->vertex_uv[id], corner_uv[n == 4][k], sizeof(o->vertex_uv[id]));
+    }
   }
 }
 
@@ -303,88 +290,12 @@ static void emit_patches(void* data, uint32_t begin, uint32_t end, uint32_t work
     uint32_t count;
     const uint32_t* idx = tlod_patterns_indices(t->pat, shape_of(t, f), (uint32_t)lv, &count);
     uint32_t* dst = t->out->indices + 3 * (size_t)t->tri_base[f];
-    patch_map(t, f, map);
+    _tlod_cpu_patch_map(t, f, map);
     for (uint32_t k = 0; k < count; k++)
       dst[k] = map[idx[k]];
     for (uint32_t k = 0; k < count / 3; k++)
       t->out->triangle_patch[t->tri_base[f] + k] = f;
   }
-}
-
-/* ---- strips ---------------------------------------------------------------- */
-
-static bool same_position(const tess* t, uint32_t a, uint32_t b) {
-  return a == b || !memcmp(t->out->positions + 3 * (size_t)a, t->out->positions + 3 * (size_t)b, sizeof(float) * 3);
-}
-
-static tlod_result push_strip_tri(tess* t, const uint32_t tri[3]) {
-  if (t->strip_count == t->strip_cap) {
-    uint32_t cap = t->strip_cap ? t->strip_cap * 2 : 1024;
-    uint32_t(*grown)[3] = tlod_context_alloc(t->ctx, sizeof(*grown) * cap);
-    if (!grown) return TLOD_ERROR_OUT_OF_MEMORY;
-    if (t->strip_count) memcpy(grown, t->strip_tris, sizeof(*grown) * t->strip_count);
-    tlod_context_free(t->ctx, t->strip_tris);
-    t->strip_tris = grown;
-    t->strip_cap = cap;
-  }
-  memcpy(t->strip_tris[t->strip_count++], tri, sizeof(uint32_t) * 3);
-  return TLOD_SUCCESS;
-}
-
-/* Output ids of edge e of patch f, in f's direction or reversed. */
-static uint32_t polyline(const tess* t, uint32_t f, uint32_t e, bool reverse, uint32_t* map, uint32_t* ids) {
-  uint32_t local[(1u << TLOD_MAX_LEVEL) + 1];
-  uint32_t n = tlod_patterns_edge(t->pat, shape_of(t, f), (uint32_t)level_of(t, f), e, local) - 1;
-  patch_map(t, f, map);
-  for (uint32_t k = 0; k <= n; k++)
-    ids[k] = map[local[reverse ? n - k : k]];
-  return n;
-}
-
-static tlod_result stitch_edge(tess* t, uint32_t f, uint32_t e, uint32_t g, uint32_t eg) {
-  uint32_t ids[2 * ((1u << TLOD_MAX_LEVEL) + 1)];
-  uint32_t* map = t->work[0].map;
-  uint32_t na = polyline(t, f, e, false, map, ids);
-  polyline(t, g, eg, true, map, ids + na + 1);
-  uint32_t count;
-  const uint32_t* tris = tlod_patterns_connection(t->pat, (uint32_t)level_of(t, f), (uint32_t)level_of(t, g), &count);
-  t->out->strips++;
-  for (uint32_t k = 0; k < count; k++) {
-    uint32_t tri[3] = {ids[tris[3 * k]], ids[tris[3 * k + 1]], ids[tris[3 * k + 2]]};
-    /* Points the two sides share (a smooth edge's coarser points) make a
-     * triangle with no area: leave it out. */
-    if (same_position(t, tri[0], tri[1]) || same_position(t, tri[1], tri[2]) || same_position(t, tri[2], tri[0])) {
-      t->out->folds_skipped++;
-      continue;
-    }
-    if (push_strip_tri(t, tri) != TLOD_SUCCESS) return TLOD_ERROR_OUT_OF_MEMORY;
-  }
-  return TLOD_SUCCESS;
-}
-
-static tlod_result stitch(tess* t) {
-  if (t->d.no_stitch) return TLOD_SUCCESS;
-  const tlod_draw_list* dl = t->d.draw_list;
-  if (dl) {
-    for (uint32_t k = 0; k < dl->strip_count; k++) {
-      const tlod_draw_strip* st = &dl->strips[k];
-      tlod_result r = stitch_edge(t, st->patch_a, st->edge_a, st->patch_b, st->edge_b);
-      if (r != TLOD_SUCCESS) return r;
-    }
-    return TLOD_SUCCESS;
-  }
-  for (uint32_t f = 0; f < t->m.face_count; f++) {
-    if (level_of(t, f) < 0) continue;
-    for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
-      tlod_edge_link link;
-      if (!linked(t, f, e, &link) || link.face < f) continue;
-      /* Equal levels on one curve with one blend: the polylines coincide. */
-      if (link.smooth && level_of(t, f) == level_of(t, link.face) && edge_shared(t, f, e, &link)) continue;
-      tlod_result r = stitch_edge(t, f, e, link.face, link.edge);
-      if (r != TLOD_SUCCESS) return r;
-    }
-  }
-  return TLOD_SUCCESS;
 }
 
 /* ---- driver ---------------------------------------------------------------- */
@@ -400,9 +311,11 @@ static void tess_free(tess* t) {
     tlod_context_free(t->ctx, t->work[w].map);
     tlod_context_free(t->ctx, t->work[w].pos);
     tlod_context_free(t->ctx, t->work[w].nrm);
+    tlod_context_free(t->ctx, t->work[w].attr);
   }
-  void* arrays[] = {t->level,     t->morph,         t->corner_id, t->corner_src, t->slot_owner, t->slot_level,
-                    t->slot_base, t->interior_base, t->tri_base,  t->strip_tris, t->work};
+  void* arrays[] = {t->level,      t->morph,       t->corner_id,     t->corner_src, t->slot_owner,
+                    t->slot_level, t->slot_base,   t->interior_base, t->tri_base,   t->strip_tris,
+                    t->work,       t->strip_verts, t->strip_attr};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(t->ctx, arrays[i]);
 }
@@ -413,6 +326,9 @@ void tlod_cpu_mesh_destroy(tlod_context* ctx, tlod_cpu_mesh* mesh) {
   tlod_context_free(ctx, mesh->normals);
   tlod_context_free(ctx, mesh->indices);
   tlod_context_free(ctx, mesh->triangle_patch);
+  tlod_context_free(ctx, mesh->attributes);
+  tlod_context_free(ctx, mesh->vertex_patch);
+  tlod_context_free(ctx, mesh->vertex_uv);
   tlod_context_free(ctx, mesh);
 }
 
@@ -515,34 +431,60 @@ static tlod_result alloc_work(tess* t) {
     t->work[w].pos = tlod_context_alloc(t->ctx, sizeof(float[3]) * n);
     t->work[w].nrm = tlod_context_alloc(t->ctx, sizeof(float[3]) * n);
     if (!t->work[w].map || !t->work[w].pos || !t->work[w].nrm) return TLOD_ERROR_OUT_OF_MEMORY;
+    if (t->na && !(t->work[w].attr = tlod_context_alloc(t->ctx, sizeof(float[4]) * t->na * n)))
+      return TLOD_ERROR_OUT_OF_MEMORY;
   }
   return TLOD_SUCCESS;
 }
 
 /* Grows *p to hold count elements when the capacity is short (a mesh
- * reused frame after frame keeps its pages: no first-touch faults). */
-static bool ensure(const tlod_context* ctx, void** p, size_t elem, uint32_t count, uint32_t capacity) {
+ * reused frame after frame keeps its pages: no first-touch faults); the
+ * first keep elements are copied over. */
+static bool grow_keep(const tlod_context* ctx, void** p, size_t elem, uint32_t count, uint32_t capacity,
+                      uint32_t keep) {
   if (*p && count <= capacity) return true;
+  void* grown = tlod_context_alloc(ctx, elem * ((size_t)count + 1));
+  if (grown && *p && keep) memcpy(grown, *p, elem * keep);
   tlod_context_free(ctx, *p);
-  *p = tlod_context_alloc(ctx, elem * ((size_t)count + 1));
-  return *p != NULL;
+  *p = grown;
+  return grown != NULL;
+}
+
+static bool ensure(const tlod_context* ctx, void** p, size_t elem, uint32_t count, uint32_t capacity) {
+  return grow_keep(ctx, p, elem, count, capacity, 0);
+}
+
+/* The per-vertex arrays for n vertices; keep: vertices [0, keep) survive a
+ * growth (the strip vertices come after the pattern vertices are written). */
+static bool vertex_arrays(tess* t, uint32_t n, uint32_t keep) {
+  tlod_cpu_mesh* o = t->out;
+  uint32_t cap = o->vertex_capacity;
+  bool ok = grow_keep(t->ctx, (void**)&o->positions, sizeof(float) * 3, n, cap, keep);
+  ok = grow_keep(t->ctx, (void**)&o->vertex_patch, sizeof(uint32_t), n, o->vertex_patch ? cap : 0, keep) && ok;
+  ok = grow_keep(t->ctx, (void**)&o->vertex_uv, sizeof(float) * 2, n, o->vertex_uv ? cap : 0, keep) && ok;
+  if (t->d.no_normals) {
+    tlod_context_free(t->ctx, o->normals);
+    o->normals = NULL;
+  } else {
+    ok = grow_keep(t->ctx, (void**)&o->normals, sizeof(float) * 3, n, o->normals ? cap : 0, keep) && ok;
+  }
+  /* The attribute array's capacity counts vectors of the last call's count. */
+  uint32_t acap = o->attributes && o->attribute_count == t->na ? cap : 0;
+  if (t->na == 0) {
+    tlod_context_free(t->ctx, o->attributes);
+    o->attributes = NULL;
+  } else {
+    ok = grow_keep(t->ctx, (void**)&o->attributes, sizeof(float[4]) * t->na, n, acap, keep) && ok;
+  }
+  o->attribute_count = t->na;
+  o->vertex_capacity = ok && n > cap ? n : (ok ? cap : 0);
+  o->vertex_count = n;
+  return ok;
 }
 
 static tlod_result alloc_output(tess* t, bool indices) {
   tlod_cpu_mesh* o = t->out;
-  if (!indices) {
-    uint32_t cap = o->vertex_capacity, n = t->vertex_count;
-    bool ok = ensure(t->ctx, (void**)&o->positions, sizeof(float) * 3, n, cap);
-    if (t->d.no_normals) {
-      tlod_context_free(t->ctx, o->normals);
-      o->normals = NULL;
-    } else {
-      ok = ensure(t->ctx, (void**)&o->normals, sizeof(float) * 3, n, o->normals ? cap : 0) && ok;
-    }
-    o->vertex_capacity = ok && n > cap ? n : (ok ? cap : 0);
-    o->vertex_count = n;
-    return ok ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
-  }
+  if (!indices) return vertex_arrays(t, t->vertex_count, 0) ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
   o->pattern_triangles = t->pattern_tris;
   o->strip_triangles = t->strip_count;
   o->triangle_count = t->pattern_tris + t->strip_count;
@@ -551,6 +493,22 @@ static tlod_result alloc_output(tess* t, bool indices) {
   ok = ensure(t->ctx, (void**)&o->triangle_patch, sizeof(uint32_t), n, cap) && ok;
   o->triangle_capacity = ok && n > cap ? n : (ok ? cap : 0);
   return ok ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
+}
+
+/* The strips' vertices carrying side a's attributes, after the pattern
+ * vertices: b's position, normal, patch and (u, v), a's attributes. */
+static tlod_result emit_strip_vertices(tess* t) {
+  uint32_t n = t->strip_vert_count, base = t->vertex_count;
+  if (n == 0) return TLOD_SUCCESS;
+  if (!vertex_arrays(t, base + n, base)) return TLOD_ERROR_OUT_OF_MEMORY;
+  tlod_cpu_mesh* o = t->out;
+  for (uint32_t k = 0; k < n; k++) {
+    uint32_t src = t->strip_verts[k].src;
+    put(t, base + k, o->positions + 3 * (size_t)src, o->normals ? o->normals + 3 * (size_t)src : NULL,
+        o->vertex_patch[src], o->vertex_uv[src][0], o->vertex_uv[src][1], attr_at(t->strip_attr, k, t->na));
+  }
+  t->vertex_count = base + n;
+  return TLOD_SUCCESS;
 }
 
 static tlod_result run(tess* t) {
@@ -563,7 +521,8 @@ static tlod_result run(tess* t) {
                : tlod_context_fail(t->ctx, r, "tlod_cpu_tessellate: out of memory for %u vertices", t->vertex_count);
   eval_corners(t);
   tlod_context_parallel_for(t->ctx, eval_patches, t, t->m.face_count);
-  if (stitch(t) != TLOD_SUCCESS || alloc_output(t, true) != TLOD_SUCCESS)
+  if (_tlod_cpu_stitch(t) != TLOD_SUCCESS || emit_strip_vertices(t) != TLOD_SUCCESS ||
+      alloc_output(t, true) != TLOD_SUCCESS)
     return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for triangles");
   tlod_context_parallel_for(t->ctx, emit_patches, t, t->m.face_count);
   if (t->strip_count) {
@@ -581,6 +540,7 @@ tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surf
     return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: NULL argument");
   tess t = {.ctx = ctx,
             .s = surface,
+            .mesh = tlod_surface_mesh(surface),
             .m = tlod_mesh_query_view(tlod_surface_mesh(surface)),
             .sv = tlod_surface_query_view(surface),
             .pat = patterns,
@@ -588,6 +548,7 @@ tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surf
             .out = mesh};
   t.lmax = tlod_patterns_max_level(patterns);
   t.n_grid = 1u << t.lmax;
+  t.na = t.m.attribute_count;
   mesh->vertex_count = mesh->triangle_count = 0;
   mesh->pattern_triangles = mesh->strip_triangles = mesh->strips = mesh->folds_skipped = 0;
   tlod_result r = run(&t);

@@ -41,6 +41,34 @@
  *   no_weld: every patch emits its own pattern vertices, as a GPU draws them;
  *     invariant 1 (docs/design.md) makes shared positions bitwise equal, so
  *     welding the output by exact position gives back a closed mesh.
+ *
+ * VERTEX ATTRIBUTES AND (PATCH, U, V)
+ *   Every output vertex carries the mesh's attributes (tesslod/core.h,
+ *   "Vertex attributes"), evaluated with tlod_mesh_eval_attributes_grid() at
+ *   the vertex's pattern point: corners exact, edge points bitwise equal on
+ *   both sides of an edge that is not a seam, interiors barycentric /
+ *   bilinear. Welding also requires equal attributes: on a seam (a smooth
+ *   edge with split attributes, tlod_edge_link.seam) each side keeps its own
+ *   vertices, at bitwise equal positions, and no strip is needed when both
+ *   sides have one level. Connection strips take every attribute from side
+ *   a of the strip (the patch whose edge comes first: patch_a of a draw
+ *   list strip, else the smaller patch): a point of b's polyline whose
+ *   attributes differ from a's at that edge point (a seam, or a crease with
+ *   split attributes) gets an extra output vertex, b's position and normal
+ *   with a's attributes, so no strip smears two sides of a seam (the GL
+ *   strips do the same). Attributes are not geomorphed: they are affine in
+ *   (u, v) on triangles, so a vertex's own value already equals the
+ *   parents' midpoint it starts from, and blending would only cost time
+ *   (on quads they are bilinear; the difference along a diagonal parent
+ *   pair is the twist term of the corner values, not a pop of geometry).
+ *   vertex_patch / vertex_uv give each output vertex's patch and (u, v) on
+ *   it (core.h PARAMETERS): the patch that evaluated it (a welded corner:
+ *   the first drawn patch having it; a strip's extra vertex: b's patch), so
+ *   tlod_surface_eval(surface, vertex_patch[v], u, v) gives its position
+ *   (bitwise for every point without a geomorph blend below 1). Corners no
+ *   drawn patch uses (unused mesh vertices, patches left out) have patch
+ *   UINT32_MAX and (u, v) (0, 0). A mesh without attributes costs nothing
+ *   more than the (patch, u, v) writes.
  */
 #ifndef TESSLOD_CPU_H
 #define TESSLOD_CPU_H
@@ -75,6 +103,13 @@ typedef struct tlod_cpu_mesh {
   uint32_t strips;                             /* edges that needed a strip */
   uint32_t folds_skipped;                      /* strip triangles left out: two corners at one position */
   uint32_t vertex_capacity, triangle_capacity; /* allocated, for tlod_cpu_tessellate_into */
+  /* See VERTEX ATTRIBUTES: attribute_count vec4s per vertex, vertex v's
+   * attribute a at [v * attribute_count + a] (the mesh view's layout); NULL
+   * without attributes. */
+  uint32_t attribute_count;
+  float (*attributes)[4];
+  uint32_t* vertex_patch; /* patch (kept face) of each output vertex, UINT32_MAX for an unused corner */
+  float (*vertex_uv)[2];  /* (u, v) of each output vertex on vertex_patch */
 } tlod_cpu_mesh;
 
 /* Tessellates every patch of the surface. patterns must reach the largest

@@ -1,0 +1,97 @@
+/* Private to tesslod::cpu: the tessellator's working state, shared by the
+ * pattern pass (cpu_tessellate.c) and the connection strips (cpu_strips.c). */
+#ifndef TESSLOD_CPU_INTERNAL_H
+#define TESSLOD_CPU_INTERNAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "tesslod/cpu.h"
+
+enum { KIND_EDGE = TLOD_GRID_EDGE, KIND_INTERIOR = TLOD_GRID_INTERIOR };
+
+/* Per pattern vertex: what it is on the patch (corner c, edge e, interior)
+ * and its parameter (edge: numerator of t_end over N; interior: ordinal). */
+typedef struct level_table {
+  uint32_t nv, interior;
+  uint8_t* kind;
+  uint32_t* param;
+} level_table;
+
+/* Per worker: pattern vertex -> output id, the patch's evaluated points and
+ * (with attributes) their attribute vec4s; worker 0's attr also serves the
+ * strips (one edge polyline). */
+typedef struct scratch {
+  uint32_t* map;
+  float (*pos)[3];
+  float (*nrm)[3];
+  float (*attr)[4]; /* NULL without attributes */
+} scratch;
+
+/* A strip vertex of b's polyline carrying a's attributes (cpu_strips.c):
+ * the output vertex whose position, normal, patch and (u, v) it copies. */
+typedef struct strip_vertex {
+  uint32_t src;
+} strip_vertex;
+
+typedef struct tess {
+  tlod_context* ctx;
+  const tlod_surface* s;
+  const tlod_mesh* mesh;
+  tlod_mesh_view m;     /* read-only arrays of the surface's mesh */
+  tlod_surface_view sv; /* ... and of the surface (per-vertex alpha) */
+  const tlod_patterns* pat;
+  tlod_cpu_tessellate_desc d;
+  uint32_t lmax, n_grid;
+  uint32_t na; /* the mesh's attribute count */
+  int8_t* level;
+  float (*morph)[5]; /* per patch: interior blend, then per edge; NULL: no morph */
+  level_table tables[2][TLOD_MAX_LEVEL + 1];
+  uint32_t* corner_id;  /* welded: per mesh vertex */
+  uint32_t* corner_src; /* welded: output corner -> mesh vertex */
+  uint32_t corner_count;
+  uint32_t* slot_owner; /* per face * 4 + edge */
+  uint8_t* slot_level;
+  uint32_t* slot_base;
+  uint32_t* interior_base; /* welded: per patch; no_weld: patch base */
+  uint32_t* tri_base;
+  uint32_t vertex_count, pattern_tris;
+  uint32_t (*strip_tris)[3];
+  uint32_t strip_count, strip_cap;
+  /* Strip vertices with side a's attributes, numbered from vertex_count. */
+  strip_vertex* strip_verts;
+  float (*strip_attr)[4]; /* na per strip vertex */
+  uint32_t strip_vert_count, strip_vert_cap;
+  scratch* work;
+  uint32_t work_count, work_stride;
+  tlod_cpu_mesh* out;
+} tess;
+
+static inline tlod_pattern_shape shape_of(const tess* t, uint32_t f) {
+  return t->m.face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
+}
+
+static inline int level_of(const tess* t, uint32_t f) { return t->level[f]; }
+
+static inline const level_table* table_of(const tess* t, uint32_t f) {
+  return &t->tables[shape_of(t, f)][level_of(t, f)];
+}
+
+static inline bool linked(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link) {
+  *link = t->m.links[f][e];
+  return link->face != UINT32_MAX && level_of(t, link->face) >= 0;
+}
+
+static inline float edge_blend(const tess* t, uint32_t f, uint32_t e) { return t->morph ? t->morph[f][1 + e] : 1.0f; }
+
+/* cpu_tessellate.c: output id of every pattern vertex of patch f. */
+void _tlod_cpu_patch_map(const tess* t, uint32_t f, uint32_t* map);
+/* cpu_tessellate.c: both sides of edge e of f evaluate the same points
+ * (smooth geometry, one level and blend, or a non-blending coarser side). */
+bool _tlod_cpu_edge_coincides(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link);
+/* cpu_strips.c: the connection strips, into t->strip_tris, after the
+ * pattern vertices are written (folds compare output positions); with
+ * attributes also the strip vertices carrying side a's (strip_verts). */
+tlod_result _tlod_cpu_stitch(tess* t);
+
+#endif
