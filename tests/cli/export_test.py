@@ -72,6 +72,25 @@ def image_bytes(doc, buffers, path, index):
     return open(os.path.join(os.path.dirname(path), im["uri"]), "rb").read()
 
 
+def quat_matrix(q):
+    x, y, z, w = q
+    return [1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
+            2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
+            2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0, 0, 0, 0, 1]
+
+
+def local(node):
+    if "matrix" in node:
+        return node["matrix"]
+    m = quat_matrix(node.get("rotation", [0, 0, 0, 1]))
+    s = node.get("scale", [1, 1, 1])
+    for col in range(3):
+        for row in range(3):
+            m[4 * col + row] *= s[col]
+    m[12:15] = node.get("translation", [0, 0, 0])
+    return m
+
+
 def f32(x):
     return struct.unpack("<f", struct.pack("<f", x))[0]
 
@@ -117,10 +136,14 @@ for src in (DUCK_GLTF, DUCK_GLB):
         errors, detail = validate(out)
         check("%s: the Khronos validator reports 0 errors" % name, errors == 0, detail)
         doc, bufs = load_gltf(out)
-        check("%s: nodes and meshes kept" % name, len(doc["nodes"]) == len(src_doc["nodes"]) and
+        check("%s: nodes, their children (in any order) and meshes kept" % name,
+              len(doc["nodes"]) == len(src_doc["nodes"]) and
               [n.get("mesh") for n in doc["nodes"]] == [n.get("mesh") for n in src_doc["nodes"]] and
-              [n.get("children", []) for n in doc["nodes"]] == [n.get("children", []) for n in src_doc["nodes"]],
-              json.dumps(doc["nodes"])[:300])
+              [sorted(n.get("children", [])) for n in doc["nodes"]] ==
+              [sorted(n.get("children", [])) for n in src_doc["nodes"]], json.dumps(doc["nodes"])[:300])
+        bad = [i for i, (a, b) in enumerate(zip(doc["nodes"], src_doc["nodes"]))
+               if max(abs(x - y) for x, y in zip(local(a), local(b))) > 1e-6 * max(1.0, max(map(abs, local(b))))]
+        check("%s: node matrices kept (TRS or matrix, 1e-6 relative)" % name, not bad, "nodes %s differ" % bad)
         prim = doc["meshes"][0]["primitives"][0]
         pos = accessor(doc, bufs, prim["attributes"]["POSITION"], raw=True)
         uv = accessor(doc, bufs, prim["attributes"]["TEXCOORD_0"], raw=True) if "TEXCOORD_0" in prim["attributes"] \
@@ -230,25 +253,6 @@ def scene_gltf(path):
     return doc
 
 
-def quat_matrix(q):
-    x, y, z, w = q
-    return [1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
-            2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
-            2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0, 0, 0, 0, 1]
-
-
-def local(node):
-    if "matrix" in node:
-        return node["matrix"]
-    m = quat_matrix(node.get("rotation", [0, 0, 0, 1]))
-    s = node.get("scale", [1, 1, 1])
-    for col in range(3):
-        for row in range(3):
-            m[4 * col + row] *= s[col]
-    m[12:15] = node.get("translation", [0, 0, 0])
-    return m
-
-
 def mul(a, b):
     return [sum(a[4 * k + r] * b[4 * c + k] for k in range(4)) for c in range(4) for r in range(4)]
 
@@ -278,8 +282,8 @@ for ext in ("gltf", "glb"):
     check("scene -> .%s: the Khronos validator reports 0 errors" % ext, errors == 0, detail)
     doc, bufs = load_gltf(o)
     check("scene -> .%s: hierarchy, names and meshes of the nodes kept" % ext,
-          [(n.get("name"), n.get("children", []), n.get("mesh")) for n in doc["nodes"]] ==
-          [(n.get("name"), n.get("children", []), n.get("mesh")) for n in sdoc["nodes"]] and
+          [(n.get("name", ""), sorted(n.get("children", [])), n.get("mesh")) for n in doc["nodes"]] ==
+          [(n.get("name", ""), sorted(n.get("children", [])), n.get("mesh")) for n in sdoc["nodes"]] and
           doc["scenes"][0]["nodes"] == sdoc["scenes"][0]["nodes"], json.dumps(doc["nodes"]))
     bad = [i for i, (a, b) in enumerate(zip(doc["nodes"], sdoc["nodes"]))
            if max(abs(x - y) for x, y in zip(local(a), local(b))) > 1e-6]

@@ -5,18 +5,12 @@
 
 void tess_export_of(const tlod_cpu_mesh* out, const tlod_mesh* mesh, tess_export* e) {
   memset(e, 0, sizeof(*e));
-#ifdef TESS_CPU_ATTRIBUTES_PENDING /* TEMPORARY until core-attrs' cpu output lands */
   uint32_t count = out->attributes ? out->attribute_count : 0;
-#else
-  uint32_t count = 0;
-#endif
   for (uint32_t a = 0; a < count && a < TLOD_MAX_ATTRIBUTES; a++) {
     e->info[a] = tlod_mesh_query_attribute(mesh, a);
     e->attributes[a] = (tlod_export_attribute){.name = e->info[a].name,
                                                .components = e->info[a].components,
-#ifdef TESS_CPU_ATTRIBUTES_PENDING
                                                .data = out->attributes[a],
-#endif
                                                .stride = (uint32_t)(sizeof(float[4]) * count)};
   }
   e->mesh = (tlod_export_mesh){.vertex_count = out->vertex_count,
