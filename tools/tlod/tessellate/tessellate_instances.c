@@ -91,6 +91,7 @@ static int tessellate_nodes(tess_scene* s, const tlod_view_desc* view) {
     for (uint32_t k = 0; rc == CLI_OK && k < me->part_count; k++) {
       const uint32_t p = me->first_part + k;
       tess_item* item = s->node_first[n] == UINT32_MAX ? &s->parts[p] : &s->copies[s->node_first[n] + k];
+      item->part = p;
       rc = tessellate_instance(s, view, n, p, &item->out);
     }
   }

@@ -80,7 +80,7 @@ static int write_scene(tess_scene* s) {
     parts[p] = s->parts[p].ex.mesh;
   }
   for (uint32_t c = 0; rc == CLI_OK && c < s->copy_count; c++) {
-    tess_export_of(s->copies[c].out, s->meshes[0], &s->copies[c].ex); /* names: every part has the same */
+    tess_export_of(s->copies[c].out, s->meshes[s->copies[c].part], &s->copies[c].ex);
     copies[c] = s->copies[c].ex.mesh;
   }
   for (uint32_t n = 0; rc == CLI_OK && n < r->node_count; n++)

@@ -17,6 +17,7 @@
 #include "tessellate_options.h"
 
 typedef struct tess_item {
+  uint32_t part; /* the part tessellated */
   tlod_cpu_mesh* out;
   tess_export ex;
 } tess_item;
