@@ -69,6 +69,11 @@ static inline const float* _exp_attr_at(const tlod_export_attribute* a, uint32_t
 const tlod_export_attribute* _exp_find_attr(const tlod_export_mesh* m, const char* name);
 tlod_result _exp_check_mesh(_exp_job* job, const tlod_export_mesh* m, const char* what);
 
+/* True when source's parts are already in world space (imported without
+ * keep_scene): some part names a node, and the scene is not the one
+ * identity node of an OBJ/PLY import (where both spaces are the same). */
+bool _exp_flattened(const tlod_import_result* r);
+
 /* OBJ and PLY of one mesh. */
 void _exp_obj(_exp_job* job, const tlod_export_mesh* m);
 void _exp_ply(_exp_job* job, _exp_sink* s, const tlod_export_mesh* m);

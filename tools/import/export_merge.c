@@ -17,7 +17,7 @@ typedef void (*_exp_visit)(void* user, const tlod_export_mesh* m, const float wo
 
 static void _exp_instances(const tlod_export_scene_desc* d, _exp_visit visit, void* user) {
   const tlod_import_result* r = d->source;
-  if (r->parts[0].node != TLOD_IMPORT_NONE) { /* flattened: already in world space */
+  if (_exp_flattened(r)) { /* flattened: already in world space */
     for (uint32_t p = 0; p < r->part_count; ++p)
       visit(user, &d->parts[p], _exp_identity);
     return;

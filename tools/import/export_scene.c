@@ -8,6 +8,17 @@
 
 #include "export_merge.h"
 
+bool _exp_flattened(const tlod_import_result* r) {
+  static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  bool named = false;
+  for (uint32_t p = 0; p < r->part_count; ++p)
+    named = named || r->parts[p].node != TLOD_IMPORT_NONE;
+  const bool one_identity = r->node_count == 1 && r->mesh_count == 1 && r->nodes[0].mesh == 0 &&
+                            r->nodes[0].parent == TLOD_IMPORT_NONE &&
+                            !memcmp(r->nodes[0].world, identity, sizeof identity);
+  return named && !one_identity;
+}
+
 static tlod_result _exp_check_source(_exp_job* job, const tlod_import_result* r) {
   for (uint32_t n = 0; n < r->node_count; ++n)
     if (r->nodes[n].mesh != TLOD_IMPORT_NONE && r->nodes[n].mesh >= r->mesh_count)
@@ -125,7 +136,7 @@ tlod_result tlod_export_scene_file_desc(const char* path, const tlod_export_scen
     return _exp_fail(&job, TLOD_ERROR_UNSUPPORTED, "unknown file extension (expected .obj, .ply, .gltf or .glb)");
   tlod_result res = _exp_check_desc(&job, desc);
   if (res != TLOD_SUCCESS) return res;
-  if ((format == _EXP_GLTF || format == _EXP_GLB) && desc->source->parts[0].node != TLOD_IMPORT_NONE)
+  if ((format == _EXP_GLTF || format == _EXP_GLB) && _exp_flattened(desc->source))
     return _exp_fail(&job, TLOD_ERROR_INVALID_ARGUMENT,
                      "source was imported without keep_scene (parts in world space)");
   return _exp_write_atomic(&job, _exp_scene_body, desc);
