@@ -4,7 +4,7 @@ materials, an instanced mesh and a node hierarchy drawn in their colours at thei
 positions computed here from the camera), a textured quad whose pixels match its texels under the known light, the
 Duck with its texture, node animation along the timeline, a skinned scene's per-object counts, --animation, and the
 importer's warnings printed once and kept in the trace and summary.
-Usage: scene_test.py TLOD DATA_DIR WORK_DIR [gl|nogl]"""
+Usage: play_scene_test.py TLOD DATA_DIR WORK_DIR [gl|nogl]"""
 import base64, csv, json, math, os, shutil, struct, sys, zlib
 
 from png_read import pixel, png_rows
