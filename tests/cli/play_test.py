@@ -6,6 +6,7 @@ no-argument default run.
 Usage: play_test.py TLOD DATA_DIR WORK_DIR"""
 import glob, json, os, shutil, signal, struct, subprocess, sys, time, zlib
 
+from png_read import png_rows
 from tlod_cli import check, finish, init, load_json, one_error_line, run
 
 TLOD, DATA, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
@@ -34,20 +35,23 @@ def obj(fields):
     return ("obj", fields)
 
 
-OBJECT_INFO = obj({"name": STR, "source": STR, "vertices": INT, "faces": INT, "patches": INT, "color": vec(4)})
+OBJECT_INFO = obj({"name": STR, "source": STR, "vertices": INT, "faces": INT, "patches": INT, "color": vec(4),
+                   "surface": INT, "node": INT, "skinned": BOOL, "textured": BOOL})
 STAGE_MS = obj({s: NUM for s in STAGES})
 COUNTS = {"backend_cpu_ms": NUM, "backend_gpu_ms": NUM, "backend_wall_ms": NUM, "patches": INT, "visible": INT,
           "culled": INT, "strips": INT, "pattern_triangles": INT, "strip_triangles": INT, "triangles": INT,
           "drawn_triangles": INT, "draw_calls": INT, "effective_epsilon": NUM, "level_histogram": ("ints", LEVELS)}
 FRAME_OBJECT = obj(dict({"name": STR, "scheduler_ms": NUM, "stage_ms": STAGE_MS}, **COUNTS))
 FRAME = obj(dict({"frame": INT, "time_s": NUM, "eye": vec(3), "target": vec(3), "up": vec(3), "fovy": NUM,
-                  "near": NUM, "far": NUM, "frame_ms": NUM, "scheduler_ms": NUM, "stage_ms": STAGE_MS,
+                  "near": NUM, "far": NUM, "frame_ms": NUM, "anim_ms": NUM, "scheduler_ms": NUM, "stage_ms": STAGE_MS,
                   "screenshot_ms": NUM, "screenshot": STR, "objects": ("list", FRAME_OBJECT)}, **COUNTS))
 TRACE = obj({"schema": STR, "tool": STR, "scene": STR, "mode": STR, "backend": STR, "renderer": STR, "surface": STR,
              "policy": STR, "epsilon_px": NUM, "max_level": INT, "path": STR, "path_duration_s": NUM, "loop": BOOL,
              "fps": NUM, "dt_ms": NUM, "width": INT, "height": INT, "screenshot_every": INT,
              "frames_requested": INT, "frames_completed": INT, "stopped": STR, "wall_s": NUM,
-             "objects": ("list", OBJECT_INFO), "frames": ("list", FRAME)})
+             "objects": ("list", OBJECT_INFO), "frames": ("list", FRAME), "objects_inline": INT,
+             "object_counts_file": STR, "animation": STR, "animation_duration_s": NUM, "warning_count": INT,
+             "warnings": ("list", STR)})
 DIST = obj({k: NUM for k in ("mean", "p50", "p95", "p99", "max", "min")})
 RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level": INT, "frames_requested": INT,
            "frames": INT, "stopped": STR, "wall_s": NUM, "frame_ms": DIST, "fps": NUM, "first_frame_ms": NUM,
@@ -59,7 +63,7 @@ RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level
 GL_OBJECTS = obj({k: INT for k in ("buffers", "textures", "renderbuffers", "framebuffers", "vertex_arrays", "programs",
                                    "shaders", "queries")})
 SUMMARY = obj({"schema": STR, "status": STR, "error": STR, "tool": STR, "scene": STR, "backend": STR, "renderer": STR, "surface": STR, "path": STR,
-               "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN)})
+               "animation": STR, "warning_count": INT, "warnings": ("list", STR), "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN)})
 
 
 def is_num(v):
@@ -123,53 +127,11 @@ def validate_summary(s):
 # ---- PNG ---------------------------------------------------------------------
 
 def png_decode(path):
-    """(width, height, colour type, set of distinct pixels) of an 8-bit PNG."""
-    with open(path, "rb") as f:
-        data = f.read()
-    if data[:8] != b"\x89PNG\r\n\x1a\n":
-        raise ValueError("no PNG signature")
-    pos, idat, ihdr = 8, b"", None
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if zlib.crc32(kind + body) != struct.unpack(">I", data[pos + 8 + n:pos + 12 + n])[0]:
-            raise ValueError("bad CRC in " + kind.decode())
-        if kind == b"IHDR":
-            ihdr = struct.unpack(">IIBBBBB", body)
-        elif kind == b"IDAT":
-            idat += body
-        pos += 12 + n
-    w, h, depth, ctype = ihdr[0], ihdr[1], ihdr[2], ihdr[3]
-    bpp = {6: 4, 2: 3, 0: 1, 4: 2}[ctype]
-    if depth != 8:
-        raise ValueError("bit depth %d" % depth)
-    raw = zlib.decompress(idat)
-    stride = w * bpp
-    prev = bytearray(stride)
+    """(width, height, colour type, set of distinct pixels) of an 8-bit PNG (every 4th row, 3rd pixel)."""
+    w, h, bpp, ctype, rows = png_rows(path)
     colours = set()
-    for y in range(h):
-        ft = raw[y * (stride + 1)]
-        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        if ft == 1:
-            for i in range(bpp, stride):
-                line[i] = (line[i] + line[i - bpp]) & 255
-        elif ft == 2:
-            line = bytearray((a + b) & 255 for a, b in zip(line, prev))
-        elif ft == 3:
-            for i in range(stride):
-                left = line[i - bpp] if i >= bpp else 0
-                line[i] = (line[i] + ((left + prev[i]) >> 1)) & 255
-        elif ft == 4:
-            for i in range(stride):
-                a = line[i - bpp] if i >= bpp else 0
-                b = prev[i]
-                c = prev[i - bpp] if i >= bpp else 0
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else (b if pb <= pc else c))) & 255
-        if y % 4 == 0:
-            colours.update(bytes(line[i:i + bpp]) for i in range(0, stride, bpp * 3))
-        prev = line
+    for y in range(0, h, 4):
+        colours.update(bytes(rows[y][i:i + bpp]) for i in range(0, w * bpp, bpp * 3))
     return w, h, ctype, colours
 
 
@@ -185,7 +147,7 @@ def check_run(name, out, frames, backend, screenshots_every=0):
     if problems:
         return None
     check(name + ": schema name, backend, frame counts",
-          t["schema"] == "tlod-play-trace/1" and t["backend"] == backend and t["frames_completed"] == frames
+          t["schema"] == "tlod-play-trace/2" and t["backend"] == backend and t["frames_completed"] == frames
           and len(t["frames"]) == frames and t["frames_requested"] == frames and t["stopped"] == "completed",
           (t["schema"], t["backend"], t["frames_completed"], len(t["frames"]), t["stopped"]))
     bad = []
@@ -512,8 +474,9 @@ if have_gl:
           rc == 0 and len(runs) == 1 and "frame ms" in out and "adaptive" in out, (rc, err, runs))
     if len(runs) == 1:
         files = sorted(os.listdir(runs[0]))
-        check("no arguments: the run folder holds the five files",
-              files == ["chrome_trace.json", "summary.json", "summary.txt", "trace.csv", "trace.json"], files)
+        check("no arguments: the run folder holds the six files",
+              files == ["chrome_trace.json", "objects.csv", "summary.json", "summary.txt", "trace.csv", "trace.json"],
+              files)
         t = load_json(os.path.join(runs[0], "trace.json"))
         check("no arguments: demo scene, gl, adaptive, orbit, 240 frames at 1280x720",
               isinstance(t, dict) and t["backend"] == "gl" and t["mode"] == "adaptive" and t["path"] == "orbit"

@@ -817,7 +817,7 @@ static int no_temp_files_left(void) {
 
 /* Export src, import it again: positions, normals and indices bitwise equal. */
 static int round_trip(const tlod_import_result* src, const char* out) {
-  tlod_export_mesh m = {src->vertex_count, src->positions, src->normals, src->face_count, src->indices};
+  tlod_export_mesh m = {src->vertex_count, src->positions, src->normals, src->face_count, src->indices, 0, NULL};
   if (tlod_export_file(out, &m, g_err, sizeof g_err) != TLOD_SUCCESS) {
     fprintf(stderr, "export %s: %s\n", out, g_err);
     return 0;
@@ -855,7 +855,7 @@ TEST(export_round_trip) {
 TEST(export_failures_leave_no_file) {
   const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   const uint32_t good[3] = {0, 1, 2}, bad[3] = {0, 1, 3};
-  tlod_export_mesh m = {3, p, NULL, 1, good};
+  tlod_export_mesh m = {3, p, NULL, 1, good, 0, NULL};
   CHECK(tlod_export_file("no_such_dir/out.obj", &m, g_err, sizeof g_err) == TLOD_ERROR_IO);
   CHECK_MSG(strstr(g_err, "out.obj"), "%s", g_err);
   CHECK(!file_exists("no_such_dir/out.obj"));
@@ -886,7 +886,7 @@ TEST(export_failures_leave_no_file) {
 TEST(export_glb_layout) {
   const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   const uint32_t idx[3] = {0, 1, 2};
-  tlod_export_mesh m = {3, p, NULL, 1, idx};
+  tlod_export_mesh m = {3, p, NULL, 1, idx, 0, NULL};
   CHECK(tlod_export_file("layout.glb", &m, g_err, sizeof g_err) == TLOD_SUCCESS);
   size_t size = 0;
   unsigned char* d = read_all("layout.glb", &size);

@@ -329,24 +329,8 @@ TLOD_API tlod_result tlod_import_memory(const char* name, const void* data, size
 /* Frees a result and its arrays; NULL is a no-op. */
 TLOD_API void tlod_import_free(tlod_import_result* r);
 
-/* A triangle mesh to write. */
-typedef struct tlod_export_mesh {
-  uint32_t vertex_count;   /* >= 1 */
-  const float* positions;  /* xyz per vertex, finite */
-  const float* normals;    /* xyz per vertex; may be NULL */
-  uint32_t triangle_count; /* >= 1 */
-  const uint32_t* indices; /* 3 per triangle, each < vertex_count */
-} tlod_export_mesh;
-
-/* Writes mesh to path; the format comes from the extension: .obj, .ply
- * (binary little endian), .gltf (one embedded base64 buffer) or .glb
- * (case-insensitive; anything else: TLOD_ERROR_UNSUPPORTED). The file is
- * written under a temporary name in the same folder and renamed when
- * complete, so a failed write never leaves a partial file under path.
- * Returns TLOD_ERROR_INVALID_ARGUMENT (bad mesh: index out of range,
- * non-finite position), TLOD_ERROR_IO (cannot write) or
- * TLOD_ERROR_UNSUPPORTED (format; .glb larger than 4 GiB). */
-TLOD_API tlod_result tlod_export_file(const char* path, const tlod_export_mesh* mesh, char* error, size_t error_size);
+/* Mesh and scene export (tlod_export_file, tlod_export_scene_file): its manual is tlod_export.h. */
+#include "tlod_export.h"
 
 #ifdef __cplusplus
 }

@@ -5,12 +5,11 @@
  * tables), per surface type; rounds interleave the two modes (alternating
  * which goes first) so machine noise hits both alike; min and median per
  * 100k patches, and the bytes per patch the tables take. */
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bench_eval.h"
+#include "bench_stats.h"
 #include "cli.h"
 #include "common/scene_setup.h"
 
@@ -27,32 +26,14 @@ static const build_case k_build_cases[] = {
     {"pn", TLOD_SURFACE_PN, TLOD_ALPHA_DEFAULT},
 };
 
-static double cpu_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int cmp_double(const void* a, const void* b) {
-  double x = *(const double*)a, y = *(const double*)b;
-  return x < y ? -1 : x > y;
-}
-
 /* One build's CPU time in ms, or a negative value (error printed). */
 static double time_build(tlod_context* ctx, const tlod_mesh* mesh, const tlod_surface_desc* d) {
   tlod_surface* s = NULL;
-  double t0 = cpu_ms();
+  double t0 = bench_cpu_ms();
   tlod_result r = tlod_surface_create(ctx, mesh, d, &s);
-  double t = cpu_ms() - t0;
+  double t = bench_cpu_ms() - t0;
   tlod_surface_destroy(s);
   return r == TLOD_SUCCESS ? t : (cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx)), -1.0);
-}
-
-/* Sorts the samples; min and median, ms per 100k patches. */
-static void min_median(double* t, uint32_t n, double per100k, double out[2]) {
-  qsort(t, n, sizeof(double), cmp_double);
-  out[0] = t[0] * per100k;
-  out[1] = (n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2])) * per100k;
 }
 
 /* Warm-up, then `repeat` rounds of one MEASURED and one CLOSED_FORM build
@@ -72,8 +53,8 @@ static int run_case(tlod_context* ctx, const tlod_mesh* mesh, const build_case* 
     }
   }
   double per100k = 1e5 / (double)tlod_mesh_face_count(mesh);
-  min_median(t, o->repeat, per100k, fig[0]);
-  min_median(t + o->repeat, o->repeat, per100k, fig[1]);
+  bench_min_median(t, o->repeat, per100k, fig[0]);
+  bench_min_median(t + o->repeat, o->repeat, per100k, fig[1]);
   free(t);
   return CLI_OK;
 }

@@ -28,6 +28,8 @@ static int run_lod_suites(const bench_options* o, FILE* csv) {
 static int run_suite(const bench_options* o, FILE* csv) {
   bool all = !strcmp(o->suite, "all");
   if (!strcmp(o->suite, "build")) return bench_build(o, csv);
+  if (!strcmp(o->suite, "skin")) return bench_skin(o, csv);
+  if (!strcmp(o->suite, "objects")) return bench_objects(o, csv);
   if (strcmp(o->suite, "eval") != 0 && !all) return run_lod_suites(o, csv);
   int rc = bench_eval(o, csv);
   return rc == CLI_OK && all ? bench_build(o, csv) : rc;

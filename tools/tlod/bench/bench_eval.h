@@ -15,4 +15,10 @@ int bench_eval(const bench_options* o, FILE* csv);
  * closed form, per surface type, on o->in; csv (may be NULL) one row per type. */
 int bench_build(const bench_options* o, FILE* csv);
 
+/* Skinning, mesh update and surface refresh per frame on the generated
+ * skinned cylinder (bench_skin.c); csv one row per size, threads, stage. */
+int bench_skin(const bench_options* o, FILE* csv);
+/* 50 instances against the same triangles in one object, per backend (bench_objects.c). */
+int bench_objects(const bench_options* o, FILE* csv);
+
 #endif

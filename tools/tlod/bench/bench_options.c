@@ -20,7 +20,7 @@ void bench_usage(FILE* f) {
              "  --repeat N         timed runs per case (default 3)\n"
              "  --warmup N         untimed runs first (default 1)\n"
              "  --csv FILE         also write one CSV row per case\n"
-             "  --suite S          eval (default) | build | scheduler | table1 | gl | all\n"
+             "  --suite S          eval (default) | build | scheduler | table1 | gl | skin | objects | all\n"
              "                     build: tlod_surface_create on one thread, CPU time per 100k patches of IN\n"
              "                     with measured error tables against closed-form ones, per surface type\n"
              "                     (flat, Phong one alpha, Phong per-vertex alpha, PN), --repeat interleaved\n"
@@ -30,6 +30,11 @@ void bench_usage(FILE* f) {
              "                     policy, uniform at the worst patch's level, strip overhead\n"
              "                     gl: frame times (llvmpipe, wall clock): flat, adaptive, uniform, hardware\n"
              "                     tessellation per model; Phong against flat at equal triangles\n"
+             "                     skin: skinning, tlod_mesh_update, tlod_surface_refresh per frame on a generated\n"
+             "                     two-joint cylinder (10k, 40k, 160k vertices), per 10k vertices, min/median of\n"
+             "                     --repeat frames, at --threads and the machine's thread count (not in all)\n"
+             "                     objects: 50 instances of one mesh (a scheduler and draw item each) against\n"
+             "                     the same triangles merged into one object, cpu and gl, --frames frames\n"
              "  --frames N         scheduler / gl frames per case (default 20)\n"
              "  --model IN         a table1 model (repeatable; default demo:cow)\n");
 }
@@ -71,7 +76,8 @@ int bench_parse(int argc, char** argv, bench_options* o) {
     } else if (!strcmp(a, "--warmup")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 0, 1000, &o->warmup)) return CLI_USAGE;
     } else if (!strcmp(a, "--suite")) {
-      static const char* const suites[] = {"eval", "build", "scheduler", "table1", "gl", "all", NULL};
+      static const char* const suites[] = {"eval", "build",   "scheduler", "table1", "gl",
+                                           "skin", "objects", "all",       NULL};
       if (!(v = cli_value(argc, argv, &i)) || cli_parse_enum(a, v, suites) < 0) return CLI_USAGE;
       o->suite = v;
     } else if (!strcmp(a, "--frames")) {

@@ -33,7 +33,7 @@ void chrome_trace_frames(FILE* f, const play_trace* t, bool* first) {
     snprintf(args, sizeof(args), "\"frame\": %u, \"time_s\": %.9g, \"triangles\": %llu, \"culled\": %u", fr->frame,
              fr->time_s, (unsigned long long)(tot.pattern_triangles + tot.strip_triangles), tot.culled);
     chrome_event(f, first, "frame", NULL, "frame", fr->at_ms, fr->frame_ms, args);
-    for (uint32_t i = 0; i < t->object_count; i++) {
+    for (uint32_t i = 0; i < play_trace_inline_objects(t); i++) {
       const play_object_stats* s = play_trace_object(t, n, i);
       const char* name = t->objects[i].name;
       snprintf(args, sizeof(args),
@@ -48,7 +48,7 @@ void chrome_trace_frames(FILE* f, const play_trace* t, bool* first) {
         at += s->stage_ms[st];
       }
     }
-    for (uint32_t i = 0; i < t->object_count; i++) {
+    for (uint32_t i = 0; i < play_trace_inline_objects(t); i++) {
       const play_object_stats* s = play_trace_object(t, n, i);
       snprintf(args, sizeof(args),
                "\"frame\": %u, \"backend\": \"%s\", \"cpu_ms\": %.6f, \"gpu_ms\": %.6f, \"wall_ms\": %.6f, "

@@ -143,6 +143,10 @@ static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t f
                       .screenshot_every = o->screenshot_every,
                       .objects = p->scene.infos,
                       .object_count = p->scene.count,
+                      .animation = p->scene.animation.channel_count ? p->scene.animation.name : "",
+                      .animation_duration_s = p->scene.animation.duration_s,
+                      .warnings = p->scene.warnings,
+                      .warning_count = p->scene.warning_count,
                       .dir = o->compare ? m->dir : ".",
                       .stopped = "completed"};
 }
@@ -211,6 +215,7 @@ static int play_modes(play_session* p) {
   int rc = CLI_OK;
   for (uint32_t k = 0; k < o->mode_count && rc == CLI_OK && (k == 0 || !play_interrupted); k++)
     rc = play_one_mode(p, &run, k);
+  free(run.items);
   return rc;
 }
 

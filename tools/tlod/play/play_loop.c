@@ -2,6 +2,8 @@
  * camera path, a scheduler update per object and one device draw of every
  * object, every figure recorded in the trace. */
 #include <errno.h>
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
@@ -28,7 +30,8 @@ static int create_schedulers(play_run* r, const play_mode* m, play_trace* t) {
     tlod_scheduler_desc d = play_mode_desc(r->o, m, label);
     tlod_scheduler_destroy(ob->scheduler);
     ob->scheduler = NULL;
-    if (tlod_scheduler_create(s->ctx, ob->setup.surface, s->patterns, &d, &ob->scheduler) != TLOD_SUCCESS)
+    const tlod_surface* surf = s->surfaces[ob->surface].setup.surface;
+    if (tlod_scheduler_create(s->ctx, surf, s->patterns, &d, &ob->scheduler) != TLOD_SUCCESS)
       return cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
   }
   tlod_scheduler_desc q = tlod_scheduler_query_desc(s->objects[0].scheduler);
@@ -69,12 +72,39 @@ static void record_draw_list(const tlod_draw_list* dl, play_object_stats* st) {
   st->effective_epsilon = dl->effective_epsilon;
 }
 
+/* The scheduler's view of an object: view * world made rigid. It measures
+ * errors in object units and takes the camera from a rigid view, so a
+ * world matrix scaling by s is taken out of the view (its rows divided by
+ * s: eye coordinates 1/s of the true ones) and the projection's near and
+ * far planes scaled to match (proj[14] / s): the frustum and the pixels
+ * per object unit come out as in world space. A non-uniform scale uses
+ * the largest axis (levels err on the fine side). Identity: exact copy. */
+static void object_view(const tlod_view_desc* view, const float world[16], tlod_view_desc* out) {
+  *out = *view;
+  anim_mat4_mul(view->view, world, out->view);
+  double s = 0.0;
+  for (int c = 0; c < 3; c++) {
+    double n = sqrt((double)world[c * 4] * world[c * 4] + (double)world[c * 4 + 1] * world[c * 4 + 1] +
+                    (double)world[c * 4 + 2] * world[c * 4 + 2]);
+    s = n > s ? n : s;
+  }
+  if (s == 1.0 || !(s > 0.0)) return;
+  for (int c = 0; c < 4; c++)
+    for (int r = 0; r < 3; r++)
+      out->view[c * 4 + r] = (float)(out->view[c * 4 + r] / s);
+  out->proj[14] = (float)(out->proj[14] / s);
+}
+
+/* Levels depend on each instance's view of it: the scheduler plans in
+ * object space with its object_view (the view itself for the demo scene). */
 static int update_objects(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start,
                           play_object_stats* os) {
   play_scene* s = r->scene;
-  tlod_frame_desc fd = {.views = view, .view_count = 1, .dt_ms = (float)(1000.0 / r->o->fps)};
+  tlod_view_desc ov;
+  tlod_frame_desc fd = {.views = &ov, .view_count = 1, .dt_ms = (float)(1000.0 / r->o->fps)};
   for (uint32_t i = 0; i < s->count; i++) {
     double t0 = cli_now_ms();
+    object_view(view, s->objects[i].world, &ov);
     if (tlod_scheduler_update(s->objects[i].scheduler, &fd) != TLOD_SUCCESS)
       return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
     os[i].update_at_ms = t0 - run_start;
@@ -82,6 +112,29 @@ static int update_objects(play_run* r, const tlod_view_desc* view, uint32_t n, d
     record_draw_list(tlod_scheduler_draw_list(s->objects[i].scheduler, 0), &os[i]);
   }
   return CLI_OK;
+}
+
+/* The object's material and transform; the demo scene's objects (no node)
+ * are drawn as before: identity, both sides, opaque. */
+static tlod_draw_item draw_item(const play_scene* s, const play_object* ob) {
+  const play_material* m = &ob->material;
+  tlod_draw_item it = {.surface = s->surfaces[ob->surface].device_surface,
+                       .draw_list = tlod_scheduler_draw_list(ob->scheduler, 0),
+                       .has_model = ob->node != UINT32_MAX,
+                       .has_color = true,
+                       .blend = m->blend == 2   ? TLOD_BLEND_BLEND
+                                : m->blend == 1 ? TLOD_BLEND_MASK
+                                                : TLOD_BLEND_OPAQUE,
+                       .alpha_cutoff = m->alpha_cutoff,
+                       .has_alpha_cutoff = m->blend == 1,
+                       .cull_back_faces = ob->node != UINT32_MAX && !m->double_sided};
+  memcpy(it.model, ob->world, sizeof(it.model));
+  memcpy(it.color, m->color, sizeof(it.color));
+  if (m->texture != UINT32_MAX && s->textures && s->textures[m->texture]) {
+    it.base_color_texture = s->textures[m->texture];
+    it.base_color_texcoord = m->texcoord;
+  }
+  return it;
 }
 
 static void clear_frame(const play_run* r) {
@@ -101,13 +154,9 @@ static void clear_frame(const play_run* r) {
  * add up to the draw. Laid out back to back from the draw's start. */
 static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start, play_object_stats* os) {
   play_scene* s = r->scene;
-  tlod_draw_item items[PLAY_MAX_OBJECTS];
-  for (uint32_t i = 0; i < s->count; i++) {
-    items[i] = (tlod_draw_item){.surface = s->objects[i].surface,
-                                .draw_list = tlod_scheduler_draw_list(s->objects[i].scheduler, 0),
-                                .has_color = true};
-    memcpy(items[i].color, s->objects[i].info.color, sizeof(items[i].color));
-  }
+  tlod_draw_item* items = r->items;
+  for (uint32_t i = 0; i < s->count; i++)
+    items[i] = draw_item(s, &s->objects[i]);
   tlod_draw_desc d = {
       .items = items, .item_count = s->count, .viewport = {0, 0, r->o->width, r->o->height}, .finish = true};
   memcpy(d.view, view->view, sizeof(d.view));
@@ -177,7 +226,12 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
   tlod_view_desc view = frame_view(r, n, fr);
   const double f0 = cli_now_ms();
   fr->at_ms = f0 - run_start;
-  rc = update_objects(r, &view, n, run_start, os);
+  if (r->scene->animation.channel_count) {
+    double a0 = cli_now_ms();
+    rc = play_scene_pose(r->scene, fr->time_s);
+    fr->anim_ms = cli_now_ms() - a0;
+  }
+  if (rc == CLI_OK) rc = update_objects(r, &view, n, run_start, os);
   if (rc == CLI_OK) rc = draw_objects(r, &view, n, run_start, os);
   fr->frame_ms = cli_now_ms() - f0;
   if (rc != CLI_OK) return rc; /* the failed frame is not a record */
@@ -193,6 +247,8 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
 
 int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
   int rc = create_schedulers(r, m, t);
+  if (rc == CLI_OK && !r->items && !(r->items = calloc(r->scene->count, sizeof(tlod_draw_item))))
+    rc = cli_error(CLI_FAILED, "out of memory for %u draw items", r->scene->count);
   if (rc != CLI_OK) return rc;
   char err[PLAY_PATH_MAX + 512];
   if (!play_trace_digests_open(t, r->run_dir, err, sizeof(err)) ||

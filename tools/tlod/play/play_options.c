@@ -29,6 +29,8 @@ void play_usage(FILE* f) {
       "  --size WxH          viewport in pixels (default 1280x720)\n"
       "  --path P            orbit (default) | flyby | zoom | FILE.json (keyframes, see docs/play.md)\n"
       "                      | gltf[:N] (camera N of the glTF scene, with its animation)\n"
+      "  --animation A       glTF scenes: the animation played along the timeline, looping over its\n"
+      "                      duration: a name, an index, or none (default: the first)\n"
       "  --frames N          frames to play (default: the path's length at --fps (orbit: 240))\n"
       "  --duration S        seconds of path time to play (frames = S * fps); not with --frames\n"
       "  --fps F             fixed time step 1/F s per frame (default 60): runs are repeatable\n"
@@ -119,6 +121,7 @@ static int parse_timing(int argc, char** argv, int* i, play_options* o) {
   if (!strcmp(a, "--fps"))
     return cli_usage_unless((v = cli_value(argc, argv, i)) && cli_parse_float(a, v, 1.0, 1000.0, &o->fps));
   if (!strcmp(a, "--path")) return cli_usage_unless((o->path = cli_value(argc, argv, i)) != NULL);
+  if (!strcmp(a, "--animation")) return cli_usage_unless((o->animation = cli_value(argc, argv, i)) != NULL);
   return CLI_NOT_MINE;
 }
 

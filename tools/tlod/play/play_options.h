@@ -35,6 +35,7 @@ typedef struct play_options {
   float duration;  /* 0: not given */
   float fps;
   const char* path;
+  const char* animation; /* NULL: the first; "none"; a name or an index */
   bool loop;
   uint32_t screenshot_every;
   bool window;

@@ -22,6 +22,7 @@ typedef struct play_run {
   uint32_t index, count; /* of the modes, for the progress bar */
   uint64_t first_draw;   /* the device's number of this mode's first draw (gpu times of earlier draws are not its) */
   bool tty;
+  tlod_draw_item* items; /* one per object, reused every frame; freed by the caller */
 } play_run;
 
 /* Set by the SIGINT handler, read between frames. */

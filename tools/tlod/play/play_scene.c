@@ -1,48 +1,85 @@
-/* tlod play -- loading the scene: a file or demo mesh, or the demo scene
- * (the VTK cow beside a creased cylinder). */
+/* tlod play -- loading the scene: the demo scene (the VTK cow beside a
+ * creased cylinder), a file or demo mesh as one object, or a glTF scene
+ * (play_gltf.c); the arrays, patterns and device every scene has. */
 #include "play_scene.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 
+static const float k_identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
 void play_scene_free(play_scene* s) {
-  for (uint32_t i = 0; i < s->count; i++) {
-    play_object* ob = &s->objects[i];
-    tlod_scheduler_destroy(ob->scheduler);
-    scene_setup_destroy(&ob->setup);
-  }
+  for (uint32_t i = 0; i < s->count; i++)
+    tlod_scheduler_destroy(s->objects[i].scheduler);
   play_scene_destroy_device(s);
+  for (uint32_t i = 0; i < s->surface_count; i++)
+    scene_setup_destroy(&s->surfaces[i].setup);
+  play_gltf_free(s);
+  free(s->surfaces);
+  free(s->objects);
+  free(s->infos);
   tlod_patterns_destroy(s->patterns);
   tlod_context_destroy(s->ctx);
   memset(s, 0, sizeof(*s));
 }
 
-static void grow_bounds(play_scene* s, const tlod_mesh_info* info) {
+/* Room for n surfaces and n objects. */
+int play_scene_reserve(play_scene* s, uint32_t surfaces, uint32_t objects) {
+  if (objects > PLAY_MAX_OBJECTS || surfaces > PLAY_MAX_OBJECTS)
+    return cli_error(CLI_FAILED, "%s: %u objects, more than the %u tlod play draws", s->name,
+                     objects > surfaces ? objects : surfaces, PLAY_MAX_OBJECTS);
+  s->surfaces = calloc(surfaces ? surfaces : 1, sizeof(play_surface));
+  s->objects = calloc(objects ? objects : 1, sizeof(play_object));
+  s->infos = calloc(objects ? objects : 1, sizeof(play_object_info));
+  return s->surfaces && s->objects && s->infos ? CLI_OK
+                                               : cli_error(CLI_FAILED, "out of memory for %u objects", objects);
+}
+
+static void grow_bounds(play_scene* s, const float bmin[3], const float bmax[3], bool first) {
   for (int k = 0; k < 3; k++) {
-    bool first = s->count == 1;
-    s->bmin[k] = first || info->bbox_min[k] < s->bmin[k] ? info->bbox_min[k] : s->bmin[k];
-    s->bmax[k] = first || info->bbox_max[k] > s->bmax[k] ? info->bbox_max[k] : s->bmax[k];
+    s->bmin[k] = first || bmin[k] < s->bmin[k] ? bmin[k] : s->bmin[k];
+    s->bmax[k] = first || bmax[k] > s->bmax[k] ? bmax[k] : s->bmax[k];
   }
 }
 
-static void describe(play_object* ob, const char* source, const char* name, const float color[4]) {
-  play_object_info* pi = &ob->info;
-  const cli_mesh* in = &ob->setup.in;
-  snprintf(pi->name, sizeof(pi->name), "%s", name);
-  snprintf(pi->source, sizeof(pi->source), "%s", source);
-  pi->vertices = tlod_mesh_vertex_count(ob->setup.mesh);
-  pi->faces = tlod_mesh_query_info(ob->setup.mesh).face_count;
-  pi->patches = tlod_surface_patch_count(ob->setup.surface);
-  memcpy(pi->color, in->has_color ? in->base_color : color, sizeof(pi->color));
+void play_scene_grow_bounds(play_scene* s, const play_object* ob, bool first) {
+  tlod_mesh_info info = tlod_mesh_query_info(s->surfaces[ob->surface].setup.mesh);
+  float lo[3], hi[3];
+  for (int c = 0; c < 8; c++) {
+    float p[3] = {c & 1 ? info.bbox_max[0] : info.bbox_min[0], c & 2 ? info.bbox_max[1] : info.bbox_min[1],
+                  c & 4 ? info.bbox_max[2] : info.bbox_min[2]};
+    for (int r = 0; r < 3; r++) {
+      float w = ob->world[r] * p[0] + ob->world[4 + r] * p[1] + ob->world[8 + r] * p[2] + ob->world[12 + r];
+      lo[r] = c == 0 || w < lo[r] ? w : lo[r];
+      hi[r] = c == 0 || w > hi[r] ? w : hi[r];
+    }
+  }
+  grow_bounds(s, lo, hi, first);
 }
 
-/* Loads SOURCE (file or demo:NAME) as object `name`; place, when given, moves it (see demo_place). */
+void play_object_describe(play_scene* s, play_object* ob, const char* source, const char* name) {
+  play_object_info* pi = &ob->info;
+  const play_surface* sf = &s->surfaces[ob->surface];
+  snprintf(pi->name, sizeof(pi->name), "%s", name);
+  snprintf(pi->source, sizeof(pi->source), "%s", source);
+  pi->vertices = tlod_mesh_vertex_count(sf->setup.mesh);
+  pi->faces = tlod_mesh_query_info(sf->setup.mesh).face_count;
+  pi->patches = tlod_surface_patch_count(sf->setup.surface);
+  memcpy(pi->color, ob->material.color, sizeof(pi->color));
+  pi->surface = ob->surface;
+  pi->node = ob->node == UINT32_MAX ? -1 : (int64_t)ob->node;
+  pi->skinned = sf->skinning != NULL;
+  pi->textured = ob->material.texture != UINT32_MAX;
+}
+
+/* Loads SOURCE (file or demo:NAME) as surface and object `name`; place,
+ * when given, moves it (see demo_place). */
 static int add_object(play_scene* s, const play_options* o, const char* source, const char* name, const float color[4],
                       void (*place)(cli_mesh* m, const void* scene)) {
-  play_object* ob = &s->objects[s->count];
-  memset(ob, 0, sizeof(*ob));
+  play_surface* sf = &s->surfaces[s->surface_count];
   /* As tlod tessellate: alpha 0.75, so a frame matches a direct run of the same camera. */
   scene_setup_desc d = {.input = source,
                         .label = name,
@@ -51,13 +88,19 @@ static int add_object(play_scene* s, const play_options* o, const char* source, 
                         .alpha = 0.75f,
                         .place = place,
                         .place_user = s};
-  int rc = scene_setup_create(s->ctx, &d, &ob->setup);
+  int rc = scene_setup_create(s->ctx, &d, &sf->setup);
   if (rc != CLI_OK) return rc;
+  play_object* ob = &s->objects[s->count];
+  *ob = (play_object){.surface = s->surface_count++, .node = UINT32_MAX};
   s->count++; /* from here on play_scene_free frees it */
-  tlod_mesh_info info = tlod_mesh_query_info(ob->setup.mesh);
-  if (info.face_count == 0) return cli_error(CLI_FAILED, "%s: no faces left to draw", source);
-  describe(ob, source, name, color);
-  grow_bounds(s, &info);
+  memcpy(ob->world, k_identity, sizeof(ob->world));
+  const cli_mesh* in = &sf->setup.in;
+  ob->material = (play_material){.texture = UINT32_MAX, .texcoord = UINT32_MAX};
+  memcpy(ob->material.color, in->has_color ? in->base_color : color, sizeof(ob->material.color));
+  if (tlod_mesh_query_info(sf->setup.mesh).face_count == 0)
+    return cli_error(CLI_FAILED, "%s: no faces left to draw", source);
+  play_object_describe(s, ob, source, name);
+  play_scene_grow_bounds(s, ob, s->count == 1);
   return CLI_OK;
 }
 
@@ -89,15 +132,18 @@ static int add_objects(const play_options* o, play_scene* s) {
   if (!o->scene || !strcmp(o->scene, "demo:scene")) {
     snprintf(s->name, sizeof(s->name), "demo:scene");
     static const float cow[4] = {0.80f, 0.62f, 0.46f, 1.0f}, drum[4] = {0.42f, 0.58f, 0.82f, 1.0f};
-    int rc = add_object(s, o, "demo:cow", "cow", cow, NULL);
+    int rc = play_scene_reserve(s, 2, 2);
+    if (rc == CLI_OK) rc = add_object(s, o, "demo:cow", "cow", cow, NULL);
     return rc == CLI_OK ? add_object(s, o, "demo:cylinder", "cylinder", drum, demo_place) : rc;
   }
   snprintf(s->name, sizeof(s->name), "%s", o->scene);
+  if (play_scene_is_gltf(o->scene)) return play_gltf_load(o, s);
   const char* base = strrchr(o->scene, '/');
   base = base ? base + 1 : o->scene;
   if (!strncmp(base, "demo:", 5)) base += 5;
   static const float grey[4] = {0.8f, 0.8f, 0.8f, 1.0f};
-  return add_object(s, o, o->scene, base, grey, NULL);
+  int rc = play_scene_reserve(s, 1, 1);
+  return rc == CLI_OK ? add_object(s, o, o->scene, base, grey, NULL) : rc;
 }
 
 int play_scene_load(const play_options* o, play_scene* s) {
@@ -124,17 +170,18 @@ int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_ty
                         .label = "tlod play"};
   if (tlod_device_create(s->ctx, &d, &s->device) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "backend %s: %s", backend, tlod_context_last_error(s->ctx));
-  for (uint32_t i = 0; i < s->count; i++) {
-    play_object* ob = &s->objects[i];
-    if (tlod_device_create_surface(s->device, ob->setup.surface, &ob->surface) != TLOD_SUCCESS)
-      return cli_error(CLI_FAILED, "backend %s: %s: %s", backend, ob->info.name, tlod_context_last_error(s->ctx));
+  for (uint32_t i = 0; i < s->surface_count; i++) {
+    play_surface* sf = &s->surfaces[i];
+    if (tlod_device_create_surface(s->device, sf->setup.surface, &sf->device_surface) != TLOD_SUCCESS)
+      return cli_error(CLI_FAILED, "backend %s: surface %u: %s", backend, i, tlod_context_last_error(s->ctx));
   }
-  return CLI_OK;
+  return play_scene_create_textures(s);
 }
 
 void play_scene_destroy_device(play_scene* s) {
-  for (uint32_t i = 0; i < s->count; i++)
-    s->objects[i].surface = NULL; /* destroyed with the device */
+  for (uint32_t i = 0; i < s->surface_count; i++)
+    s->surfaces[i].device_surface = NULL; /* destroyed with the device */
+  play_scene_destroy_textures(s);
   tlod_device_destroy(s->device);
   s->device = NULL;
 }

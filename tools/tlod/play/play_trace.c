@@ -13,8 +13,8 @@
 /* Room for one more frame in the window (at most PLAY_TRACE_WINDOW). */
 static bool reserve_window(play_trace* t) {
   if (t->window_count < t->capacity) return true;
-  uint32_t cap = t->capacity ? 2 * t->capacity : 64;
-  cap = cap > PLAY_TRACE_WINDOW ? PLAY_TRACE_WINDOW : cap;
+  uint32_t cap = t->capacity ? 2 * t->capacity : 64, most = play_trace_window_frames(t);
+  cap = cap > most ? most : cap;
   play_frame* f = realloc(t->frames, sizeof(play_frame) * cap);
   if (!f) return false;
   t->frames = f;
@@ -26,7 +26,7 @@ static bool reserve_window(play_trace* t) {
 }
 
 play_frame* play_trace_add_frame(play_trace* t, play_object_stats** objects) {
-  if (t->window_count >= PLAY_TRACE_WINDOW || !reserve_window(t)) return NULL;
+  if (play_trace_window_full(t) || !reserve_window(t)) return NULL;
   play_frame* f = &t->frames[t->window_count];
   memset(f, 0, sizeof(*f));
   f->frame = t->frame_count;
@@ -91,7 +91,16 @@ bool play_trace_digest_field(const play_trace* t, size_t field, double* v) {
   return fseek(t->digests, 0, SEEK_END) == 0; /* further frames append */
 }
 
-bool play_trace_window_full(const play_trace* t) { return t->window_count >= PLAY_TRACE_WINDOW; }
+uint32_t play_trace_window_frames(const play_trace* t) {
+  uint32_t n = t->object_count ? PLAY_TRACE_WINDOW_RECORDS / t->object_count : PLAY_TRACE_WINDOW;
+  return n < 1 ? 1 : n > PLAY_TRACE_WINDOW ? PLAY_TRACE_WINDOW : n;
+}
+
+uint32_t play_trace_inline_objects(const play_trace* t) {
+  return t->object_count < PLAY_TRACE_INLINE_OBJECTS ? t->object_count : PLAY_TRACE_INLINE_OBJECTS;
+}
+
+bool play_trace_window_full(const play_trace* t) { return t->window_count >= play_trace_window_frames(t); }
 
 void play_trace_free(play_trace* t) {
   if (t->files) play_trace_files_close(t, false, NULL, 0);

@@ -15,8 +15,17 @@
 
 /* Entries of every level histogram: levels 0..TLOD_MAX_LEVEL. */
 #define PLAY_LEVELS (TLOD_MAX_LEVEL + 1)
-#define PLAY_TRACE_SCHEMA "tlod-play-trace/1"
-#define PLAY_SUMMARY_SCHEMA "tlod-play-summary/1"
+#define PLAY_TRACE_SCHEMA "tlod-play-trace/2"
+#define PLAY_SUMMARY_SCHEMA "tlod-play-summary/2"
+/* Objects whose full per-frame records go into trace.json's frames (and
+ * chrome_trace.json's events): the first 16. Every object's per-frame
+ * counts go to objects.csv, one row per frame and object, so a frame of
+ * trace.json stays the same size however many objects a scene has
+ * (docs/play.md "objects.csv"). */
+#define PLAY_TRACE_INLINE_OBJECTS 16u
+/* Object records held in memory at most: the window holds fewer frames
+ * when a scene has more than 64 objects. */
+#define PLAY_TRACE_WINDOW_RECORDS 65536u
 
 /* One object of one frame. Times in ms; *_at_ms since the run started. */
 typedef struct play_object_stats {
@@ -34,7 +43,8 @@ typedef struct play_frame {
   uint32_t frame;
   double time_s;
   float eye[3], target[3], up[3], fovy, near_z, far_z;
-  double at_ms, frame_ms; /* start since the run started; scheduler + draws, wall clock */
+  double at_ms, frame_ms; /* start since the run started; animation + scheduler + draws, wall clock */
+  double anim_ms;         /* node animation and skinning (play_scene_pose), wall clock; 0 when nothing moves */
   double screenshot_at_ms, screenshot_ms;
   char screenshot[48]; /* "screenshots/frame_00025.png" or "" */
 } play_frame;
@@ -53,6 +63,10 @@ typedef struct play_object_info {
   char source[256];
   uint32_t vertices, faces, patches;
   float color[4];
+  uint32_t surface; /* objects drawing one surface share it (glTF instances) */
+  int64_t node;     /* glTF node index, -1: none */
+  bool skinned;     /* skinned on the CPU every frame (its own surface) */
+  bool textured;    /* draws a base colour texture */
 } play_object_info;
 
 /* Frames held in memory: when the window is full, its frames are appended
@@ -106,6 +120,10 @@ typedef struct play_trace {
   uint32_t screenshot_every; /* 0: none */
   const play_object_info* objects;
   uint32_t object_count;
+  const char* animation; /* the animation played, "" none */
+  double animation_duration_s;
+  const char* warnings; /* the importer's, newline-separated; "" none */
+  uint32_t warning_count;
   /* results */
   const char* dir;      /* folder of this run's files, relative to the summary's folder ("." or the mode) */
   const char* stopped;  /* "completed", "interrupted" (SIGINT), "window closed", "error" */
@@ -136,6 +154,11 @@ bool play_trace_commit_frame(play_trace* t);
  * (frame_count doubles); false on a read error. */
 bool play_trace_digest_field(const play_trace* t, size_t field, double* v);
 bool play_trace_window_full(const play_trace* t);
+/* Frames the window holds: PLAY_TRACE_WINDOW, fewer for large scenes (at
+ * most PLAY_TRACE_WINDOW_RECORDS object records), at least 1. */
+uint32_t play_trace_window_frames(const play_trace* t);
+/* Objects with records in trace.json's frames: min(count, PLAY_TRACE_INLINE_OBJECTS). */
+uint32_t play_trace_inline_objects(const play_trace* t);
 void play_trace_free(play_trace* t);
 /* The figures of one object in window frame i. */
 const play_object_stats* play_trace_object(const play_trace* t, uint32_t i, uint32_t object);

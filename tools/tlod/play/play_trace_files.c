@@ -9,8 +9,8 @@
 #include "play_trace_format.h"
 #include "tlod_atomic_file.h"
 
-enum { FILE_JSON, FILE_CSV, FILE_CHROME, FILE_NUM };
-static const char* const kNames[FILE_NUM] = {"trace.json", "trace.csv", "chrome_trace.json"};
+enum { FILE_JSON, FILE_CSV, FILE_CHROME, FILE_OBJECTS, FILE_NUM };
+static const char* const kNames[FILE_NUM] = {"trace.json", "trace.csv", "chrome_trace.json", "objects.csv"};
 
 struct play_trace_files {
   char paths[FILE_NUM][PLAY_PATH_MAX + 64];
@@ -41,6 +41,7 @@ bool play_trace_files_open(play_trace* t, const char* dir, char* error, size_t e
   trace_json_head(&tf->json, tf->files[FILE_JSON].file, t);
   trace_csv_head(tf->files[FILE_CSV].file);
   chrome_trace_head(tf->files[FILE_CHROME].file);
+  objects_csv_head(tf->files[FILE_OBJECTS].file);
   tf->chrome_first = true;
   return true;
 }
@@ -64,6 +65,7 @@ bool play_trace_files_flush(play_trace* t, char* error, size_t error_size) {
   trace_json_frames(&tf->json, t);
   trace_csv_frames(tf->files[FILE_CSV].file, t);
   chrome_trace_frames(tf->files[FILE_CHROME].file, t, &tf->chrome_first);
+  objects_csv_frames(tf->files[FILE_OBJECTS].file, t);
   t->window_first += t->window_count;
   t->window_count = 0;
   return flushed(t, error, error_size);

@@ -11,6 +11,11 @@
 void trace_json_head(json_writer* w, FILE* f, const play_trace* t);
 void trace_json_frames(json_writer* w, const play_trace* t);
 bool trace_json_tail(json_writer* w, const play_trace* t);
+/* "warning_count" and "warnings" (one string per line of text) into w. */
+void json_warnings(json_writer* w, const char* text, uint32_t count);
+/* objects.csv: the header line, then one row per frame and object. */
+void objects_csv_head(FILE* f);
+void objects_csv_frames(FILE* f, const play_trace* t);
 /* trace.csv: the header line, then one row per frame. */
 void trace_csv_head(FILE* f);
 void trace_csv_frames(FILE* f, const play_trace* t);

@@ -2,6 +2,7 @@
  * tlod-play-summary/1, docs/play.md). */
 #include "common/lod_json.h"
 #include "play_summary.h"
+#include "play_trace_format.h"
 #include "tlod_atomic_file.h"
 #include "tool_names.h"
 
@@ -57,6 +58,8 @@ static bool summary_json(FILE* f, const void* data) {
   json_string(&w, "renderer", t0->renderer);
   json_string(&w, "surface", t0->surface);
   json_string(&w, "path", t0->path);
+  json_string(&w, "animation", t0->animation ? t0->animation : "");
+  json_warnings(&w, t0->warnings, t0->warning_count);
   json_number(&w, "fps", t0->fps);
   json_uint(&w, "width", t0->width);
   json_uint(&w, "height", t0->height);

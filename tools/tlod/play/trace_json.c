@@ -1,8 +1,27 @@
 /* tlod play -- trace.json: the settings, every frame's figures, then the
  * results (schema tlod-play-trace/1, docs/play.md), written in pieces. */
+#include <stdio.h>
+#include <string.h>
+
 #include "common/lod_json.h"
 #include "play_trace_format.h"
+#include "tlod_import.h"
 #include "tool_names.h"
+
+/* "warning_count" and "warnings": the importer's lines. */
+void json_warnings(json_writer* w, const char* text, uint32_t count) {
+  json_uint(w, "warning_count", count);
+  json_array_begin(w, "warnings");
+  for (const char* p = text ? text : ""; *p;) {
+    const char* end = strchr(p, '\n');
+    size_t n = end ? (size_t)(end - p) : strlen(p);
+    char line[TLOD_IMPORT_WARNINGS_SIZE];
+    snprintf(line, sizeof(line), "%.*s", (int)n, p);
+    if (n) json_string(w, NULL, line);
+    p += n + (end ? 1 : 0);
+  }
+  json_array_end(w);
+}
 
 static void json_vec(json_writer* w, const char* key, const float* v, int n) {
   json_array_begin(w, key);
@@ -41,9 +60,18 @@ static void json_settings(json_writer* w, const play_trace* t) {
     json_uint(w, "faces", o->faces);
     json_uint(w, "patches", o->patches);
     json_vec(w, "color", o->color, 4);
+    json_uint(w, "surface", o->surface);
+    json_number(w, "node", (double)o->node);
+    json_bool(w, "skinned", o->skinned);
+    json_bool(w, "textured", o->textured);
     json_object_end(w);
   }
   json_array_end(w);
+  json_uint(w, "objects_inline", play_trace_inline_objects(t));
+  json_string(w, "object_counts_file", "objects.csv");
+  json_string(w, "animation", t->animation ? t->animation : "");
+  json_number(w, "animation_duration_s", t->animation_duration_s);
+  json_warnings(w, t->warnings, t->warning_count);
 }
 
 void trace_json_head(json_writer* w, FILE* f, const play_trace* t) {
@@ -54,10 +82,10 @@ void trace_json_head(json_writer* w, FILE* f, const play_trace* t) {
   json_array_begin(w, "frames");
 }
 
-/* The per-object records of window frame n. */
+/* The per-object records of window frame n (the first objects_inline objects). */
 static void json_frame_objects(json_writer* w, const play_trace* t, uint32_t n) {
   json_array_begin(w, "objects");
-  for (uint32_t i = 0; i < t->object_count; i++) {
+  for (uint32_t i = 0; i < play_trace_inline_objects(t); i++) {
     const play_object_stats* s = play_trace_object(t, n, i);
     json_object_begin(w, NULL);
     json_string(w, "name", t->objects[i].name);
@@ -97,6 +125,7 @@ void trace_json_frames(json_writer* w, const play_trace* t) {
     json_number(w, "near", fr->near_z);
     json_number(w, "far", fr->far_z);
     json_number(w, "frame_ms", fr->frame_ms);
+    json_number(w, "anim_ms", fr->anim_ms);
     json_number(w, "scheduler_ms", tot.scheduler_ms);
     json_stage_ms(w, "stage_ms", tot.stage_ms);
     json_number(w, "backend_cpu_ms", tot.backend_cpu_ms);

@@ -5,8 +5,10 @@
 #include "cli.h"
 #include "commands.h"
 #include "common/scene_setup.h"
+#include "tessellate_export.h"
 #include "tessellate_frame.h"
 #include "tessellate_options.h"
+#include "tessellate_scene.h"
 #include "tessellate_stats.h"
 #include "tlod_import.h"
 #include "tool_names.h"
@@ -60,9 +62,10 @@ static int tessellate(const tess_options* o, tess_run* r) {
 static int write_output(const tess_options* o, tess_run* r) {
   char err[512];
   double w0 = cli_now_ms();
-  tlod_export_mesh em = {r->out->vertex_count, r->out->positions, r->out->normals, r->out->triangle_count,
-                         r->out->indices};
-  int rc = tlod_export_file(o->out, &em, err, sizeof(err)) == TLOD_SUCCESS ? CLI_OK : cli_error(CLI_FAILED, "%s", err);
+  tess_export em;
+  tess_export_of(r->out, r->scene.mesh, &em);
+  int rc =
+      tlod_export_file(o->out, &em.mesh, err, sizeof(err)) == TLOD_SUCCESS ? CLI_OK : cli_error(CLI_FAILED, "%s", err);
   r->t.write = cli_now_ms() - w0;
   return rc;
 }
@@ -104,6 +107,7 @@ int cmd_tessellate(int argc, char** argv) {
   tess_options o;
   int rc = tessellate_parse(argc, argv, &o);
   if (rc != CLI_OK) return rc;
+  if (tessellate_is_scene(&o)) return tessellate_scene(&o);
   tess_run r = {0};
   tlod_context_desc cd = {.thread_count = o.threads, .label = "tlod"};
   if (tlod_context_create(&cd, &r.ctx) != TLOD_SUCCESS) return cli_error(CLI_FAILED, "cannot create a context");

@@ -7,14 +7,13 @@
 #include "cli.h"
 
 /* The camera of the options, aimed at the bounding-box centre when no target was given. */
-static tool_camera camera_of(const tess_options* o, const tlod_mesh* mesh) {
-  tlod_mesh_info info = tlod_mesh_query_info(mesh);
+static tool_camera camera_of(const tess_options* o, const float bmin[3], const float bmax[3]) {
   tool_camera cam = o->ad.cam;
   if (isnan(cam.target[0])) {
     for (int i = 0; i < 3; i++)
-      cam.target[i] = 0.5f * (info.bbox_min[i] + info.bbox_max[i]);
+      cam.target[i] = 0.5f * (bmin[i] + bmax[i]);
   }
-  camera_fit_planes(cam.eye, info.bbox_min, info.bbox_max, &cam.near_z, &cam.far_z);
+  camera_fit_planes(cam.eye, bmin, bmax, &cam.near_z, &cam.far_z);
   return cam;
 }
 
@@ -40,20 +39,31 @@ static int check_view(const tess_options* o, const tool_camera* cam) {
                    (double)cam->target[2], target, (double)cam->up[0], (double)cam->up[1], (double)cam->up[2], problem);
 }
 
-int tessellate_plan_frame(const tess_options* o, tlod_context* ctx, const scene_setup* s, tlod_scheduler** sch,
-                          const tlod_draw_list** out) {
-  tool_camera cam = camera_of(o, s->mesh);
+int tessellate_view(const tess_options* o, const float bmin[3], const float bmax[3], tlod_view_desc* out) {
+  tool_camera cam = camera_of(o, bmin, bmax);
   int rc = check_view(o, &cam);
-  if (rc != CLI_OK) return rc;
-  tlod_view_desc view = view_of(o, &cam);
+  if (rc == CLI_OK) *out = view_of(o, &cam);
+  return rc;
+}
+
+int tessellate_plan_view(const tess_options* o, tlod_context* ctx, tlod_surface* surface, tlod_patterns* patterns,
+                         const tlod_view_desc* view, tlod_scheduler** sch, const tlod_draw_list** out) {
   tlod_scheduler_desc sd = {.epsilon_px = o->ad.epsilon,
                             .max_level = o->ad.max_level,
                             .policy = o->ad.policy,
                             .morph = TLOD_MORPH_NONE,
                             .label = o->in};
-  if (tlod_scheduler_create(ctx, s->surface, s->patterns, &sd, sch) != TLOD_SUCCESS ||
-      tlod_scheduler_update(*sch, &(tlod_frame_desc){.views = &view, .view_count = 1}) != TLOD_SUCCESS)
+  if (tlod_scheduler_create(ctx, surface, patterns, &sd, sch) != TLOD_SUCCESS ||
+      tlod_scheduler_update(*sch, &(tlod_frame_desc){.views = view, .view_count = 1}) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx));
   *out = tlod_scheduler_draw_list(*sch, 0);
   return CLI_OK;
+}
+
+int tessellate_plan_frame(const tess_options* o, tlod_context* ctx, const scene_setup* s, tlod_scheduler** sch,
+                          const tlod_draw_list** out) {
+  tlod_mesh_info info = tlod_mesh_query_info(s->mesh);
+  tlod_view_desc view;
+  int rc = tessellate_view(o, info.bbox_min, info.bbox_max, &view);
+  return rc == CLI_OK ? tessellate_plan_view(o, ctx, s->surface, s->patterns, &view, sch, out) : rc;
 }

@@ -130,3 +130,34 @@ static bool stats_json(FILE* f, const void* data) {
 bool tessellate_write_stats(const tess_stats* s, char* error, size_t error_size) {
   return tlod_atomic_file_write(s->o->stats, stats_json, s, error, error_size);
 }
+
+static bool scene_stats_json(FILE* f, const void* data) {
+  const tess_scene_stats* s = data;
+  json_writer w;
+  json_begin(&w, f);
+  json_object_begin(&w, NULL);
+  write_settings(&w, s->o);
+  json_object_begin(&w, "scene");
+  json_uint(&w, "parts", s->parts);
+  json_uint(&w, "meshes", s->meshes);
+  json_uint(&w, "nodes", s->nodes);
+  json_uint(&w, "materials", s->materials);
+  json_uint(&w, "textures", s->textures);
+  json_uint(&w, "images", s->images);
+  json_uint(&w, "instance_copies", s->copies);
+  json_uint(&w, "culled_instances", s->culled);
+  json_object_end(&w);
+  json_object_begin(&w, "output_counts");
+  json_uint(&w, "vertices", s->vertices);
+  json_uint(&w, "triangles", s->triangles);
+  json_object_end(&w);
+  json_object_begin(&w, "timings_ms");
+  json_number(&w, "total", s->total_ms);
+  json_object_end(&w);
+  json_object_end(&w);
+  return json_end(&w);
+}
+
+bool tessellate_write_scene_stats(const tess_scene_stats* s, char* error, size_t error_size) {
+  return tlod_atomic_file_write(s->o->stats, scene_stats_json, s, error, error_size);
+}

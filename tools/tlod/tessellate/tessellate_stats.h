@@ -22,6 +22,17 @@ typedef struct tess_stats {
   const tess_timings* t;
 } tess_stats;
 
+/* Scene mode (tessellate_scene.h): what was read and written, summed. */
+typedef struct tess_scene_stats {
+  const tess_options* o;
+  uint32_t parts, meshes, nodes, materials, textures, images, copies, culled;
+  uint64_t vertices, triangles;
+  double total_ms;
+} tess_scene_stats;
+
+/* Writes o->stats of scene mode (atomically); false with one line in error. */
+bool tessellate_write_scene_stats(const tess_scene_stats* s, char* error, size_t error_size);
+
 /* Writes o->stats (atomically); false with one line in error. */
 bool tessellate_write_stats(const tess_stats* s, char* error, size_t error_size);
 
