@@ -132,10 +132,13 @@ static void fixture_init(fixture* f) {
   f->r.node_count = 2, f->r.nodes = f->nodes, f->r.material_count = 1, f->r.materials = &f->material;
 }
 
+static void two_triangles(tlod_export_mesh parts[2]) { parts[0] = parts[1] = triangle(NULL, 0); }
+
 TEST(scene_gltf_keeps_nodes_escapes_names) {
   fixture f;
   fixture_init(&f);
-  const tlod_export_mesh parts[2] = {triangle(NULL, 0), triangle(NULL, 0)};
+  tlod_export_mesh parts[2];
+  two_triangles(parts);
   CHECK(tlod_export_scene_file("scene.gltf", &f.r, parts, g_err, sizeof g_err) == TLOD_SUCCESS);
   char* s = slurp("scene.gltf", NULL);
   CHECK_MSG(s && strstr(s, "\"nodes\":[{\"name\":\"a\\\"b?\",\"children\":[1],\"mesh\":0},"
@@ -150,7 +153,8 @@ TEST(scene_gltf_keeps_nodes_escapes_names) {
 TEST(scene_refusals_name_the_element) {
   fixture f;
   fixture_init(&f);
-  const tlod_export_mesh parts[2] = {triangle(NULL, 0), triangle(NULL, 0)};
+  tlod_export_mesh parts[2];
+  two_triangles(parts);
   f.parts[1].material = 7;
   CHECK(tlod_export_scene_file("s.glb", &f.r, parts, g_err, sizeof g_err) == TLOD_ERROR_INVALID_ARGUMENT);
   CHECK_MSG(strstr(g_err, "s.glb: part 1: material out of range"), "%s", g_err);
@@ -167,7 +171,8 @@ TEST(scene_refusals_name_the_element) {
 TEST(scene_obj_merges_instances_mirrored_front_facing) {
   fixture f;
   fixture_init(&f);
-  const tlod_export_mesh parts[2] = {triangle(NULL, 0), triangle(NULL, 0)};
+  tlod_export_mesh parts[2];
+  two_triangles(parts);
   CHECK(tlod_export_scene_file("scene.obj", &f.r, parts, g_err, sizeof g_err) == TLOD_SUCCESS);
   char* s = slurp("scene.obj", NULL);
   /* 2 nodes x 2 parts: 12 vertices; the mirrored ones at x = -1 with winding reversed, normals still +z */

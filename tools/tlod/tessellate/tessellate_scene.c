@@ -121,9 +121,7 @@ static void warn_left_out(const tlod_import_result* r) {
             r->skin_count, r->animation_count);
   for (uint32_t i = 0; i < r->image_count; i++) {
     const tlod_import_image* im = &r->images[i];
-    const bool png = im->encoded && im->encoded_size >= 8 && im->encoded[0] == 0x89 && im->encoded[1] == 'P';
-    const bool jpeg = im->encoded && im->encoded_size >= 8 && im->encoded[0] == 0xFF && im->encoded[1] == 0xD8;
-    if (!png && !jpeg)
+    if (!tlod_export_image_mime(im))
       fprintf(stderr, "tlod: warning: image %u%s%s%s: %s, not written\n", i, im->uri[0] ? " '" : "", im->uri,
               im->uri[0] ? "'" : "", im->encoded ? "neither PNG nor JPEG" : "could not be read");
   }
