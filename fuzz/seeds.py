@@ -8,7 +8,8 @@ Seeds come from the repository only:
     self-contained file like a fuzz input; the original is kept too), .glb, .obj; the invalid
     corpora (glTF-Validator, obj_bad) are in there;
   - generated here: a GLB packed from each .gltf with one external buffer, PLY meshes in
-    ascii and both binary byte orders, a glTF scene with an animated camera;
+    ascii and both binary byte orders, a glTF scene with an animated camera, PNGs of every
+    colour type and depth with truncated and oversized variants (fuzz_image);
   - fuzz/seeds/<target>/: small hand-made files (valid and invalid) for each target;
   - tests/data/fuzz/<target>/: every crash found so far (not the open/ folder: those still
     crash and would stop a run at start).
@@ -21,10 +22,12 @@ import pathlib
 import shutil
 import struct
 import sys
+import zlib
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data"
-TARGETS = ["fuzz_gltf", "fuzz_glb", "fuzz_obj", "fuzz_ply", "fuzz_mesh", "fuzz_camera_path", "fuzz_gltf_camera"]
+TARGETS = ["fuzz_gltf", "fuzz_glb", "fuzz_obj", "fuzz_ply", "fuzz_mesh", "fuzz_camera_path", "fuzz_gltf_camera",
+           "fuzz_image"]
 MAX_INLINE = 256 * 1024  # larger external buffers are left as they are
 MESH_SEED_MAX = 16 * 1024  # fuzz_mesh: only small meshes (fuzz_mesh.c skips big ones)
 
@@ -167,6 +170,55 @@ def mesh_seeds(out):
             n += 1
 
 
+def png(width, height, color_type, depth, rows=None, interlace=0, extra=b""):
+    """A PNG of this colour type and bit depth; rows: raw scanline bytes (filter byte added)."""
+    channels = {0: 1, 2: 3, 3: 1, 4: 2, 6: 4}[color_type]
+    row_bytes = (width * channels * depth + 7) // 8
+    if rows is None:
+        rows = [bytes((x * 37 + y * 11) & 0xFF for x in range(row_bytes)) for y in range(height)]
+
+    def chunk(tag, body):
+        return struct.pack(">I", len(body)) + tag + body + struct.pack(">I", zlib.crc32(tag + body) & 0xFFFFFFFF)
+
+    raw = b"".join(b"\0" + r for r in rows)
+    ihdr = struct.pack(">IIBBBBB", width, height, depth, color_type, 0, 0, interlace)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + extra + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
+
+
+def image_seeds(out):
+    """fuzz_image: the images of tests/data, a PNG per colour type and depth (palette with
+    tRNS, Adam7), truncated copies, and headers that claim more pixels than the limit."""
+    d = out["fuzz_image"]
+    for suffix in (".png", ".jpg", ".jpeg"):
+        for p in data_files(suffix):
+            if p.stat().st_size <= 32768:
+                shutil.copy(p, d / p.relative_to(DATA).as_posix().replace("/", "_"))
+    for ct, depths in ((0, (1, 2, 4, 8, 16)), (2, (8, 16)), (3, (1, 4, 8)), (4, (8, 16)), (6, (8, 16))):
+        for depth in depths:
+            extra = b""
+            if ct == 3:
+                pal = bytes(range(48)) * 16
+                plte = pal[: 3 * (1 << depth)]
+                extra = struct.pack(">I", len(plte)) + b"PLTE" + plte + struct.pack(">I", zlib.crc32(b"PLTE" + plte))
+                trns = bytes([0, 128])
+                extra += struct.pack(">I", 2) + b"tRNS" + trns + struct.pack(">I", zlib.crc32(b"tRNS" + trns))
+            (d / ("ct%d_d%d.png" % (ct, depth))).write_bytes(png(7, 5, ct, depth, extra=extra))
+    # Adam7: the seven passes' scanlines one after the other (RGBA8, 9 x 9).
+    passes = [(0, 0, 8, 8), (4, 0, 8, 8), (0, 4, 4, 8), (2, 0, 4, 4), (0, 2, 2, 4), (1, 0, 2, 2), (0, 1, 1, 2)]
+    rows = []
+    for x0, y0, dx, dy in passes:
+        cols, nrows = max(0, (9 - x0 + dx - 1) // dx), max(0, (9 - y0 + dy - 1) // dy)
+        if cols:
+            rows += [bytes((i * 7 + y) & 0xFF for i in range(4 * cols)) for y in range(nrows)]
+    (d / "adam7.png").write_bytes(png(9, 9, 6, 8, rows=rows, interlace=1))
+    whole = png(16, 16, 6, 8)
+    (d / "truncated.png").write_bytes(whole[: len(whole) // 2])
+    (d / "huge_header.png").write_bytes(png(65536, 65536, 0, 8, rows=[b""]))  # 2^32 pixels claimed
+    for p in sorted((ROOT / "fuzz" / "seeds" / "fuzz_image").glob("*.jpg")):
+        blob = p.read_bytes()
+        (d / ("truncated_" + p.name)).write_bytes(blob[: len(blob) * 2 // 3])
+
+
 def copy_dir(src, dst):
     if src.is_dir():
         for p in sorted(src.iterdir()):
@@ -187,6 +239,7 @@ def main():
     gltf_seeds(out)
     ply_seeds(out)
     camera_seeds(out)
+    image_seeds(out)
     for t in TARGETS:
         copy_dir(ROOT / "fuzz" / "seeds" / t, out[t])
     mesh_seeds(out)

@@ -3,13 +3,10 @@
 // Owned by the import/export layer. An image that is missing, refused or cannot be decoded
 // costs its texture, never the model: a warning names it (by index and URI as written,
 // never by what the URI resolved to).
-#include <cstdlib>
-#include <cstring>
-#include <memory>
+#include <cstdio>
 
-#include "contained_file.h"
 #include "gltf_scene.hpp"
-#include "image_decode.h"
+#include "image_load.hpp"
 
 namespace tlod_gltf {
 
@@ -29,49 +26,19 @@ struct Context {
   const DataImages& data_images;
 };
 
-// The file's bytes, into im.encoded (every copy from the budget).
-void read_file(const Context& c, const std::string& uri, Image& im) {
-  if (!c.folder) fail(TLOD_ERROR_IO, "refused: an external file of a model imported from memory");
-  unsigned char* data = nullptr;
-  size_t size = 0;
-  const _tlod_contained_status st = _tlod_contained_read(c.folder, uri.c_str(), external_limit(c.budget), &data, &size);
-  if (st != _TLOD_CONTAINED_OK) fail(TLOD_ERROR_IO, _tlod_contained_message(st));
-  const std::unique_ptr<unsigned char, void (*)(void*)> hold(data, std::free);
-  _tlod_budget_add_input(c.budget, size);
-  take(c.budget, size, "image file");
-  im.encoded.assign(data, data + size);
-}
-
 void read_bytes(const Context& c, size_t i, Image& im) {
   const tinygltf::Image& g = c.m.images[i];
   if (g.bufferView >= 0) {
     size_t size = 0;
     const unsigned char* p = c.acc.view_bytes(g.bufferView, "bufferView", &size);
-    take(c.budget, size, "image bytes");
-    im.encoded.assign(p, p + size);
+    tlod_import_detail::image_keep_bytes(p, size, c.budget, im);
   } else if (!g.uri.empty()) {
-    read_file(c, g.uri, im);
+    tlod_import_detail::image_read_file(c.folder, g.uri, c.budget, im);
   } else {
     const auto it = c.data_images.find(int(i));
     if (it == c.data_images.end()) fail(TLOD_ERROR_PARSE, "no image data (bufferView, uri or data: URI)");
-    take(c.budget, it->second.size(), "image bytes");
-    im.encoded = it->second;
+    tlod_import_detail::image_keep_bytes(it->second.data(), it->second.size(), c.budget, im);
   }
-}
-
-void decode(const Context& c, Image& im) {
-  _tlod_image img{};
-  char detail[128];
-  const _tlod_image_status st =
-      _tlod_image_decode(im.encoded.data(), im.encoded.size(), c.budget, &img, detail, sizeof detail);
-  if (st != _TLOD_IMAGE_OK)
-    fail(TLOD_ERROR_PARSE, detail[0] ? format("%s (%s)", _tlod_image_message(st), detail) : _tlod_image_message(st));
-  const std::unique_ptr<unsigned char, void (*)(void*)> hold(img.rgba, std::free);
-  const size_t bytes = size_t(img.width) * img.height * 4;
-  take(c.budget, bytes, "decoded image");
-  im.rgba.assign(img.rgba, img.rgba + bytes);
-  im.info.width = img.width;
-  im.info.height = img.height;
 }
 
 // Images some material uses as its base colour: the ones decoded.
@@ -91,9 +58,7 @@ void read_image(const Context& c, size_t i, bool wanted, Image& im, OutputBase& 
   std::snprintf(im.info.mime, sizeof im.info.mime, "%s", g.mimeType.c_str());
   try {
     read_bytes(c, i, im);
-    const char* sniffed = _tlod_image_sniff(im.encoded.data(), im.encoded.size());
-    if (!im.info.mime[0] && sniffed) std::snprintf(im.info.mime, sizeof im.info.mime, "%s", sniffed);
-    if (wanted) decode(c, im);
+    if (wanted) tlod_import_detail::image_decode(c.budget, im);
   } catch (const ImportError& e) {
     const std::string name = g.uri.empty() ? "" : format(" '%.200s'", g.uri.c_str());
     out.warn(format("image %zu%s: %s: texture ignored", i, name.c_str(), e.message.c_str()));

@@ -566,6 +566,9 @@ tlod_result import_gltf(const _tlod_import_job* job) {
                   &images);
   warn_morph_targets(model, out);
   Reader(model, out, job->budget, job->keep_scene).run();
+  if (out.weights_renormalised)
+    out.warn(format("WEIGHTS_0: %u vertices' weights summed within 2e-2 of 1 and were renormalised",
+                    out.weights_renormalised));
   read_scene(job, model, images, out);
   return finish(job, out);
 }

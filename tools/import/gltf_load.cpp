@@ -143,7 +143,8 @@ void read_buffer(const char* folder, size_t i, const std::string& uri, _tlod_imp
   if (files.buffers.count(key)) return;
   unsigned char* data = nullptr;
   size_t size = 0;
-  const _tlod_contained_status st = _tlod_contained_read(folder, uri.c_str(), external_limit(budget), &data, &size);
+  const _tlod_contained_status st =
+      _tlod_contained_read(folder, uri.c_str(), _tlod_budget_file_limit(budget), &data, &size);
   if (st != _TLOD_CONTAINED_OK) fail(refusal_code(st), where + ": " + _tlod_contained_message(st));
   _tlod_budget_add_input(budget, size);
   if (!_tlod_budget_take(budget, 2 * size)) {
@@ -227,12 +228,6 @@ void prepare(const unsigned char* json, size_t json_size, const char* folder, _t
 }
 
 } // namespace
-
-size_t external_limit(const _tlod_import_budget* b) {
-  const size_t limit = b->proportional ? size_t(TLOD_IMPORT_MEMORY_CAP) : b->limit;
-  const size_t room = limit > b->used ? (limit - b->used) / 2 : 0;
-  return room < _TLOD_IMPORT_MAX_FILE_BYTES ? room : _TLOD_IMPORT_MAX_FILE_BYTES;
-}
 
 void load(const unsigned char* file, size_t size, bool glb_name, const char* folder, _tlod_import_budget* budget,
           tinygltf::Model& model, tlod_import_detail::OutputBase& warnings,

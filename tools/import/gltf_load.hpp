@@ -48,9 +48,6 @@ void load(const unsigned char* file, size_t size, bool glb_name, const char* fol
           tinygltf::Model& model, tlod_import_detail::OutputBase& warnings,
           std::map<int, std::vector<unsigned char>>* data_images = nullptr);
 
-// Largest external file the budget can still hold twice (the read and one copy).
-size_t external_limit(const _tlod_import_budget* b);
-
 // Integer fields, JSON shape (gltf_validate.cpp): throws on the first field
 // that is not a non-negative integer; returns what tinygltf's model structs
 // for the top-level arrays take and the external URIs.

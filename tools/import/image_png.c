@@ -3,16 +3,61 @@
  * first pixel buffer, and errors come back through our own setjmp frame. */
 #include <png.h>
 #include <setjmp.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "image_decode.h"
 
-/* libpng's own buffers (rows of the interlace passes, zlib, text chunks), taken from the budget with the pixels. */
+/* libpng's own heap (png/info structs, zlib, ancillary chunks) before the size is known;
+ * its row buffers (two rows of up to 8 bytes per pixel) are added once it is. Every libpng
+ * allocation goes through _tlod_png_malloc, which refuses past this: a chunk length field
+ * or a zTXt stream cannot make libpng allocate more (fuzz_image found a zTXt claiming 925 MB
+ * allocated by png_read_info). Taken from the budget with the pixels. */
 #define _TLOD_PNG_OVERHEAD ((size_t)1 << 20)
-/* A PNG ancillary chunk (iCCP, zTXt, ...) larger than this is an error (libpng default: 8 MB). */
-#define _TLOD_PNG_MAX_CHUNK ((png_alloc_size_t)1 << 22)
+#define _TLOD_PNG_ROWS(w) (2 * ((size_t)(w)*8 + 256))
+/* A PNG ancillary chunk (iCCP, zTXt, ...) larger than this is skipped (libpng default: 8 MB). */
+#define _TLOD_PNG_MAX_CHUNK ((png_alloc_size_t)1 << 19)
+
+/* libpng's heap: sizes in a 16-byte header so that free can give them back. Volatile: changed
+ * after setjmp and read (by the frees of png_destroy_read_struct) after the longjmp. */
+typedef struct _tlod_png_heap {
+  volatile size_t used, cap;
+} _tlod_png_heap;
+
+static png_voidp _tlod_png_malloc(png_structp png, png_alloc_size_t n) {
+  _tlod_png_heap* h = (_tlod_png_heap*)png_get_mem_ptr(png);
+  if (n > h->cap - h->used) return NULL; /* libpng turns this into its out-of-memory error */
+  unsigned char* p = (unsigned char*)malloc(n + 16);
+  if (!p) return NULL;
+  memcpy(p, &n, sizeof n);
+  h->used += n;
+  return p + 16;
+}
+
+static void _tlod_png_free(png_structp png, png_voidp ptr) {
+  if (!ptr) return;
+  _tlod_png_heap* h = (_tlod_png_heap*)png_get_mem_ptr(png);
+  unsigned char* p = (unsigned char*)ptr - 16;
+  png_alloc_size_t n;
+  memcpy(&n, p, sizeof n);
+  h->used -= n;
+  free(p);
+}
+
+/* Every chunk up to IEND must fit in the file: a length past the end is a truncated or
+ * corrupt file, refused before libpng allocates for it. */
+static bool _tlod_png_chunks_fit(const unsigned char* d, size_t size) {
+  size_t pos = 8;
+  while (size - pos >= 12) {
+    const size_t len = (size_t)d[pos] << 24 | (size_t)d[pos + 1] << 16 | (size_t)d[pos + 2] << 8 | d[pos + 3];
+    if (len > size - pos - 12) return false;
+    if (!memcmp(d + pos + 4, "IEND", 4)) return true;
+    pos += 12 + len;
+  }
+  return false; /* no IEND: truncated */
+}
 
 typedef struct _tlod_png_source {
   const unsigned char* data;
@@ -54,8 +99,14 @@ static void _tlod_png_to_rgba8(png_structp png, png_infop info) {
 
 _tlod_image_status _tlod_png_decode(const unsigned char* data, size_t size, _tlod_import_budget* budget,
                                     _tlod_image* out, char* detail, size_t detail_size) {
+  if (size < 8 || !_tlod_png_chunks_fit(data, size)) {
+    if (detail && detail_size) snprintf(detail, detail_size, "truncated PNG (a chunk runs past the end)");
+    return _TLOD_IMAGE_CORRUPT;
+  }
   _tlod_png_source src = {data, size, 0, detail, detail_size};
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &src, _tlod_png_error, _tlod_png_warning);
+  _tlod_png_heap heap = {0, _TLOD_PNG_OVERHEAD};
+  png_structp png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, &src, _tlod_png_error, _tlod_png_warning, &heap,
+                                             _tlod_png_malloc, _tlod_png_free);
   if (!png) return _TLOD_IMAGE_OUT_OF_MEMORY;
   png_infop info = png_create_info_struct(png);
   if (!info) {
@@ -76,8 +127,9 @@ _tlod_image_status _tlod_png_decode(const unsigned char* data, size_t size, _tlo
   png_set_chunk_malloc_max(png, _TLOD_PNG_MAX_CHUNK);
   png_read_info(png, info);
   const uint32_t w = png_get_image_width(png, info), h = png_get_image_height(png, info);
-  status = _tlod_image_reserve(w, h, 4 + sizeof(png_bytep), _TLOD_PNG_OVERHEAD, budget);
+  status = _tlod_image_reserve(w, h, 4 + sizeof(png_bytep), _TLOD_PNG_OVERHEAD + _TLOD_PNG_ROWS(w), budget);
   if (status != _TLOD_IMAGE_OK) png_error(png, _tlod_image_message(status));
+  heap.cap += _TLOD_PNG_ROWS(w);
   status = _TLOD_IMAGE_CORRUPT;
   _tlod_png_to_rgba8(png, info);
   if (png_get_rowbytes(png, info) != (size_t)w * 4) png_error(png, "unexpected row size after conversion");

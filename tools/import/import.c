@@ -59,6 +59,12 @@ void _tlod_budget_add_input(_tlod_import_budget* b, size_t bytes) {
   b->limit = _tlod_size_add(inputs, bytes, &sum) ? _tlod_budget_default(sum) : TLOD_IMPORT_MEMORY_CAP;
 }
 
+size_t _tlod_budget_file_limit(const _tlod_import_budget* b) {
+  const size_t limit = b->proportional ? (size_t)TLOD_IMPORT_MEMORY_CAP : b->limit;
+  const size_t room = limit > b->used ? (limit - b->used) / 2 : 0;
+  return room < _TLOD_IMPORT_MAX_FILE_BYTES ? room : _TLOD_IMPORT_MAX_FILE_BYTES;
+}
+
 bool _tlod_budget_take(_tlod_import_budget* b, size_t bytes) {
   if (bytes > b->limit - b->used) return false;
   b->used += bytes;

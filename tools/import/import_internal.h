@@ -88,6 +88,10 @@ size_t _tlod_budget_default(size_t input_bytes);
  * default rule's limit grows by its share. */
 void _tlod_budget_add_input(_tlod_import_budget* b, size_t bytes);
 
+/* Largest external file the budget can still hold twice (the read and one
+ * copy), at most _TLOD_IMPORT_MAX_FILE_BYTES. */
+size_t _tlod_budget_file_limit(const _tlod_import_budget* b);
+
 /* Takes bytes from the budget; false (nothing taken) when it would exceed the limit. */
 bool _tlod_budget_take(_tlod_import_budget* b, size_t bytes);
 

@@ -29,6 +29,7 @@
 #include "import_error.hpp"
 #include "import_internal.h"
 #include "import_output.hpp"
+#include "obj_materials.hpp"
 
 namespace {
 
@@ -312,18 +313,26 @@ private:
   const std::vector<tinyobj::material_t>& mats_;
   const Scan& scan_;
   Output& out_;
-  size_t face_ = 0;            // faces before the current shape = index into the scan
-  std::vector<uint64_t> keys_; // sorted distinct (v, vn + 1) pairs of the current part
+  // An output vertex: (v, vn + 1, vt + 1), so a vertex without vn or vt is 0 there.
+  struct Key {
+    uint32_t v, n, t;
+    bool operator<(const Key& o) const { return v != o.v ? v < o.v : n != o.n ? n < o.n : t < o.t; }
+    bool operator==(const Key& o) const { return v == o.v && n == o.n && t == o.t; }
+  };
 
-  static uint64_t key(const tinyobj::index_t& c) {
-    return uint64_t(uint32_t(c.vertex_index)) << 32 | uint32_t(c.normal_index + 1);
+  size_t face_ = 0;       // faces before the current shape = index into the scan
+  std::vector<Key> keys_; // sorted distinct keys of the current part
+
+  static Key key(const tinyobj::index_t& c) {
+    return {uint32_t(c.vertex_index), uint32_t(c.normal_index + 1), uint32_t(c.texcoord_index + 1)};
   }
 
   void check_counts() const {
-    if (a_.vertices.size() != scan_.counts[0] * 3 || a_.normals.size() != scan_.counts[2] * 3)
-      fail(TLOD_ERROR_PARSE, format("internal: tinyobjloader read %zu v and %zu vn, the scan %zu "
-                                    "and %zu",
-                                    a_.vertices.size() / 3, a_.normals.size() / 3, scan_.counts[0], scan_.counts[2]));
+    if (a_.vertices.size() != scan_.counts[0] * 3 || a_.normals.size() != scan_.counts[2] * 3 ||
+        a_.texcoords.size() != scan_.counts[1] * 2)
+      fail(TLOD_ERROR_PARSE, format("internal: tinyobjloader read %zu v, %zu vt and %zu vn, the scan %zu, %zu and %zu",
+                                    a_.vertices.size() / 3, a_.texcoords.size() / 2, a_.normals.size() / 3,
+                                    scan_.counts[0], scan_.counts[1], scan_.counts[2]));
   }
 
   std::string where(const tinyobj::shape_t& sh, size_t s, size_t f) const {
@@ -341,6 +350,7 @@ private:
     part.first_vertex = uint32_t(out_.positions.size() / 3);
     part.first_face = uint32_t(out_.face_sizes.size());
     base_color(m, part.base_color);
+    part.material = material_of(m);
     make_vertices(sh, s, part.had_normals);
     size_t offset = 0;
     for (size_t f = 0; f < m.num_face_vertices.size(); ++f) {
@@ -357,7 +367,7 @@ private:
   // tinyobjloader returned is used before this.
   void check_faces(const tinyobj::shape_t& sh, size_t s) const {
     const tinyobj::mesh_t& m = sh.mesh;
-    const size_t nv = a_.vertices.size() / 3, nn = a_.normals.size() / 3;
+    const size_t nv = a_.vertices.size() / 3, nn = a_.normals.size() / 3, nt = a_.texcoords.size() / 2;
     size_t offset = 0;
     for (size_t f = 0; f < m.num_face_vertices.size(); ++f) {
       const size_t n = m.num_face_vertices[f], k = face_ + f;
@@ -371,14 +381,17 @@ private:
         if (c.normal_index < -1 || (c.normal_index >= 0 && size_t(c.normal_index) >= nn))
           fail(TLOD_ERROR_INVALID_MESH, format("%s: normal index %d out of range (%zu normals)",
                                                where(sh, s, f).c_str(), c.normal_index + 1, nn));
+        if (c.texcoord_index < -1 || (c.texcoord_index >= 0 && size_t(c.texcoord_index) >= nt))
+          fail(TLOD_ERROR_INVALID_MESH, format("%s: texture coordinate index %d out of range (%zu vt)",
+                                               where(sh, s, f).c_str(), c.texcoord_index + 1, nt));
       }
       offset += n;
     }
   }
 
-  // One output vertex per distinct (v, vn) pair of the part, ordered by v
-  // then vn: an OBJ whose faces use every v (as tlod_export_file writes
-  // them) comes back in its own vertex order.
+  // One output vertex per distinct (v, vn, vt) of the part, ordered by v,
+  // vn, vt: an OBJ whose faces use every v (as tlod_export_file writes them)
+  // comes back in its own vertex order.
   void make_vertices(const tinyobj::shape_t& sh, size_t s, bool& had_normals) {
     keys_.clear();
     for (const tinyobj::index_t& c : sh.mesh.indices)
@@ -387,9 +400,11 @@ private:
     keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
     if (out_.positions.size() / 3 + keys_.size() > _TLOD_IMPORT_MAX_VERTICES)
       fail(TLOD_ERROR_UNSUPPORTED, format("more than %zu vertices", size_t(_TLOD_IMPORT_MAX_VERTICES)));
-    for (uint64_t k : keys_) {
-      const size_t v = size_t(k >> 32);
-      const long n = long(k & 0xFFFFFFFFu) - 1;
+    const size_t first = out_.positions.size() / 3;
+    std::vector<float> uv;
+    for (const Key& k : keys_) {
+      const size_t v = k.v;
+      const long n = long(k.n) - 1;
       const float* p = &a_.vertices[3 * v];
       if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
         fail(TLOD_ERROR_INVALID_MESH, format("shape %zu '%.40s': vertex %zu is not finite", s, sh.name.c_str(), v + 1));
@@ -401,7 +416,27 @@ private:
       } else {
         out_.normals.insert(out_.normals.end(), 3, 0.0f);
       }
+      add_texcoord(k, s, sh, uv);
     }
+    if (a_.texcoords.empty()) return;
+    out_.add_attribute("TEXCOORD_0", 2, first, uv);
+    out_.pad_attributes();
+  }
+
+  // OBJ's vt origin is bottom-left, glTF's (and the result's) top-left: v' = 1 - v.
+  // A corner without vt gets (0, 0).
+  void add_texcoord(const Key& k, size_t s, const tinyobj::shape_t& sh, std::vector<float>& uv) const {
+    if (a_.texcoords.empty()) return;
+    float u = 0.0f, v = 0.0f;
+    if (k.t > 0) {
+      u = a_.texcoords[2 * (k.t - 1)];
+      v = 1.0f - a_.texcoords[2 * (k.t - 1) + 1];
+    }
+    if (!std::isfinite(u) || !std::isfinite(v))
+      fail(TLOD_ERROR_INVALID_MESH,
+           format("shape %zu '%.40s': texture coordinate %u is not finite", s, sh.name.c_str(), k.t));
+    uv.push_back(u);
+    uv.push_back(v);
   }
 
   uint32_t vertex_id(const tinyobj::index_t& c, uint32_t first) const {
@@ -428,6 +463,12 @@ private:
       out_.face_sizes.push_back(3);
     }
     out_.polygons_triangulated++;
+  }
+
+  uint32_t material_of(const tinyobj::mesh_t& m) const {
+    if (m.material_ids.empty()) return TLOD_IMPORT_NONE;
+    const int id = m.material_ids[0];
+    return id >= 0 && size_t(id) < mats_.size() ? uint32_t(id) : TLOD_IMPORT_NONE;
   }
 
   // The part's first face decides its colour (a part is one o/g group).
@@ -568,6 +609,7 @@ tlod_result import_obj(const _tlod_import_job* job) {
   if (!ok) fail(TLOD_ERROR_PARSE, "tinyobjloader: " + one_line(err));
   if (!warn.empty()) out.warn("tinyobjloader: " + one_line(warn));
   Builder(attrib, materials, scan, out).run(shapes);
+  tlod_import_detail::read_obj_materials(materials, job->folder, job->budget, out);
   return finish(job, out);
 }
 

@@ -1,8 +1,10 @@
 /* ply_import.c -- PLY reader (ascii, binary little and big endian) in C11.
  * Owned by the import/export layer (tools/import/).
  *
- * Reads the "vertex" element (x y z, optional nx ny nz, any scalar types)
- * and the "face" element's vertex_indices / vertex_index list; every other
+ * Reads the "vertex" element (x y z, optional nx ny nz, texture coordinates
+ * u v / s t / texture_u texture_v as TEXCOORD_0, colours red green blue
+ * [alpha] as COLOR_0 (integers scaled to 0..1), any scalar types) and the
+ * "face" element's vertex_indices / vertex_index list; every other
  * element and property is parsed and skipped. Every read is bounds-checked
  * against the file, and counts from the header are checked against the
  * bytes left before anything is allocated for them. */
@@ -69,6 +71,8 @@ typedef struct _ply_value {
 typedef struct _ply_out {
   float* positions;
   float* normals;
+  float* texcoords; /* u v per vertex, as stored; NULL: none */
+  float* colors;    /* rgba per vertex; NULL: none */
   uint32_t vertex_count;
   uint32_t* indices;
   size_t index_count, index_cap;
@@ -313,23 +317,48 @@ static int _ply_find_property(const _ply_element* e, const char* name) {
   return -1;
 }
 
-/* Where each of x y z nx ny nz goes: slot[i] = property index or -1. */
-static tlod_result _ply_vertex_slots(_ply_reader* r, const _ply_element* e, int slot[6], bool* normals) {
-  static const char* const names[6] = {"x", "y", "z", "nx", "ny", "nz"};
-  for (int i = 0; i < 6; ++i)
-    slot[i] = _ply_find_property(e, names[i]);
+/* Vertex properties read, by slot: position, normal, texture coordinate, colour. */
+enum { _PLY_X = 0, _PLY_NX = 3, _PLY_U = 6, _PLY_RED = 8, _PLY_ALPHA = 11, _PLY_SLOTS = 12 };
+
+/* Where each slot comes from: slot[i] = property index or -1. Texture coordinates are the
+ * first complete pair of u v, s t, texture_u texture_v. */
+static tlod_result _ply_vertex_slots(_ply_reader* r, const _ply_element* e, int slot[_PLY_SLOTS]) {
+  static const char* const names[_PLY_SLOTS] = {"x", "y", "z",   "nx",    "ny",   "nz",
+                                                "",  "",  "red", "green", "blue", "alpha"};
+  static const char* const uv[3][2] = {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}};
+  for (int i = 0; i < _PLY_SLOTS; ++i)
+    slot[i] = names[i][0] ? _ply_find_property(e, names[i]) : -1;
+  for (int k = 0; k < 3 && slot[_PLY_U] < 0; ++k)
+    if (_ply_find_property(e, uv[k][0]) >= 0 && _ply_find_property(e, uv[k][1]) >= 0) {
+      slot[_PLY_U] = _ply_find_property(e, uv[k][0]);
+      slot[_PLY_U + 1] = _ply_find_property(e, uv[k][1]);
+    }
   if (slot[0] < 0 || slot[1] < 0 || slot[2] < 0)
     return _tlod_import_fail(r->job, TLOD_ERROR_PARSE, "element 'vertex' lacks an x, y or z property");
-  *normals = slot[3] >= 0 && slot[4] >= 0 && slot[5] >= 0;
   return TLOD_SUCCESS;
 }
 
-static tlod_result _ply_read_vertex(_ply_reader* r, const _ply_element* e, const int slot[6], float out[6]) {
+static bool _ply_has(const int slot[_PLY_SLOTS], int first, int n) {
+  for (int i = first; i < first + n; ++i)
+    if (slot[i] < 0) return false;
+  return true;
+}
+
+/* Colours: integers scaled to 0..1 by their type's maximum (uchar /255), floats as stored. */
+static float _ply_unit(const _ply_property* p, const _ply_value* v) {
+  const _ply_type* t = &_ply_types[p->type];
+  if (t->is_float) return v->f;
+  const double max = t->size == 1 ? 255.0 : t->size == 2 ? 65535.0 : 4294967295.0;
+  return (float)(v->d / max);
+}
+
+static tlod_result _ply_read_vertex(_ply_reader* r, const _ply_element* e, const int slot[_PLY_SLOTS],
+                                    float out[_PLY_SLOTS]) {
   for (uint32_t i = 0; i < e->property_count; ++i) {
     const _ply_property* p = &e->properties[i];
     _ply_value v;
     int target = -1;
-    for (int s = 0; s < 6; ++s)
+    for (int s = 0; s < _PLY_SLOTS; ++s)
       if (slot[s] == (int)i) target = s;
     if (target < 0 || p->is_list) {
       tlod_result res = _ply_skip_property(r, p);
@@ -338,35 +367,52 @@ static tlod_result _ply_read_vertex(_ply_reader* r, const _ply_element* e, const
     }
     tlod_result res = _ply_value_read(r, p->type, &v);
     if (res != TLOD_SUCCESS) return res;
-    out[target] = v.f;
+    out[target] = target >= _PLY_RED ? _ply_unit(p, &v) : v.f;
   }
-  if (!isfinite(out[0]) || !isfinite(out[1]) || !isfinite(out[2]))
-    return _tlod_import_fail(r->job, TLOD_ERROR_INVALID_MESH, "vertex %zu is not finite (%g, %g, %g)", r->item,
-                             (double)out[0], (double)out[1], (double)out[2]);
+  for (int k = 0; k < _PLY_SLOTS; ++k)
+    if (!isfinite(out[k]))
+      return _tlod_import_fail(r->job, TLOD_ERROR_INVALID_MESH, "vertex %zu: property '%s' is not finite", r->item,
+                               e->properties[slot[k] >= 0 ? slot[k] : 0].name);
+  return TLOD_SUCCESS;
+}
+
+/* The vertex arrays, from the budget first (count was checked against the file). */
+static tlod_result _ply_alloc_vertices(_ply_reader* r, const _ply_element* e, const int slot[_PLY_SLOTS], _ply_out* o) {
+  const bool normals = _ply_has(slot, _PLY_NX, 3), uv = _ply_has(slot, _PLY_U, 2), rgb = _ply_has(slot, _PLY_RED, 3);
+  if (!_tlod_budget_take(r->job->budget, e->count * (12 + 12 + 8 + 16) + 48))
+    return _tlod_import_fail(r->job, TLOD_ERROR_OUT_OF_MEMORY,
+                             "element 'vertex': %zu vertices exceed the import's memory budget (%zu bytes; "
+                             "tlod_import_desc.memory_limit)",
+                             e->count, r->job->budget->limit);
+  o->positions = malloc(e->count * 12 + 12);
+  o->normals = normals ? malloc(e->count * 12 + 12) : NULL;
+  o->texcoords = uv ? malloc(e->count * 8 + 8) : NULL;
+  o->colors = rgb ? malloc(e->count * 16 + 16) : NULL;
+  if (!o->positions || (normals && !o->normals) || (uv && !o->texcoords) || (rgb && !o->colors))
+    return _tlod_import_fail(r->job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory for %zu vertices", e->count);
   return TLOD_SUCCESS;
 }
 
 static tlod_result _ply_read_vertices(_ply_reader* r, const _ply_element* e, _ply_out* o) {
-  int slot[6];
-  bool normals = false;
-  tlod_result res = _ply_vertex_slots(r, e, slot, &normals);
+  int slot[_PLY_SLOTS];
+  tlod_result res = _ply_vertex_slots(r, e, slot);
   if (res == TLOD_SUCCESS) res = _ply_check_count(r, e);
   if (res != TLOD_SUCCESS) return res;
   if (e->count > _TLOD_IMPORT_MAX_VERTICES || o->positions)
     return _tlod_import_fail(r->job, TLOD_ERROR_UNSUPPORTED, "%zu vertices (one vertex element of at most %zu)",
                              e->count, (size_t)_TLOD_IMPORT_MAX_VERTICES);
-  o->positions = malloc(e->count * 12 + 12);
-  o->normals = normals ? malloc(e->count * 12 + 12) : NULL;
-  if (!o->positions || (normals && !o->normals))
-    return _tlod_import_fail(r->job, TLOD_ERROR_OUT_OF_MEMORY, "out of memory for %zu vertices", e->count);
+  res = _ply_alloc_vertices(r, e, slot, o);
+  if (res != TLOD_SUCCESS) return res;
   o->vertex_count = (uint32_t)e->count;
   r->where = "vertex";
   for (r->item = 0; r->item < e->count; ++r->item) {
-    float v[6] = {0, 0, 0, 0, 0, 0};
+    float v[_PLY_SLOTS] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1};
     res = _ply_read_vertex(r, e, slot, v);
     if (res != TLOD_SUCCESS) return res;
     memcpy(o->positions + 3 * r->item, v, 12);
-    if (normals) memcpy(o->normals + 3 * r->item, v + 3, 12);
+    if (o->normals) memcpy(o->normals + 3 * r->item, v + _PLY_NX, 12);
+    if (o->texcoords) memcpy(o->texcoords + 2 * r->item, v + _PLY_U, 8);
+    if (o->colors) memcpy(o->colors + 4 * r->item, v + _PLY_RED, 16);
   }
   return TLOD_SUCCESS;
 }
@@ -504,6 +550,10 @@ static tlod_result _ply_finish(_ply_reader* r, const _ply_out* o) {
   d.part_count = 1;
   d.parts = &part;
   d.polygons_triangulated = o->polygons_triangulated;
+  tlod_import_attribute attrs[2];
+  if (o->texcoords) attrs[d.attribute_count++] = (tlod_import_attribute){"TEXCOORD_0", 2, o->texcoords};
+  if (o->colors) attrs[d.attribute_count++] = (tlod_import_attribute){"COLOR_0", 4, o->colors};
+  d.attributes = attrs;
   return _tlod_import_finish(r->job, &d);
 }
 
@@ -525,6 +575,8 @@ tlod_result _tlod_import_ply(const _tlod_import_job* job) {
   if (res == TLOD_SUCCESS) res = _ply_finish(r, &o);
   free(o.positions);
   free(o.normals);
+  free(o.texcoords);
+  free(o.colors);
   free(o.indices);
   free(o.face_sizes);
   free(r);

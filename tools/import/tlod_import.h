@@ -11,26 +11,72 @@
  *       applied; TRIANGLE_STRIP and TRIANGLE_FAN converted to triangles;
  *       sparse accessors applied; u8/u16/u32 or no indices;
  *     - Wavefront OBJ: triangles and quads kept, larger polygons
- *       fan-triangulated, one output vertex per distinct (v, vn) pair;
+ *       fan-triangulated, one output vertex per distinct (v, vt, vn);
  *     - PLY (ascii, binary little and big endian): vertex x y z [nx ny nz],
  *       face lists; triangles and quads kept, larger polygons fan-triangulated.
+ *   Besides geometry (issue 11, "real assets"):
+ *     - attributes[]: glTF TEXCOORD_0, TEXCOORD_1 (float or normalised u8/u16),
+ *       COLOR_0 (VEC3 gets alpha 1, VEC4; float or normalised u8/u16) and
+ *       TANGENT (float VEC4); OBJ vt as "TEXCOORD_0" with v flipped to glTF's
+ *       top-left origin (v' = 1 - v; a corner without vt gets 0, 0); PLY
+ *       u v / s t / texture_u texture_v as "TEXCOORD_0" (as stored) and red
+ *       green blue [alpha] as "COLOR_0" (integers / their type's maximum,
+ *       uchar / 255). An attribute covers every vertex of the result: parts
+ *       without it hold zeros (COLOR_0: ones). A glTF layout the spec does not
+ *       allow for these is a warning (attribute ignored).
+ *     - joints/weights: glTF JOINTS_0 (u8/u16) and WEIGHTS_0 (float or
+ *       normalised u8/u16), 4 per vertex; weights summing within 2e-2 of 1 are
+ *       renormalised (counted in weights_renormalised and a warning).
+ *     - meshes[], nodes[] (glTF: every node of the file, same indices, with
+ *       parent, TRS, local and rest-pose world matrices; a node given by a
+ *       matrix gets its decomposition as TRS), materials[], textures[],
+ *       images[] (same indices as the file), animations[] (translation,
+ *       rotation, scale channels; STEP, LINEAR, CUBICSPLINE), skins[]
+ *       (inverse bind matrices, identity when absent). OBJ/PLY: one mesh of
+ *       every part at one identity node; OBJ materials from mtllib (Kd, d;
+ *       d < 1: BLEND; map_Kd: a texture whose image is read and decoded; OBJ
+ *       materials are double-sided).
+ *     - keep_scene (tlod_import_desc): each glTF mesh's primitives once, in
+ *       mesh space (positions bitwise as stored), meshes[i] naming its parts,
+ *       parts' node TLOD_IMPORT_NONE; the caller instances them with nodes[].
+ *       Without it (flattened, as before): one part per node x primitive in
+ *       world space, part.node the node, meshes[i] naming the parts of the
+ *       mesh's first instance (part_count 0 if never instanced).
+ *     - images: the bytes of every image are kept (encoded, for re-export);
+ *       those some material uses as its base colour texture are decoded to
+ *       RGBA8 (libpng, libjpeg-turbo; docs/security.md section 5).
  *   tlod_export_file() writes a triangle mesh as OBJ, binary PLY, .gltf
  *   (one embedded base64 buffer) or .glb. Everything it writes reads back
  *   through tlod_import_file() with bitwise equal positions and indices.
  *
+ *   Refused (an error naming the accessor or node): a node graph that is not
+ *   a forest; a JOINTS_0 index at or past the joint count of a skin the mesh
+ *   is drawn with; a negative or non-finite weight, or weights summing more
+ *   than 2e-2 away from 1; an inverse bind matrix that is not finite or not
+ *   invertible (|det| below 1e-6 x the product of its column lengths); an
+ *   animation whose key times are not finite and strictly increasing, whose
+ *   value count does not match its keys x (1 or 3 for CUBICSPLINE), or whose
+ *   channel targets a node that does not exist.
+ *
  * DOES NOT
  *   - validate mesh topology or repair normals (tlod_mesh_create() does);
- *   - read textures, skins, morph targets, animations or cameras (a skinned
- *     mesh comes in its bind pose);
+ *   - pose skins or sample animations (a skinned mesh comes in its bind pose;
+ *     flattened mode warns about it, keep_scene does not: the caller animates);
+ *   - read morph targets (a warning names the mesh; a "weights" animation
+ *     channel is a warning "morph target animation ignored"), cameras, or
+ *     material inputs besides base colour, alpha and double-sidedness;
+ *   - decode images other than base colour ones, or images past
+ *     TLOD_IMPORT_MAX_IMAGE_PIXELS or the memory budget: a missing, refused
+ *     or undecodable image is a warning naming it, its rgba is NULL, and the
+ *     model still loads;
  *   - trust the file: every offset, count and index is range-checked before
  *     it is read, and a malformed file gives an error naming the file and
- *     the element at fault, never a crash, a hang or unbounded memory;
- *   - decode images (glTF images are never decoded nor opened).
+ *     the element at fault, never a crash, a hang or unbounded memory.
  *
  * SECURITY RULE (docs/security.md)
  *   A model file is untrusted input. An import
  *     - reads only files inside the model's folder: an external reference (glTF
- *       buffer URI, OBJ mtllib) is percent-decoded, refused if absolute or with
+ *       buffer or image URI, OBJ mtllib or map_Kd) is percent-decoded, refused if absolute or with
  *       a scheme ("/x", "file:", "http:"), resolved with symlinks (realpath)
  *       and refused unless the result lies inside the realpath of the model's
  *       folder; it is opened non-blocking and read only if fstat says it is a
@@ -82,8 +128,8 @@ extern "C" {
 
 /* One imported piece: a glTF primitive instance (node x primitive; with
  * keep_scene: one per primitive of each mesh, in mesh space), an OBJ shape
- * (o / g, split further by material), or the whole PLY. Its faces and
- * vertices are contiguous. */
+ * (o / g; its material is that of its first face), or the whole PLY. Its
+ * faces and vertices are contiguous. */
 typedef struct tlod_import_part {
   char name[64]; /* node, mesh or shape name; may be truncated */
   uint32_t first_face, face_count;
@@ -195,7 +241,7 @@ typedef struct tlod_import_skin {
 
 typedef struct tlod_import_result {
   uint32_t vertex_count;
-  float* positions; /* xyz, world space (node transforms applied) */
+  float* positions; /* xyz, world space (node transforms applied); keep_scene: mesh space */
   /* xyz, or NULL when no part had normals; parts without normals are
    * zero-filled (core recomputes those). Normals of transformed glTF nodes
    * are renormalised; untransformed ones are passed through as stored. */
