@@ -198,7 +198,8 @@ if check("PLY: written", rc == 0, se):
     for i in range(nverts if iu >= 0 else 0):
         vals = struct.unpack_from("<%df" % nfloat, body, i * 4 * nfloat)
         got.add((vals[iu], vals[iu + 1]))
-    check("PLY: u v hold every input UV (v = 1 - v')", want_uv <= got, "%d missing" % len(want_uv - got))
+    want_ply = {struct.unpack("<2f", u) for u in src_uv}
+    check("PLY: u v hold every input UV bitwise (as stored)", want_ply <= got, "%d missing" % len(want_ply - got))
 
 
 # ---------------------------------------------------------------- a generated multi-node scene

@@ -59,7 +59,7 @@ TEST(ply_writes_uv_and_rgba) {
   body += strlen("end_header\n");
   float v0[8];
   memcpy(v0, body, sizeof v0); /* x y z nx ny nz u v of vertex 0 */
-  CHECK(v0[6] == 0.0f && v0[7] == 0.75f);
+  CHECK(v0[6] == 0.0f && v0[7] == 0.25f);
   const unsigned char* c1 = (const unsigned char*)body + 36 + 32; /* vertex 1's colour */
   CHECK_MSG(c1[0] == 0 && c1[1] == 128 && c1[2] == 0 && c1[3] == 255, "%u %u %u %u", c1[0], c1[1], c1[2], c1[3]);
   const unsigned char* c2 = (const unsigned char*)body + 2 * 36 + 32;
@@ -181,7 +181,27 @@ TEST(scene_obj_merges_instances_mirrored_front_facing) {
   free(s);
 }
 
+/* What the importer reads back: the exporter's flips and its are inverses
+ * (uvs chosen so 1 - (1 - v) is exact). */
+TEST(obj_and_ply_uvs_read_back_through_the_importer) {
+  const float uv[6] = {0.25f, 0.125f, 1, 0, 0.5f, 1};
+  const tlod_export_attribute a = {"TEXCOORD_0", 2, uv, 0};
+  tlod_export_mesh m = triangle(&a, 1);
+  const char* const files[2] = {"rt.obj", "rt.ply"};
+  for (int f = 0; f < 2; ++f) {
+    tlod_import_result* r = NULL;
+    CHECK(tlod_export_file(files[f], &m, g_err, sizeof g_err) == TLOD_SUCCESS);
+    CHECK_MSG(tlod_import_file(files[f], NULL, &r, g_err, sizeof g_err) == TLOD_SUCCESS, "%s", g_err);
+    if (!r) continue;
+    CHECK_MSG(r->attribute_count >= 1 && !strcmp(r->attributes[0].name, "TEXCOORD_0") && r->vertex_count == 3 &&
+                  !memcmp(r->attributes[0].data, uv, sizeof uv),
+              "%s: %u attributes", files[f], r->attribute_count);
+    tlod_import_free(r);
+  }
+}
+
 int main(void) {
+  RUN(obj_and_ply_uvs_read_back_through_the_importer);
   RUN(obj_writes_vt_flipped_from_strided_uvs);
   RUN(ply_writes_uv_and_rgba);
   RUN(gltf_names_attributes_and_renormalises_tangents);

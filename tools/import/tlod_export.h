@@ -12,7 +12,7 @@
  *            origin: v = 1 - v', the inverse of the importer's flip), faces
  *            v/vt/vn; other attributes are not written;
  *     .ply   binary little endian: x y z, nx ny nz, u v (float, TEXCOORD_0
- *            with v = 1 - v' as for OBJ), red green blue alpha (uchar,
+ *            as it is, as the importer reads PLY u v), red green blue alpha (uchar,
  *            COLOR_0 x 255 rounded, clamped to 0..255; 3 components: alpha
  *            255); other attributes are not written;
  *     .gltf  one buffer embedded as a base64 data URI; images embedded as
