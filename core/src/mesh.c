@@ -1,5 +1,6 @@
 /* tesslod::core -- meshes: validation, repairs, queries and updates.
- * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_normals.c).
+ * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_attributes.c,
+ * mesh_normals.c).
  *
  * Input is checked in full before anything is allocated, so a rejected mesh
  * costs no allocation; what can be repaired (degenerate faces, bad normals,

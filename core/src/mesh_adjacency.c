@@ -1,5 +1,6 @@
 /* tesslod::core -- mesh welding and edge adjacency.
- * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_normals.c).
+ * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_attributes.c,
+ * mesh_normals.c).
  *
  * Welding hashes positions (exactly, or by grid cells of the weld epsilon):
  * expected O(n). Edges are bucketed by their smaller welded end (a counting

@@ -1,5 +1,6 @@
 /* tesslod::core -- computed vertex normals, with creases.
- * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_normals.c).
+ * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_attributes.c,
+ * mesh_normals.c).
  *
  * A vertex normal is the weighted sum of the unit normals of the faces
  * around its welded position (so UV-seam duplicates get one normal),

@@ -16,6 +16,7 @@
 #include "tesslod/cpu.h"
 #include "tesslod/lod.h"
 #include "test.h"
+#include "test_camera.h"
 #include "test_context.h"
 
 #define MAX_LEVEL 6
@@ -216,6 +217,18 @@ TEST(view_and_patch_attributes_copy_the_input) {
   CHECK(tlod_mesh_patch_attributes(m, 0, 1, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
   CHECK(tlod_mesh_patch_attributes(NULL, 0, 0, corners) == TLOD_ERROR_INVALID_ARGUMENT);
   CHECK(tlod_mesh_query_info(m).attribute_seam_edges == 0);
+  CHECK(tlod_mesh_attribute_count(NULL) == 0 && tlod_mesh_query_attribute(NULL, 0).components == 0);
+  /* An update moves the geometry and leaves the attributes as they are. */
+  float(*before)[4] = malloc(sizeof(*before) * 3 * view.vertex_count);
+  memcpy(before, view.attributes, sizeof(*before) * 3 * view.vertex_count);
+  float* moved = malloc(sizeof(float) * 3 * s.vertex_count);
+  for (uint32_t k = 0; k < 3 * s.vertex_count; k++)
+    moved[k] = 2.0f * s.positions[k];
+  CHECK(tlod_mesh_update(m, moved, 0, NULL, 0) == TLOD_SUCCESS);
+  view = tlod_mesh_query_view(m);
+  CHECK(!memcmp(before, view.attributes, sizeof(*before) * 3 * view.vertex_count));
+  free(moved);
+  free(before);
   free(corners);
   tlod_mesh_destroy(m);
   tlod_context_destroy(ctx);
@@ -481,6 +494,21 @@ static int8_t* random_levels(uint32_t patches, uint64_t seed) {
   return l;
 }
 
+/* No triangle spans the seam: its corners' u all on one side (the seam's
+ * sides are u 0 and u 1). */
+static void check_no_span(const tlod_cpu_mesh* o, const char* what) {
+  CHECK(o->attribute_count == 1 && o->attributes && o->vertex_patch && o->vertex_uv);
+  for (uint32_t k = 0; k < o->triangle_count; k++) {
+    float lo = 2, hi = -2;
+    for (int c = 0; c < 3; c++) {
+      float u = o->attributes[o->indices[3 * k + c]][0];
+      lo = fminf(lo, u), hi = fmaxf(hi, u);
+    }
+    CHECK_MSG(hi - lo < 0.5f, "%s: triangle %u (patch %d) spans the seam: u %g..%g", what, k, (int)o->triangle_patch[k],
+              (double)lo, (double)hi);
+  }
+}
+
 /* Closed after welding by exact position; no triangle spans the seam (its
  * corners' u all on one side: the seam's sides are u 0 and u 1); every
  * output position on the seam meridian (y == 0, x > 0) carries both u 0 and
@@ -493,16 +521,7 @@ static void check_seam_output(const tlod_cpu_mesh* o, const char* what, bool one
   CHECK_MSG(shape_closed_manifold(o->positions, o->vertex_count, o->indices, o->triangle_count, o->triangle_patch, why,
                                   sizeof(why)),
             "%s: %s", what, why);
-  CHECK(o->attribute_count == 1 && o->attributes && o->vertex_patch && o->vertex_uv);
-  for (uint32_t k = 0; k < o->triangle_count; k++) {
-    float lo = 2, hi = -2;
-    for (int c = 0; c < 3; c++) {
-      float u = o->attributes[o->indices[3 * k + c]][0];
-      lo = fminf(lo, u), hi = fmaxf(hi, u);
-    }
-    CHECK_MSG(hi - lo < 0.5f, "%s: triangle %u (patch %d) spans the seam: u %g..%g", what, k, (int)o->triangle_patch[k],
-              (double)lo, (double)hi);
-  }
+  CALL(check_no_span(o, what));
   uint32_t on_seam = 0;
   for (uint32_t v = 0; one_level && v < o->vertex_count; v++) {
     const float* p = o->positions + 3 * v;
@@ -549,6 +568,56 @@ TEST(uv_seam_stays_closed_with_both_uvs) {
     }
     cpu_fixture_free(&fx);
   }
+  free(uv);
+  shape_free(&s);
+}
+
+/* A scheduler's draw lists (levels per patch, geomorph blends, its strips)
+ * on the seam sphere, the camera moving in: closed while nothing is culled,
+ * and no triangle spans the seam. */
+TEST(uv_seam_through_draw_lists) {
+  const uint32_t nlat = 6, nlon = 10;
+  shape s = shape_seam_sphere(nlat, nlon);
+  float* uv = seam_sphere_uv(nlat, nlon);
+  tlod_attribute_desc ad = {.data = uv, .components = 2, .name = "TEXCOORD_0"};
+  cpu_fixture fx;
+  CHECK(cpu_fixture_make(&fx, &s, &ad, 1, TLOD_SURFACE_PHONG));
+  tlod_scheduler* sched = NULL;
+  CHECK(tlod_scheduler_create(fx.ctx, fx.surf, fx.pat, &(tlod_scheduler_desc){.epsilon_px = 0.3f}, &sched) ==
+        TLOD_SUCCESS);
+  tlod_cpu_mesh* o = tlod_context_calloc(fx.ctx, 1, sizeof(*o));
+  uint32_t strips = 0, culled = 0;
+  for (int frame = 0; frame < 12; frame++) {
+    double d = 6.0 - 0.4 * frame;
+    camera cam = {.eye = {d, -0.4 * d, 0.3 * d},
+                  .up = {0, 0, 1},
+                  .fovy = 0.9,
+                  .aspect = 1.0,
+                  .znear = 0.01,
+                  .zfar = 100,
+                  .width = 400,
+                  .height = 400};
+    tlod_view_desc view = make_view(&cam);
+    CHECK(tlod_scheduler_update(sched, &(tlod_frame_desc){.views = &view, .view_count = 1, .dt_ms = 40}) ==
+          TLOD_SUCCESS);
+    const tlod_draw_list* dl = tlod_scheduler_draw_list(sched, 0);
+    tlod_cpu_tessellate_desc td = {.draw_list = dl};
+    CHECK(tlod_cpu_tessellate_into(fx.ctx, fx.surf, fx.pat, &td, o) == TLOD_SUCCESS);
+    char what[64];
+    snprintf(what, sizeof(what), "frame %d", frame);
+    if (dl->culled == 0) {
+      CALL(check_seam_output(o, what, false));
+    } else {
+      CALL(check_no_span(o, what));
+    }
+    culled += dl->culled > 0;
+    strips += o->strip_triangles;
+  }
+  CHECK_MSG(strips > 0, "no strip drawn: the draw lists did not exercise strips");
+  CHECK_MSG(culled < 12, "every frame culled something: closedness never checked");
+  tlod_cpu_mesh_destroy(fx.ctx, o);
+  tlod_scheduler_destroy(sched);
+  cpu_fixture_free(&fx);
   free(uv);
   shape_free(&s);
 }
@@ -623,6 +692,7 @@ TEST(attribute_arrays_follow_the_mesh) {
 
 int main(void) {
   RUN(uv_seam_stays_closed_with_both_uvs);
+  RUN(uv_seam_through_draw_lists);
   RUN(vertex_patch_and_uv_reproduce_the_vertex);
   RUN(attribute_arrays_follow_the_mesh);
 

@@ -9,7 +9,9 @@
  *     - Phong tessellation on quads (Dupuy), with analytic tangent frames;
  *     - curved PN triangles (Vlachos et al. 2001): cubic geometry, quadratic
  *       normal field;
- *     - flat patches (the input itself), for comparisons.
+ *     - flat patches (the input itself), for comparisons;
+ *   and carries per-vertex attributes (texture coordinates, colours, ...)
+ *   across each patch with its corner weights ("Vertex attributes").
  *   Meshes are validated once at creation; what can be repaired (bad
  *   normals, degenerate faces) is repaired and counted, never silently.
  *
@@ -62,8 +64,8 @@
  *     than TLOD_MAX_WORKERS workers: TLOD_ERROR_INVALID_ARGUMENT naming the
  *     field.
  *   - Mesh data: an index >= vertex_count, a position not finite or beyond
- *     TLOD_POSITION_LIMIT, a non-finite alpha: TLOD_ERROR_INVALID_MESH
- *     naming the face or vertex. Zero-length or non-finite normals,
+ *     TLOD_POSITION_LIMIT, a non-finite alpha or attribute value:
+ *     TLOD_ERROR_INVALID_MESH naming the face or vertex (and attribute). Zero-length or non-finite normals,
  *     degenerate faces (repeated or coincident corners, zero area) and
  *     alphas outside [0, 1] are repaired and counted (tlod_mesh_info).
  *   A failure is recorded in tlod_context_last_error() (and logged), except

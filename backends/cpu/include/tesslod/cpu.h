@@ -36,8 +36,9 @@
  *
  * OUTPUT VERTICES
  *   welded (default): a vertex shared by several patches is emitted once when
- *     its position, normal and alpha are the same on every side (at a crease
- *     each side keeps its own vertex; their positions are bitwise equal).
+ *     its position, normal, alpha and attributes are the same on every side
+ *     (at a crease or an attribute seam each side keeps its own vertex; their
+ *     positions are bitwise equal).
  *   no_weld: every patch emits its own pattern vertices, as a GPU draws them;
  *     invariant 1 (docs/design.md) makes shared positions bitwise equal, so
  *     welding the output by exact position gives back a closed mesh.
@@ -57,10 +58,12 @@
  *   split attributes) gets an extra output vertex, b's position and normal
  *   with a's attributes, so no strip smears two sides of a seam (the GL
  *   strips do the same). Attributes are not geomorphed: they are affine in
- *   (u, v) on triangles, so a vertex's own value already equals the
- *   parents' midpoint it starts from, and blending would only cost time
- *   (on quads they are bilinear; the difference along a diagonal parent
- *   pair is the twist term of the corner values, not a pop of geometry).
+ *   (u, v) on triangles, so a new vertex's own value already equals the
+ *   parents' midpoint it starts from and blending would only cost time; on
+ *   quads the same holds for parents along a u or v line, and diagonal
+ *   parents differ by the bilinear twist term (a slight change of the
+ *   texture lookup while blending, never a gap: positions alone decide
+ *   closedness).
  *   vertex_patch / vertex_uv give each output vertex's patch and (u, v) on
  *   it (core.h PARAMETERS): the patch that evaluated it (a welded corner:
  *   the first drawn patch having it; a strip's extra vertex: b's patch), so
