@@ -311,6 +311,15 @@ if check("scene with a camera: written", rc == 0, se):
           meshes[1] == 0 and meshes[2] == 2 and meshes[3] == 1 and doc["meshes"][2].get("name") == "cube@right",
           json.dumps([meshes, [m.get("name") for m in doc["meshes"]]]))
 
+# a camera looking away culls every instance: each is written at level 0 (needs no pattern level beyond --max-level)
+o = os.path.join(WORK, "scene_away.glb")
+st = os.path.join(WORK, "scene_away.json")
+rc, so, se = run("tessellate", scene_in, "-o", o, "--eye", "0,3,25", "--target", "0,3,50", "--max-level", "2",
+                 "--stats", st, "-q")
+stats = json.load(open(st)) if rc == 0 else {}
+check("scene seen from behind: 4 culled instances written at level 0, 0 validator errors",
+      rc == 0 and stats["scene"]["culled_instances"] == 4 and validate(o)[0] == 0, se or stats)
+
 # OBJ of the scene: every instance in world space (flat surface: the box of each instance is its cube's)
 o = os.path.join(WORK, "scene.obj")
 rc, so, se = run("tessellate", scene_in, "-o", o, "--surface", "flat", "--level", "1", "-q")
