@@ -108,6 +108,7 @@ typedef struct fixture {
   tlod_import_mesh mesh;
   tlod_import_node nodes[2];
   tlod_import_material material;
+  tlod_export_mesh out[2]; /* the parts as written: one triangle each */
 } fixture;
 
 static void node_at(tlod_import_node* n, const char* name, uint32_t parent, float sx) {
@@ -130,15 +131,13 @@ static void fixture_init(fixture* f) {
       "m", {1, 0.5f, 0, 1}, TLOD_IMPORT_NONE, TLOD_IMPORT_NONE, TLOD_IMPORT_ALPHA_BLEND, 0.5f, true};
   f->r.part_count = 2, f->r.parts = f->parts, f->r.mesh_count = 1, f->r.meshes = &f->mesh;
   f->r.node_count = 2, f->r.nodes = f->nodes, f->r.material_count = 1, f->r.materials = &f->material;
+  f->out[0] = f->out[1] = triangle(NULL, 0);
 }
-
-static void two_triangles(tlod_export_mesh parts[2]) { parts[0] = parts[1] = triangle(NULL, 0); }
 
 TEST(scene_gltf_keeps_nodes_escapes_names) {
   fixture f;
   fixture_init(&f);
-  tlod_export_mesh parts[2];
-  two_triangles(parts);
+  const tlod_export_mesh* parts = f.out;
   CHECK(tlod_export_scene_file("scene.gltf", &f.r, parts, g_err, sizeof g_err) == TLOD_SUCCESS);
   char* s = slurp("scene.gltf", NULL);
   CHECK_MSG(s && strstr(s, "\"nodes\":[{\"name\":\"a\\\"b?\",\"children\":[1],\"mesh\":0},"
@@ -153,8 +152,7 @@ TEST(scene_gltf_keeps_nodes_escapes_names) {
 TEST(scene_refusals_name_the_element) {
   fixture f;
   fixture_init(&f);
-  tlod_export_mesh parts[2];
-  two_triangles(parts);
+  const tlod_export_mesh* parts = f.out;
   f.parts[1].material = 7;
   CHECK(tlod_export_scene_file("s.glb", &f.r, parts, g_err, sizeof g_err) == TLOD_ERROR_INVALID_ARGUMENT);
   CHECK_MSG(strstr(g_err, "s.glb: part 1: material out of range"), "%s", g_err);
@@ -171,8 +169,7 @@ TEST(scene_refusals_name_the_element) {
 TEST(scene_obj_merges_instances_mirrored_front_facing) {
   fixture f;
   fixture_init(&f);
-  tlod_export_mesh parts[2];
-  two_triangles(parts);
+  const tlod_export_mesh* parts = f.out;
   CHECK(tlod_export_scene_file("scene.obj", &f.r, parts, g_err, sizeof g_err) == TLOD_SUCCESS);
   char* s = slurp("scene.obj", NULL);
   /* 2 nodes x 2 parts: 12 vertices; the mirrored ones at x = -1 with winding reversed, normals still +z */
