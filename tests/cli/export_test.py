@@ -198,7 +198,8 @@ if check("PLY: written", rc == 0, se):
     for i in range(nverts if iu >= 0 else 0):
         vals = struct.unpack_from("<%df" % nfloat, body, i * 4 * nfloat)
         got.add((vals[iu], vals[iu + 1]))
-    check("PLY: u v hold every input UV (v = 1 - v')", want_uv <= got, "%d missing" % len(want_uv - got))
+    want_ply = {struct.unpack("<2f", u) for u in src_uv}
+    check("PLY: u v hold every input UV bitwise (as stored)", want_ply <= got, "%d missing" % len(want_ply - got))
 
 
 # ---------------------------------------------------------------- a generated multi-node scene
@@ -309,6 +310,15 @@ if check("scene with a camera: written", rc == 0, se):
     check("scene with a camera: the second instance has a mesh of its own '<mesh>@<node>'",
           meshes[1] == 0 and meshes[2] == 2 and meshes[3] == 1 and doc["meshes"][2].get("name") == "cube@right",
           json.dumps([meshes, [m.get("name") for m in doc["meshes"]]]))
+
+# a camera looking away culls every instance: each is written at level 0 (needs no pattern level beyond --max-level)
+o = os.path.join(WORK, "scene_away.glb")
+st = os.path.join(WORK, "scene_away.json")
+rc, so, se = run("tessellate", scene_in, "-o", o, "--eye", "0,3,25", "--target", "0,3,50", "--max-level", "2",
+                 "--stats", st, "-q")
+stats = json.load(open(st)) if rc == 0 else {}
+check("scene seen from behind: 4 culled instances written at level 0, 0 validator errors",
+      rc == 0 and stats["scene"]["culled_instances"] == 4 and validate(o)[0] == 0, se or stats)
 
 # OBJ of the scene: every instance in world space (flat surface: the box of each instance is its cube's)
 o = os.path.join(WORK, "scene.obj")

@@ -11,7 +11,7 @@ let validator;
 try {
   validator = require(path.resolve(moduleDir, "gltf-validator"));
 } catch (e) {
-  console.error("gltf-validator not installed in " + moduleDir + " (run scripts/bootstrap): " + e.message);
+  console.error("gltf-validator not installed in " + moduleDir + " (run scripts/bootstrap): " + e.message.split("\n")[0]);
   process.exit(3);
 }
 const bytes = new Uint8Array(fs.readFileSync(file));

@@ -59,7 +59,7 @@ TEST(ply_writes_uv_and_rgba) {
   body += strlen("end_header\n");
   float v0[8];
   memcpy(v0, body, sizeof v0); /* x y z nx ny nz u v of vertex 0 */
-  CHECK(v0[6] == 0.0f && v0[7] == 0.75f);
+  CHECK(v0[6] == 0.0f && v0[7] == 0.25f);
   const unsigned char* c1 = (const unsigned char*)body + 36 + 32; /* vertex 1's colour */
   CHECK_MSG(c1[0] == 0 && c1[1] == 128 && c1[2] == 0 && c1[3] == 255, "%u %u %u %u", c1[0], c1[1], c1[2], c1[3]);
   const unsigned char* c2 = (const unsigned char*)body + 2 * 36 + 32;
@@ -108,6 +108,7 @@ typedef struct fixture {
   tlod_import_mesh mesh;
   tlod_import_node nodes[2];
   tlod_import_material material;
+  tlod_export_mesh out[2]; /* the parts as written: one triangle each */
 } fixture;
 
 static void node_at(tlod_import_node* n, const char* name, uint32_t parent, float sx) {
@@ -130,12 +131,13 @@ static void fixture_init(fixture* f) {
       "m", {1, 0.5f, 0, 1}, TLOD_IMPORT_NONE, TLOD_IMPORT_NONE, TLOD_IMPORT_ALPHA_BLEND, 0.5f, true};
   f->r.part_count = 2, f->r.parts = f->parts, f->r.mesh_count = 1, f->r.meshes = &f->mesh;
   f->r.node_count = 2, f->r.nodes = f->nodes, f->r.material_count = 1, f->r.materials = &f->material;
+  f->out[0] = f->out[1] = triangle(NULL, 0);
 }
 
 TEST(scene_gltf_keeps_nodes_escapes_names) {
   fixture f;
   fixture_init(&f);
-  const tlod_export_mesh parts[2] = {triangle(NULL, 0), triangle(NULL, 0)};
+  const tlod_export_mesh* parts = f.out;
   CHECK(tlod_export_scene_file("scene.gltf", &f.r, parts, g_err, sizeof g_err) == TLOD_SUCCESS);
   char* s = slurp("scene.gltf", NULL);
   CHECK_MSG(s && strstr(s, "\"nodes\":[{\"name\":\"a\\\"b?\",\"children\":[1],\"mesh\":0},"
@@ -150,7 +152,7 @@ TEST(scene_gltf_keeps_nodes_escapes_names) {
 TEST(scene_refusals_name_the_element) {
   fixture f;
   fixture_init(&f);
-  const tlod_export_mesh parts[2] = {triangle(NULL, 0), triangle(NULL, 0)};
+  const tlod_export_mesh* parts = f.out;
   f.parts[1].material = 7;
   CHECK(tlod_export_scene_file("s.glb", &f.r, parts, g_err, sizeof g_err) == TLOD_ERROR_INVALID_ARGUMENT);
   CHECK_MSG(strstr(g_err, "s.glb: part 1: material out of range"), "%s", g_err);
@@ -167,7 +169,7 @@ TEST(scene_refusals_name_the_element) {
 TEST(scene_obj_merges_instances_mirrored_front_facing) {
   fixture f;
   fixture_init(&f);
-  const tlod_export_mesh parts[2] = {triangle(NULL, 0), triangle(NULL, 0)};
+  const tlod_export_mesh* parts = f.out;
   CHECK(tlod_export_scene_file("scene.obj", &f.r, parts, g_err, sizeof g_err) == TLOD_SUCCESS);
   char* s = slurp("scene.obj", NULL);
   /* 2 nodes x 2 parts: 12 vertices; the mirrored ones at x = -1 with winding reversed, normals still +z */
@@ -176,7 +178,27 @@ TEST(scene_obj_merges_instances_mirrored_front_facing) {
   free(s);
 }
 
+/* What the importer reads back: the exporter's flips and its are inverses
+ * (uvs chosen so 1 - (1 - v) is exact). */
+TEST(obj_and_ply_uvs_read_back_through_the_importer) {
+  const float uv[6] = {0.25f, 0.125f, 1, 0, 0.5f, 1};
+  const tlod_export_attribute a = {"TEXCOORD_0", 2, uv, 0};
+  tlod_export_mesh m = triangle(&a, 1);
+  const char* const files[2] = {"rt.obj", "rt.ply"};
+  for (int f = 0; f < 2; ++f) {
+    tlod_import_result* r = NULL;
+    CHECK(tlod_export_file(files[f], &m, g_err, sizeof g_err) == TLOD_SUCCESS);
+    CHECK_MSG(tlod_import_file(files[f], NULL, &r, g_err, sizeof g_err) == TLOD_SUCCESS, "%s", g_err);
+    if (!r) continue;
+    CHECK_MSG(r->attribute_count >= 1 && !strcmp(r->attributes[0].name, "TEXCOORD_0") && r->vertex_count == 3 &&
+                  !memcmp(r->attributes[0].data, uv, sizeof uv),
+              "%s: %u attributes", files[f], r->attribute_count);
+    tlod_import_free(r);
+  }
+}
+
 int main(void) {
+  RUN(obj_and_ply_uvs_read_back_through_the_importer);
   RUN(obj_writes_vt_flipped_from_strided_uvs);
   RUN(ply_writes_uv_and_rgba);
   RUN(gltf_names_attributes_and_renormalises_tangents);

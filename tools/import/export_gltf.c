@@ -32,7 +32,7 @@ static size_t _exp_buffer_bytes(const _exp_scene* sc, bool glb) {
   for (uint32_t p = 0; p < sc->prim_count; ++p)
     total += _exp_prim_bytes(sc->prims[p].mesh);
   for (uint32_t i = 0; glb && sc->source && i < sc->source->image_count; ++i)
-    if (_exp_image_mime(&sc->source->images[i])) total += _exp_pad4(sc->source->images[i].encoded_size);
+    if (tlod_export_image_mime(&sc->source->images[i])) total += _exp_pad4(sc->source->images[i].encoded_size);
   return total;
 }
 
@@ -61,7 +61,7 @@ static void _exp_views(_exp_text* t, const _exp_scene* sc, bool glb) {
   }
   for (uint32_t i = 0; glb && sc->source && i < sc->source->image_count; ++i) {
     const tlod_import_image* im = &sc->source->images[i];
-    if (!_exp_image_mime(im)) continue;
+    if (!tlod_export_image_mime(im)) continue;
     _exp_view(t, &offset, im->encoded_size, 0, &first);
     offset = _exp_pad4(offset);
   }
@@ -111,17 +111,10 @@ static void _exp_accessors(_exp_text* t, const _exp_scene* sc) {
 /* meshes                                                                   */
 /* ------------------------------------------------------------------------ */
 
-/* Accessor index of each prim's first accessor (POSITION). */
-static uint32_t _exp_prim_accessor(const _exp_scene* sc, uint32_t prim) {
-  uint32_t k = 0;
-  for (uint32_t p = 0; p < prim; ++p)
-    k += 2 + (sc->prims[p].mesh->normals != NULL) + sc->prims[p].mesh->attribute_count;
-  return k;
-}
-
-static void _exp_prim_json(_exp_text* t, const _exp_scene* sc, uint32_t p) {
+/* *k: the prim's first accessor (POSITION); advanced past its last (indices). */
+static void _exp_prim_json(_exp_text* t, const _exp_scene* sc, uint32_t p, uint32_t* next) {
   const tlod_export_mesh* m = sc->prims[p].mesh;
-  uint32_t k = _exp_prim_accessor(sc, p);
+  uint32_t k = *next;
   _exp_text_add(t, "{\"attributes\":{\"POSITION\":%u", k++);
   if (m->normals) _exp_text_add(t, ",\"NORMAL\":%u", k++);
   for (uint32_t a = 0; a < m->attribute_count; ++a) {
@@ -132,12 +125,16 @@ static void _exp_prim_json(_exp_text* t, const _exp_scene* sc, uint32_t p) {
     _exp_text_add(t, ":%u", k++);
   }
   _exp_text_add(t, "},\"indices\":%u,\"mode\":4", k);
+  *next = k + 1;
   const uint32_t mat = sc->prims[p].material;
   if (sc->source && mat < sc->source->material_count) _exp_text_add(t, ",\"material\":%u", mat);
   _exp_text_add(t, "}");
 }
 
+/* Meshes hold the prims in order (mesh i's follow mesh i - 1's), so the
+ * accessors, declared prim by prim, are numbered by one running count. */
 static void _exp_meshes(_exp_text* t, const _exp_scene* sc) {
+  uint32_t accessor = 0;
   _exp_text_add(t, "\"meshes\":[");
   for (uint32_t i = 0; i < sc->mesh_count; ++i) {
     const _exp_gltf_mesh* me = &sc->meshes[i];
@@ -152,7 +149,7 @@ static void _exp_meshes(_exp_text* t, const _exp_scene* sc) {
     _exp_text_add(t, "\"primitives\":[");
     for (uint32_t p = 0; p < me->count; ++p) {
       if (p) _exp_text_add(t, ",");
-      _exp_prim_json(t, sc, me->first + p);
+      _exp_prim_json(t, sc, me->first + p, &accessor);
     }
     _exp_text_add(t, "]}");
   }
@@ -213,7 +210,7 @@ static void _exp_binary(_exp_sink* s, const _exp_scene* sc, bool glb) {
     _exp_prim_binary(s, sc->prims[p].mesh);
   for (uint32_t i = 0; glb && sc->source && i < sc->source->image_count; ++i) {
     const tlod_import_image* im = &sc->source->images[i];
-    if (!_exp_image_mime(im)) continue;
+    if (!tlod_export_image_mime(im)) continue;
     static const unsigned char zeros[3] = {0};
     _exp_sink_put(s, im->encoded, im->encoded_size);
     _exp_sink_put(s, zeros, _exp_pad4(im->encoded_size) - im->encoded_size);
@@ -246,7 +243,7 @@ static void _exp_gltf_tail(_exp_job* job, _exp_sink* s, const _exp_scene* sc) {
   uint32_t kept = 0;
   for (uint32_t i = 0; sc->source && i < sc->source->image_count; ++i) {
     const tlod_import_image* im = &sc->source->images[i];
-    const char* mime = _exp_image_mime(im);
+    const char* mime = tlod_export_image_mime(im);
     if (!mime) continue;
     _exp_printf(job, "%s{\"mimeType\":\"%s\",\"uri\":\"data:%s;base64,", kept++ ? "," : ",\"images\":[", mime, mime);
     _exp_sink_put(s, im->encoded, im->encoded_size);

@@ -6,9 +6,6 @@
 
 #include "export_internal.h"
 
-/* "image/png" or "image/jpeg" from the image's encoded bytes (their magic
- * number, not the declared type), or NULL: the image is not written. */
-const char* _exp_image_mime(const tlod_import_image* im);
 /* The glTF attribute name of attribute a (index for an unnamed one). */
 void _exp_attr_gltf_name(const tlod_export_attribute* a, uint32_t index, char out[48]);
 /* "scene", "scenes" and "nodes". */

@@ -9,9 +9,9 @@
 
 #include "export_gltf.h"
 
-const char* _exp_image_mime(const tlod_import_image* im) {
+const char* tlod_export_image_mime(const tlod_import_image* im) {
   static const unsigned char png[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  const unsigned char* b = im->encoded;
+  const unsigned char* b = im ? im->encoded : NULL;
   if (!b || im->encoded_size < 8) return NULL;
   if (!memcmp(b, png, 8)) return "image/png";
   if (b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return "image/jpeg";
@@ -20,10 +20,10 @@ const char* _exp_image_mime(const tlod_import_image* im) {
 
 /* Output index of source image i, or TLOD_IMPORT_NONE when left out. */
 static uint32_t _exp_image_slot(const tlod_import_result* r, uint32_t i) {
-  if (i >= r->image_count || !_exp_image_mime(&r->images[i])) return TLOD_IMPORT_NONE;
+  if (i >= r->image_count || !tlod_export_image_mime(&r->images[i])) return TLOD_IMPORT_NONE;
   uint32_t slot = 0;
   for (uint32_t k = 0; k < i; ++k)
-    slot += _exp_image_mime(&r->images[k]) != NULL;
+    slot += tlod_export_image_mime(&r->images[k]) != NULL;
   return slot;
 }
 
@@ -213,7 +213,7 @@ void _exp_glb_images_json(_exp_text* t, const _exp_scene* sc) {
   for (uint32_t p = 0; p < sc->prim_count; ++p)
     view += 2 + (sc->prims[p].mesh->normals != NULL) + sc->prims[p].mesh->attribute_count;
   for (uint32_t i = 0; i < sc->source->image_count; ++i) {
-    const char* mime = _exp_image_mime(&sc->source->images[i]);
+    const char* mime = tlod_export_image_mime(&sc->source->images[i]);
     if (!mime) continue;
     _exp_text_add(t, "%s{\"bufferView\":%u,\"mimeType\":\"%s\"}", kept ? "," : ",\"images\":[", view + kept, mime);
     ++kept;

@@ -1,7 +1,8 @@
 /* export_ply.c -- one triangle mesh as binary little-endian PLY: x y z,
- * nx ny nz, u v (TEXCOORD_0, v = 1 - v' as OBJ), red green blue alpha
- * (COLOR_0 as uchar). Owned by the import/export layer (tools/import/).
- * Floats are stored as their bits: positions read back bit-exactly. */
+ * nx ny nz, u v (TEXCOORD_0 as it is: the importer reads PLY u v as stored,
+ * so they round-trip bitwise), red green blue alpha (COLOR_0 as uchar).
+ * Owned by the import/export layer (tools/import/). Floats are stored as
+ * their bits: positions read back bit-exactly. */
 #include <math.h>
 
 #include "export_internal.h"
@@ -31,7 +32,7 @@ static void _exp_ply_vertex(_exp_sink* s, const tlod_export_mesh* m, uint32_t i,
   if (uv) {
     const float* t = _exp_attr_at(uv, i);
     _exp_sink_u32(s, _exp_float_bits(t[0]));
-    _exp_sink_u32(s, _exp_float_bits(1.0f - t[1]));
+    _exp_sink_u32(s, _exp_float_bits(t[1]));
   }
   if (color) {
     const float* k = _exp_attr_at(color, i);

@@ -12,7 +12,7 @@
  *            origin: v = 1 - v', the inverse of the importer's flip), faces
  *            v/vt/vn; other attributes are not written;
  *     .ply   binary little endian: x y z, nx ny nz, u v (float, TEXCOORD_0
- *            with v = 1 - v' as for OBJ), red green blue alpha (uchar,
+ *            as it is, as the importer reads PLY u v), red green blue alpha (uchar,
  *            COLOR_0 x 255 rounded, clamped to 0..255; 3 components: alpha
  *            255); other attributes are not written;
  *     .gltf  one buffer embedded as a base64 data URI; images embedded as
@@ -76,6 +76,7 @@ extern "C" {
 #endif
 
 struct tlod_import_result;
+struct tlod_import_image;
 
 /* One per-vertex attribute to write. */
 typedef struct tlod_export_attribute {
@@ -103,6 +104,11 @@ TLOD_API tlod_result tlod_export_file(const char* path, const tlod_export_mesh* 
 /* Writes the parts with source's scene (SCENES above). */
 TLOD_API tlod_result tlod_export_scene_file(const char* path, const struct tlod_import_result* source,
                                             const tlod_export_mesh* parts, char* error, size_t error_size);
+
+/* The type an image of a scene source is written as: "image/png" or
+ * "image/jpeg" from its encoded bytes' magic number (not its declared type),
+ * or NULL when it is left out (no bytes, or another format). */
+TLOD_API const char* tlod_export_image_mime(const struct tlod_import_image* image);
 
 /* Everything of tlod_export_scene_file(), for view-dependent exports. */
 typedef struct tlod_export_scene_desc {

@@ -58,13 +58,13 @@ static int tessellate_instance(tess_scene* s, const tlod_view_desc* world_view, 
   tlod_scheduler* sch = NULL;
   const tlod_draw_list* dl = NULL;
   int rc = tessellate_plan_view(s->o, s->ctx, s->surfaces[p], s->patterns, &view, &sch, &dl);
-  if (rc == CLI_OK) rc = tessellate_part(s, p, dl, out);
+  if (rc == CLI_OK) rc = tessellate_part(s, p, dl, 0, out);
   tlod_scheduler_destroy(sch);
   if (rc == CLI_OK && (*out)->triangle_count == 0) {
     tlod_cpu_mesh_destroy(s->ctx, *out);
     *out = NULL;
     s->culled++;
-    rc = tessellate_part(s, p, NULL, out);
+    rc = tessellate_part(s, p, NULL, 0, out);
   }
   return rc;
 }
@@ -95,9 +95,10 @@ static int tessellate_nodes(tess_scene* s, const tlod_view_desc* view) {
       rc = tessellate_instance(s, view, n, p, &item->out);
     }
   }
-  /* meshes no node uses keep the uniform level */
+  /* meshes no node uses: the uniform level, within the patterns' */
+  const uint32_t level = s->o->level < s->o->ad.max_level ? s->o->level : s->o->ad.max_level;
   for (uint32_t p = 0; rc == CLI_OK && p < r->part_count; p++)
-    if (!s->parts[p].out) rc = tessellate_part(s, p, NULL, &s->parts[p].out);
+    if (!s->parts[p].out) rc = tessellate_part(s, p, NULL, level, &s->parts[p].out);
   return rc;
 }
 

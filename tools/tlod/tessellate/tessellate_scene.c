@@ -25,9 +25,9 @@ bool tessellate_is_scene(const tess_options* o) {
   return gltf && strncmp(o->in, "demo:", 5) != 0;
 }
 
-int tessellate_part(tess_scene* s, uint32_t p, const tlod_draw_list* dl, tlod_cpu_mesh** out) {
+int tessellate_part(tess_scene* s, uint32_t p, const tlod_draw_list* dl, uint32_t level, tlod_cpu_mesh** out) {
   tlod_cpu_tessellate_desc td = {
-      .level = s->o->level, .draw_list = dl, .no_weld = s->o->no_weld, .no_stitch = s->o->ad.no_stitch};
+      .level = level, .draw_list = dl, .no_weld = s->o->no_weld, .no_stitch = s->o->ad.no_stitch};
   if (tlod_cpu_tessellate(s->ctx, s->surfaces[p], s->patterns, &td, out) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "%s: part %u: %s", s->o->in, p, tlod_context_last_error(s->ctx));
   return CLI_OK;
@@ -65,7 +65,7 @@ static int tessellate_uniform(tess_scene* s) {
   for (uint32_t n = 0; n < s->r->node_count; n++)
     s->node_first[n] = UINT32_MAX;
   for (uint32_t p = 0; rc == CLI_OK && p < s->r->part_count; p++)
-    rc = tessellate_part(s, p, NULL, &s->parts[p].out);
+    rc = tessellate_part(s, p, NULL, s->o->level, &s->parts[p].out);
   return rc;
 }
 
@@ -121,9 +121,7 @@ static void warn_left_out(const tlod_import_result* r) {
             r->skin_count, r->animation_count);
   for (uint32_t i = 0; i < r->image_count; i++) {
     const tlod_import_image* im = &r->images[i];
-    const bool png = im->encoded && im->encoded_size >= 8 && im->encoded[0] == 0x89 && im->encoded[1] == 'P';
-    const bool jpeg = im->encoded && im->encoded_size >= 8 && im->encoded[0] == 0xFF && im->encoded[1] == 0xD8;
-    if (!png && !jpeg)
+    if (!tlod_export_image_mime(im))
       fprintf(stderr, "tlod: warning: image %u%s%s%s: %s, not written\n", i, im->uri[0] ? " '" : "", im->uri,
               im->uri[0] ? "'" : "", im->encoded ? "neither PNG nor JPEG" : "could not be read");
   }

@@ -42,7 +42,8 @@ bool tessellate_is_scene(const tess_options* o);
 int tessellate_scene(const tess_options* o);
 /* Camera mode: every instance tessellated for its own view. */
 int tessellate_instances(tess_scene* s);
-/* Tessellates surface of part p at level (uniform) or draw list dl into *out. */
-int tessellate_part(tess_scene* s, uint32_t p, const tlod_draw_list* dl, tlod_cpu_mesh** out);
+/* Tessellates the surface of part p with draw list dl, or without one
+ * uniformly at level, into *out. */
+int tessellate_part(tess_scene* s, uint32_t p, const tlod_draw_list* dl, uint32_t level, tlod_cpu_mesh** out);
 
 #endif
