@@ -30,16 +30,7 @@ static const float k_params[POINTS][2] = {
 static char* read_text(const char* name) {
   char path[512];
   snprintf(path, sizeof path, "%s/%s", TLOD_GLSL_SOURCE_DIR, name);
-  FILE* f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char* s = malloc((size_t)n + 1);
-  if (s && fread(s, 1, (size_t)n, f) != (size_t)n) n = 0;
-  if (s) s[n] = '\0';
-  fclose(f);
-  return s;
+  return test_read_file(path, NULL);
 }
 
 /* The engine's vertex stage: point k of patch p from gl_VertexID. Edge

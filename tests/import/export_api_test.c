@@ -14,20 +14,6 @@ static const float k_pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
 static const float k_nrm[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
 static const uint32_t k_idx[3] = {0, 1, 2};
 
-static char* slurp(const char* path, size_t* size) {
-  FILE* f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char* s = malloc((size_t)n + 1);
-  if (s && fread(s, 1, (size_t)n, f) != (size_t)n) n = 0;
-  if (s) s[n] = 0;
-  fclose(f);
-  if (size) *size = (size_t)n;
-  return s;
-}
-
 static tlod_export_mesh triangle(const tlod_export_attribute* a, uint32_t count) {
   return (tlod_export_mesh){3, k_pos, k_nrm, 1, k_idx, count, a};
 }
@@ -38,7 +24,7 @@ TEST(obj_writes_vt_flipped_from_strided_uvs) {
   const tlod_export_attribute uv = {"TEXCOORD_0", 2, rows, 16};
   tlod_export_mesh m = triangle(&uv, 1);
   CHECK(tlod_export_file("attr.obj", &m, g_err, sizeof g_err) == TLOD_SUCCESS);
-  char* s = slurp("attr.obj", NULL);
+  char* s = test_read_file("attr.obj", NULL);
   CHECK_MSG(s && strstr(s, "vt 0.25 0.875\nvt 1 1\nvt 0 0\n"), "%s", s ? s : "(none)");
   CHECK(s && strstr(s, "f 1/1/1 2/2/2 3/3/3\n"));
   free(s);
@@ -51,7 +37,7 @@ TEST(ply_writes_uv_and_rgba) {
   tlod_export_mesh m = triangle(a, 2);
   CHECK(tlod_export_file("attr.ply", &m, g_err, sizeof g_err) == TLOD_SUCCESS);
   size_t n = 0;
-  char* s = slurp("attr.ply", &n);
+  char* s = test_read_file("attr.ply", &n);
   char* body = s ? strstr(s, "end_header\n") : NULL;
   CHECK(s && strstr(s, "property float u\nproperty float v\nproperty uchar red\nproperty uchar green\n"
                        "property uchar blue\nproperty uchar alpha\n"));
@@ -76,7 +62,7 @@ TEST(gltf_names_attributes_and_renormalises_tangents) {
   tlod_export_mesh m = triangle(a, 4);
   CHECK(tlod_export_file("attr.glb", &m, g_err, sizeof g_err) == TLOD_SUCCESS);
   size_t n = 0;
-  char* s = slurp("attr.glb", &n);
+  char* s = test_read_file("attr.glb", &n);
   CHECK(s && strstr(s + 20, "\"_temperature\":2") && strstr(s + 20, "\"_TEXCOORD_0\":3") &&
         strstr(s + 20, "\"TANGENT\":4") && strstr(s + 20, "\"_ATTRIBUTE_3\":5"));
   if (!s) return;
@@ -139,7 +125,7 @@ TEST(scene_gltf_keeps_nodes_escapes_names) {
   fixture_init(&f);
   const tlod_export_mesh* parts = f.out;
   CHECK(tlod_export_scene_file("scene.gltf", &f.r, parts, g_err, sizeof g_err) == TLOD_SUCCESS);
-  char* s = slurp("scene.gltf", NULL);
+  char* s = test_read_file("scene.gltf", NULL);
   CHECK_MSG(s && strstr(s, "\"nodes\":[{\"name\":\"a\\\"b?\",\"children\":[1],\"mesh\":0},"
                            "{\"name\":\"mirror\",\"mesh\":0,\"scale\":[-1,1,1]}]"),
             "%.400s", s ? s : "");
@@ -171,7 +157,7 @@ TEST(scene_obj_merges_instances_mirrored_front_facing) {
   fixture_init(&f);
   const tlod_export_mesh* parts = f.out;
   CHECK(tlod_export_scene_file("scene.obj", &f.r, parts, g_err, sizeof g_err) == TLOD_SUCCESS);
-  char* s = slurp("scene.obj", NULL);
+  char* s = test_read_file("scene.obj", NULL);
   /* 2 nodes x 2 parts: 12 vertices; the mirrored ones at x = -1 with winding reversed, normals still +z */
   CHECK(s && strstr(s, "# tesslod export: 12 vertices, 4 triangles"));
   CHECK(s && strstr(s, "v -1 0 0\n") && strstr(s, "f 7//7 9//9 8//8\n") && !strstr(s, "vn 0 0 -1"));

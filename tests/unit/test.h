@@ -61,4 +61,20 @@ static int _test_failed;
     return _test_failed ? 1 : 0;                                                                                       \
   } while (0)
 
+/* The whole file at path, NUL-terminated (malloc; free it); NULL when it cannot be opened. *size (may be NULL)
+ * receives its length. */
+static inline char* test_read_file(const char* path, size_t* size) {
+  FILE* f = fopen(path, "rb");
+  if (!f) return NULL;
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char* s = n < 0 ? NULL : malloc((size_t)n + 1);
+  if (s && fread(s, 1, (size_t)n, f) != (size_t)n) n = 0;
+  if (s) s[n] = 0;
+  fclose(f);
+  if (size) *size = s ? (size_t)n : 0;
+  return s;
+}
+
 #endif
