@@ -15,10 +15,10 @@
 #define TLOD_SHADER_LAYOUT_H
 
 /* Shader storage binding points. */
-#define TLOD_BINDING_PATCHES 0   /* per patch: tlod_patch_record (core.h) */
-#define TLOD_BINDING_PATTERN 1   /* pattern vertices of both shapes */
-#define TLOD_BINDING_INSTANCES 2 /* per visible patch of the draw: level, geomorph blends, edge levels */
-#define TLOD_BINDING_STRIPS 3    /* per connection strip of the draw: patches, edges, levels, blends */
+#define TLOD_BINDING_PATCHES 0    /* per patch: tlod_patch_record (core.h) */
+#define TLOD_BINDING_PATTERN 1    /* pattern vertices of both shapes */
+#define TLOD_BINDING_INSTANCES 2  /* per visible patch of the draw: level, geomorph blends, edge levels */
+#define TLOD_BINDING_STRIPS 3     /* per connection strip of the draw: patches, edges, levels, blends */
 #define TLOD_BINDING_ATTRIBUTES 4 /* per patch and corner: the mesh attributes (tlod_mesh_patch_attributes) */
 #define TLOD_BINDING_COUNT 5
 
