@@ -11,6 +11,7 @@
 #include "shapes.h"
 #include "tesslod/lod.h"
 #include "test.h"
+#include "test_context.h"
 
 #define OBJECTS 3
 
@@ -21,10 +22,12 @@ typedef struct fixture {
   tlod_patterns* patterns;
 } fixture;
 
-static bool fixture_make(fixture* fx) {
+/* ctx: NULL for a default context of 2 threads; taken over either way. */
+static bool fixture_make_in(fixture* fx, tlod_context* ctx) {
   memset(fx, 0, sizeof *fx);
   shape s = shape_icosphere(1);
-  tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &fx->ctx);
+  fx->ctx = ctx;
+  if (!ctx) tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &fx->ctx);
   tlod_mesh_desc md = shape_mesh_desc(&s);
   bool ok = tlod_mesh_create(fx->ctx, &md, &fx->mesh) == TLOD_SUCCESS &&
             tlod_surface_create(fx->ctx, fx->mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PN}, &fx->surface) ==
@@ -33,6 +36,8 @@ static bool fixture_make(fixture* fx) {
   shape_free(&s);
   return ok;
 }
+
+static bool fixture_make(fixture* fx) { return fixture_make_in(fx, NULL); }
 
 static void fixture_free(fixture* fx) {
   tlod_patterns_destroy(fx->patterns);
@@ -228,9 +233,43 @@ TEST(test_group_checks) {
   fixture_free(&fx);
 }
 
+/* The same draw lists on 2 threads and on a pool running chunks in
+ * reverse; no allocation after the first group update. */
+TEST(test_group_deterministic_no_alloc) {
+  counting_allocator counter = {.fail_at = -1};
+  reverse_pool pool = {0};
+  fixture a, b;
+  CHECK(fixture_make(&a));
+  CHECK(fixture_make_in(&b, new_context(1, &counter, &pool)));
+  tlod_scheduler *ga[OBJECTS], *gb[OBJECTS];
+  make_all(&a, ga);
+  make_all(&b, gb);
+  tlod_view_desc views[OBJECTS];
+  tlod_frame_desc frames[OBJECTS];
+  frames_of(views, frames);
+  long allocs = 0;
+  for (int frame = 0; frame < 4; frame++) {
+    views[0].view[14] -= 0.05f; /* the near object comes closer */
+    CHECK(tlod_scheduler_update_group(ga, frames, OBJECTS, 700) == TLOD_SUCCESS);
+    CHECK(tlod_scheduler_update_group(gb, frames, OBJECTS, 700) == TLOD_SUCCESS);
+    for (int k = 0; k < OBJECTS; k++)
+      CHECK_MSG(same_list(tlod_scheduler_draw_list(ga[k], 0), tlod_scheduler_draw_list(gb[k], 0)), "frame %d object %d",
+                frame, k);
+    CHECK(tlod_scheduler_draw_list(gb[0], 0)->effective_epsilon > 0.5f); /* the budget binds */
+    if (frame == 0) allocs = counter.allocs;
+  }
+  CHECK_MSG(counter.allocs == allocs, "%ld allocations after the first frame", counter.allocs - allocs);
+  CHECK(pool.calls > 0);
+  destroy_all(ga);
+  destroy_all(gb);
+  fixture_free(&a);
+  fixture_free(&b);
+}
+
 int main(void) {
   RUN(test_group_shares_by_error);
   RUN(test_group_unconstrained);
   RUN(test_group_checks);
+  RUN(test_group_deterministic_no_alloc);
   TEST_END();
 }
