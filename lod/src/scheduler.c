@@ -179,53 +179,150 @@ static void copy_main_levels(_tlod_frame* fr) {
   fr->eps = fr->main->list.effective_epsilon;
 }
 
-static tlod_result plan_view(tlod_scheduler* s, uint32_t v, const tlod_frame_desc* frame, const tlod_mesh_view* mesh,
-                             const tlod_surface_view* surface) {
+/* Silhouette depth and metric of view v: the stages before the levels. */
+static void begin_view(tlod_scheduler* s, uint32_t v, const tlod_frame_desc* frame, const tlod_mesh_view* mesh,
+                       const tlod_surface_view* surface, _tlod_frame* fr) {
   const tlod_view_desc* vd = &frame->views[v];
   bool locked = v > 0 && vd->lock_to_main;
-  _tlod_frame fr = {s,
-                    &s->views[v],
-                    vd,
-                    *mesh,
-                    *surface,
-                    s->desc.epsilon_px * s->eps_scale,
-                    INFINITY,
-                    frame->dt_ms / s->desc.morph_ms,
-                    locked ? &s->views[0] : NULL};
-  double t[6];
-  t[0] = tlod_now_ms();
-  _tlod_camera_from_view(vd->view, vd->proj, &fr.vs->cam);
-  tlod_context_parallel_for(s->ctx, _tlod_silhouette_task, &fr, s->vertex_count);
-  t[1] = tlod_now_ms();
-  tlod_context_parallel_for(s->ctx, _tlod_metric_task, &fr, s->patch_count);
-  t[2] = tlod_now_ms();
-  if (locked) {
+  *fr = (_tlod_frame){.s = s,
+                      .vs = &s->views[v],
+                      .view = vd,
+                      .mesh = *mesh,
+                      .surface = *surface,
+                      .eps = s->desc.epsilon_px * s->eps_scale,
+                      .level_cap = INFINITY,
+                      .step = frame->dt_ms / s->desc.morph_ms,
+                      .main = locked ? &s->views[0] : NULL,
+                      .budget = s->desc.triangle_budget};
+  fr->t[0] = tlod_now_ms();
+  _tlod_camera_from_view(vd->view, vd->proj, &fr->vs->cam);
+  tlod_context_parallel_for(s->ctx, _tlod_silhouette_task, fr, s->vertex_count);
+  fr->t[1] = tlod_now_ms();
+  tlod_context_parallel_for(s->ctx, _tlod_metric_task, fr, s->patch_count);
+  fr->t[2] = tlod_now_ms();
+}
+
+/* Geomorph state and draw list, once the levels (ending at t[3]) are set. */
+static tlod_result finish_view(_tlod_frame* fr) {
+  double start = tlod_now_ms();
+  if (!fr->main) tlod_context_parallel_for(fr->s->ctx, _tlod_morph_task, fr, fr->s->patch_count);
+  fr->vs->has_history = true;
+  fr->t[4] = tlod_now_ms();
+  tlod_result r = _tlod_fill_draw_list(fr);
+  fr->t[5] = tlod_now_ms();
+  for (int st = 0; st < TLOD_STAGE_NUM; st++)
+    fr->vs->list.stage_ms[st] = fr->t[st + 1] - fr->t[st];
+  /* A group member waits for the others between its levels and morph. */
+  fr->vs->list.stage_ms[TLOD_STAGE_MORPH] = fr->t[4] - start;
+  return r;
+}
+
+static tlod_result plan_view(tlod_scheduler* s, uint32_t v, const tlod_frame_desc* frame, const tlod_mesh_view* mesh,
+                             const tlod_surface_view* surface) {
+  _tlod_frame fr;
+  begin_view(s, v, frame, mesh, surface, &fr);
+  if (fr.main) {
     copy_main_levels(&fr);
   } else {
     _tlod_fit_budget(&fr);
   }
-  t[3] = tlod_now_ms();
-  if (!locked) tlod_context_parallel_for(s->ctx, _tlod_morph_task, &fr, s->patch_count);
-  fr.vs->has_history = true;
-  t[4] = tlod_now_ms();
-  tlod_result r = _tlod_fill_draw_list(&fr);
-  t[5] = tlod_now_ms();
-  for (int st = 0; st < TLOD_STAGE_NUM; st++)
-    fr.vs->list.stage_ms[st] = t[st + 1] - t[st];
+  fr.t[3] = tlod_now_ms();
+  return finish_view(&fr);
+}
+
+/* Checks, views and frame-time control of one update. */
+static tlod_result prepare_update(tlod_scheduler* s, const tlod_frame_desc* frame) {
+  tlod_result r = validate_frame(s, frame);
+  if (r == TLOD_SUCCESS) r = ensure_views(s, frame->view_count);
+  if (r == TLOD_SUCCESS) _tlod_control_frame_time(s, frame->measured_frame_ms);
   return r;
 }
 
 tlod_result tlod_scheduler_update(tlod_scheduler* s, const tlod_frame_desc* frame) {
   if (!s) return TLOD_ERROR_INVALID_ARGUMENT;
-  tlod_result r = validate_frame(s, frame);
-  if (r == TLOD_SUCCESS) r = ensure_views(s, frame->view_count);
+  tlod_result r = prepare_update(s, frame);
   if (r != TLOD_SUCCESS) return r;
-  _tlod_control_frame_time(s, frame->measured_frame_ms);
   /* Read afresh every update: a tlod_mesh_update() or tlod_surface_refresh()
    * since the last frame may have moved the arrays. */
   tlod_mesh_view mesh = tlod_mesh_query_view(s->mesh);
   tlod_surface_view surface = tlod_surface_query_view(s->surface);
   for (uint32_t v = 0; v < frame->view_count && r == TLOD_SUCCESS; v++)
     r = plan_view(s, v, frame, &mesh, &surface);
+  return r;
+}
+
+/* ---- group update ----------------------------------------------------------- */
+
+/* The first context named by the group, for its error messages. */
+static tlod_context* group_context(tlod_scheduler* const* schedulers, uint32_t count) {
+  for (uint32_t i = 0; schedulers && i < count; i++)
+    if (schedulers[i]) return schedulers[i]->ctx;
+  return NULL;
+}
+
+static tlod_result validate_group(tlod_scheduler* const* schedulers, const tlod_frame_desc* frames, uint32_t count) {
+  tlod_context* ctx = group_context(schedulers, count);
+  if (!ctx) return count ? TLOD_ERROR_INVALID_ARGUMENT : TLOD_SUCCESS;
+  if (!frames) return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_scheduler_update_group: NULL frames");
+  for (uint32_t i = 0; i < count; i++) {
+    if (!schedulers[i])
+      return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_scheduler_update_group: scheduler %u is NULL",
+                               i);
+    for (uint32_t j = 0; j < i; j++)
+      if (schedulers[j] == schedulers[i])
+        return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                                 "tlod_scheduler_update_group: scheduler '%s' is given twice (%u and %u)",
+                                 schedulers[i]->label, j, i);
+  }
+  return TLOD_SUCCESS;
+}
+
+/* Views after the first of every member, each on its own (locked ones
+ * copy the group's view 0). */
+static tlod_result plan_other_views(tlod_scheduler* s, const tlod_frame_desc* frame) {
+  tlod_result r = TLOD_SUCCESS;
+  for (uint32_t v = 1; v < frame->view_count && r == TLOD_SUCCESS; v++)
+    r = plan_view(s, v, frame, &s->group.mesh, &s->group.surface);
+  return r;
+}
+
+/* The joint search, its time shared out over the members' levels stage
+ * (their sum is the search's time). */
+static void fit_group(tlod_scheduler* const* schedulers, uint32_t count, uint32_t budget) {
+  double t0 = tlod_now_ms();
+  _tlod_fit_group(schedulers, count, budget);
+  double share = (tlod_now_ms() - t0) / count;
+  for (uint32_t i = 0; i < count; i++)
+    schedulers[i]->group.t[3] = schedulers[i]->group.t[2] + share;
+}
+
+/* Every member's view 0 through silhouette and metric, then the joint
+ * levels, then each member's morph, draw list and other views. */
+static tlod_result update_group(tlod_scheduler* const* schedulers, const tlod_frame_desc* frames, uint32_t count,
+                                uint32_t budget) {
+  for (uint32_t i = 0; i < count; i++) {
+    tlod_scheduler* s = schedulers[i];
+    tlod_result r = prepare_update(s, &frames[i]);
+    if (r != TLOD_SUCCESS) return r;
+    tlod_mesh_view mesh = tlod_mesh_query_view(s->mesh);
+    tlod_surface_view surface = tlod_surface_query_view(s->surface);
+    begin_view(s, 0, &frames[i], &mesh, &surface, &s->group);
+  }
+  fit_group(schedulers, count, budget);
+  for (uint32_t i = 0; i < count; i++) {
+    tlod_result r = finish_view(&schedulers[i]->group);
+    if (r == TLOD_SUCCESS) r = plan_other_views(schedulers[i], &frames[i]);
+    if (r != TLOD_SUCCESS) return r;
+  }
+  return TLOD_SUCCESS;
+}
+
+tlod_result tlod_scheduler_update_group(tlod_scheduler* const* schedulers, const tlod_frame_desc* frames,
+                                        uint32_t count, uint32_t triangle_budget) {
+  tlod_result r = validate_group(schedulers, frames, count);
+  if (r != TLOD_SUCCESS) return r;
+  if (triangle_budget) return update_group(schedulers, frames, count, triangle_budget);
+  for (uint32_t i = 0; i < count && r == TLOD_SUCCESS; i++)
+    r = tlod_scheduler_update(schedulers[i], &frames[i]);
   return r;
 }

@@ -45,20 +45,6 @@ typedef struct _tlod_view_state {
   bool has_history;
 } _tlod_view_state;
 
-struct tlod_scheduler {
-  tlod_context* ctx;
-  const tlod_surface* surface;
-  const tlod_mesh* mesh;
-  const tlod_patterns* patterns;
-  tlod_scheduler_desc desc; /* resolved */
-  char label[64];
-  uint32_t patch_count, vertex_count;
-  _tlod_view_state* views;
-  uint32_t view_count;
-  float eps_scale;   /* frame-time control */
-  float smoothed_ms; /* EMA of measured frame times */
-};
-
 /* One view's frame: what every stage task reads. The mesh and surface views
  * are queried once per update (their arrays move on tlod_mesh_update and
  * tlod_surface_refresh), never kept across frames. */
@@ -72,7 +58,24 @@ typedef struct _tlod_frame {
   float level_cap;              /* budget cap (SILHOUETTE, UNIFORM) */
   float step;                   /* TIME morph: level change this frame */
   const _tlod_view_state* main; /* locked views: view 0 */
+  uint32_t budget;              /* triangles: the scheduler's own or its group's; 0 == none */
+  double t[TLOD_STAGE_NUM + 1]; /* stage boundaries, ms */
 } _tlod_frame;
+
+struct tlod_scheduler {
+  tlod_context* ctx;
+  const tlod_surface* surface;
+  const tlod_mesh* mesh;
+  const tlod_patterns* patterns;
+  tlod_scheduler_desc desc; /* resolved */
+  char label[64];
+  uint32_t patch_count, vertex_count;
+  _tlod_view_state* views;
+  uint32_t view_count;
+  float eps_scale;   /* frame-time control */
+  float smoothed_ms; /* EMA of measured frame times */
+  _tlod_frame group; /* view 0 between the stages of a group update */
+};
 
 /* scheduler_metric.c */
 void _tlod_camera_from_view(const float view[16], const float proj[16], _tlod_camera* cam);
@@ -93,6 +96,10 @@ float _tlod_level_rule(const tlod_scheduler_desc* d, const tlod_patch_info* info
 /* Targets of every patch, with epsilon (or the cap) raised until the
  * triangle budget holds. */
 void _tlod_fit_budget(_tlod_frame* fr);
+/* Targets of view 0 (member->group, metric done) of count schedulers under
+ * one shared budget: one epsilon raised for all members that follow
+ * epsilon (ERROR, HYBRID) until the sum fits. */
+void _tlod_fit_group(tlod_scheduler* const* members, uint32_t count, uint32_t budget);
 void _tlod_control_frame_time(tlod_scheduler* s, float measured_ms);
 
 /* scheduler_morph.c */

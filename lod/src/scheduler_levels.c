@@ -42,10 +42,12 @@ static uint64_t target_triangles(const _tlod_frame* fr) {
   return tris;
 }
 
+static void targets(_tlod_frame* fr) { tlod_context_parallel_for(fr->s->ctx, target_task, fr, fr->s->patch_count); }
+
 /* Targets at the frame's epsilon and cap; true when they fit the budget. */
 static bool targets_fit(_tlod_frame* fr) {
-  tlod_context_parallel_for(fr->s->ctx, target_task, fr, fr->s->patch_count);
-  return target_triangles(fr) <= fr->s->desc.triangle_budget;
+  targets(fr);
+  return target_triangles(fr) <= fr->budget;
 }
 
 /* SILHOUETTE and UNIFORM ignore epsilon: lower the level cap instead, one
@@ -57,40 +59,105 @@ static void fit_cap(_tlod_frame* fr) {
   }
 }
 
-/* Bisection on log2 of the epsilon factor, as the triangle count falls
+/* Whether a frame fits at epsilon base * 2^x. */
+typedef bool (*fits_at_fn)(void* data, float x);
+
+/* Bisection on x = log2 of the epsilon factor, as the triangle count falls
  * while epsilon grows: doubling until the frame fits (or epsilon has grown
- * by 2^60, past every e_max), then 20 halvings, ending on the side that fits. */
-static void fit_epsilon(_tlod_frame* fr) {
-  float base = fr->eps, lo = 0.0f, hi = 1.0f;
-  for (;;) {
-    fr->eps = base * exp2f(hi);
-    if (targets_fit(fr) || hi > 60.0f) break;
+ * by 2^60, past every e_max), then 20 halvings, ending on the side that
+ * fits. Returns that x. */
+static float search_log2(fits_at_fn fits, void* data) {
+  float lo = 0.0f, hi = 1.0f;
+  while (!fits(data, hi) && hi <= 60.0f) {
     lo = hi;
     hi *= 2.0f;
   }
   for (int it = 0; it < 20; it++) {
     float mid = 0.5f * (lo + hi);
-    fr->eps = base * exp2f(mid);
-    if (targets_fit(fr)) {
+    if (fits(data, mid)) {
       hi = mid;
     } else {
       lo = mid;
     }
   }
-  fr->eps = base * exp2f(hi);
-  tlod_context_parallel_for(fr->s->ctx, target_task, fr, fr->s->patch_count);
+  return hi;
+}
+
+typedef struct one_search {
+  _tlod_frame* fr;
+  float base;
+} one_search;
+
+static bool one_fits_at(void* data, float x) {
+  one_search* o = data;
+  o->fr->eps = o->base * exp2f(x);
+  return targets_fit(o->fr);
+}
+
+static void fit_epsilon(_tlod_frame* fr) {
+  one_search o = {fr, fr->eps};
+  fr->eps = o.base * exp2f(search_log2(one_fits_at, &o));
+  targets(fr);
 }
 
 void _tlod_fit_budget(_tlod_frame* fr) {
   const tlod_scheduler_desc* d = &fr->s->desc;
-  tlod_context_parallel_for(fr->s->ctx, target_task, fr, fr->s->patch_count);
+  targets(fr);
   /* FLAT is the floor already: no budget can lower it. */
-  if (!d->triangle_budget || d->policy == TLOD_POLICY_FLAT || target_triangles(fr) <= d->triangle_budget) return;
+  if (!fr->budget || d->policy == TLOD_POLICY_FLAT || target_triangles(fr) <= fr->budget) return;
   if (d->policy == TLOD_POLICY_SILHOUETTE || d->policy == TLOD_POLICY_UNIFORM) {
     fit_cap(fr);
   } else {
     fit_epsilon(fr);
   }
+}
+
+/* ---- group budget ----------------------------------------------------------- */
+
+static bool follows_epsilon(const _tlod_frame* fr) {
+  return fr->s->desc.policy == TLOD_POLICY_ERROR || fr->s->desc.policy == TLOD_POLICY_HYBRID;
+}
+
+typedef struct group_search {
+  tlod_scheduler* const* members;
+  uint32_t count, budget;
+  float base;
+} group_search;
+
+/* Every member that follows epsilon at the shared base * 2^x; the others
+ * keep their targets. Summed in member order (deterministic). */
+static uint64_t group_triangles_at(const group_search* g, float x) {
+  uint64_t tris = 0;
+  for (uint32_t i = 0; i < g->count; i++) {
+    _tlod_frame* fr = &g->members[i]->group;
+    if (follows_epsilon(fr)) {
+      fr->eps = g->base * exp2f(x);
+      targets(fr);
+    }
+    tris += target_triangles(fr);
+  }
+  return tris;
+}
+
+static bool group_fits_at(void* data, float x) {
+  const group_search* g = data;
+  return group_triangles_at(g, x) <= g->budget;
+}
+
+/* The search starts from the largest member epsilon, so that one epsilon
+ * holds for all and none is drawn finer than its own bound asks. */
+void _tlod_fit_group(tlod_scheduler* const* members, uint32_t count, uint32_t budget) {
+  group_search g = {members, count, budget, 0.0f};
+  uint64_t tris = 0;
+  for (uint32_t i = 0; i < count; i++) {
+    _tlod_frame* fr = &members[i]->group;
+    fr->budget = budget;
+    targets(fr);
+    tris += target_triangles(fr);
+    if (follows_epsilon(fr) && fr->eps > g.base) g.base = fr->eps;
+  }
+  if (tris <= budget || g.base == 0.0f) return;
+  group_triangles_at(&g, search_log2(group_fits_at, &g));
 }
 
 /* A smoothed measurement outside a band around the target moves the

@@ -35,7 +35,7 @@ void _tlod_morph_task(void* data, uint32_t begin, uint32_t end, uint32_t worker)
     float c = timed && vs->visible[f] ? approach(vs->cont[f], goal, fr->step) : goal;
     if (bounded && c < t) c = t;
     /* A budget is a hard cap: never draw above the budget's level. */
-    if (d->triangle_budget && c > ceilf(t)) c = ceilf(t);
+    if (fr->budget && c > ceilf(t)) c = ceilf(t);
     vs->cont[f] = c;
   }
 }

@@ -327,4 +327,62 @@ check("warnings: the object falls back to its base colour factor, untextured",
 rc, so, se = play(WARN, os.path.join(WORK, "warn_q"), "--frames", "1", "-q", backend="cpu")
 check("warnings: -q prints nothing", rc == 0 and se == "", se)
 
+# ---- 7. --scene-budget: one triangle budget over every object, shared by screen error ---
+
+def sphere(r, nlat=8, nlon=12):
+    """A UV sphere with smooth normals, counter-clockwise seen from outside."""
+    pos, nrm, idx = [], [], []
+    for i in range(nlat + 1):
+        th = math.pi * i / nlat
+        for j in range(nlon + 1):
+            ph = 2 * math.pi * j / nlon
+            n = [math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph)]
+            pos += [r * c for c in n]
+            nrm += n
+    for i in range(nlat):
+        for j in range(nlon):
+            a, b = i * (nlon + 1) + j, (i + 1) * (nlon + 1) + j
+            idx += [a, b, a + 1, a + 1, b, b + 1]
+    return pos, nrm, idx
+
+
+g = Gltf()
+ball = g.mesh(*sphere(1.0), g.material((0.8, 0.8, 0.8, 1)))
+BALLS = {"near": [-1.5, 0, 7], "mid": [1.5, 0, 0], "far": [4, 0, -20]}  # the camera is at z = 12
+for name, at in BALLS.items():
+    g.node(name=name, mesh=ball, translation=at)
+BALL_SCENE = os.path.join(WORK, "balls.gltf")
+g.save(BALL_SCENE)
+
+
+def frame_rows(out):
+    path = os.path.join(out, "trace.csv")
+    return list(csv.DictReader(open(path))) if os.path.exists(path) else []
+
+
+free_out, budget_out = os.path.join(WORK, "budget_free"), os.path.join(WORK, "budget_on")
+rc, so, se = play(BALL_SCENE, free_out, "--frames", "3", "--path", CAM, "--max-level", "5", "-q", backend="cpu")
+free = frame_rows(free_out)
+free_tris = min((int(r["triangles"]) for r in free), default=0)
+BUDGET = free_tris // 3
+check("scene budget: the unbudgeted scene plays and needs more than the budget", rc == 0 and BUDGET > 100,
+      (rc, se, free_tris))
+rc, so, se = play(BALL_SCENE, budget_out, "--frames", "3", "--path", CAM, "--max-level", "5", "--scene-budget",
+                  str(BUDGET), "-q", backend="cpu")
+rows = frame_rows(budget_out)
+check("scene budget: plays (exit 0)", rc == 0 and len(rows) == 3, (rc, se))
+check("scene budget: every frame's triangles (all objects) at or under the budget",
+      rows and all(int(r["triangles"]) <= BUDGET for r in rows), ([r["triangles"] for r in rows], BUDGET))
+check("scene budget: the effective epsilon was raised above --epsilon",
+      rows and all(float(r["effective_epsilon"]) > 0.5 for r in rows), [r["effective_epsilon"] for r in rows])
+t = load_json(os.path.join(budget_out, "trace.json")) if rc == 0 else {}
+f0 = t["frames"][0]["objects"] if isinstance(t, dict) and t.get("frames") else []
+by = {o["name"]: o for o in f0}
+check("scene budget: recorded in the trace", isinstance(t, dict) and t.get("scene_budget") == BUDGET)
+check("scene budget: one epsilon for every object",
+      len(f0) == 3 and len({o["effective_epsilon"] for o in f0}) == 1, [o["effective_epsilon"] for o in f0])
+check("scene budget: the near object gets more than a third of the budget, the far one less",
+      len(by) == 3 and by["near"]["triangles"] > BUDGET // 3 > by["far"]["triangles"],
+      {k: o["triangles"] for k, o in by.items()})
+
 finish()

@@ -46,14 +46,15 @@ FRAME = obj(dict({"frame": INT, "time_s": NUM, "eye": vec(3), "target": vec(3), 
                   "near": NUM, "far": NUM, "frame_ms": NUM, "anim_ms": NUM, "scheduler_ms": NUM, "stage_ms": STAGE_MS,
                   "screenshot_ms": NUM, "screenshot": STR, "objects": ("list", FRAME_OBJECT)}, **COUNTS))
 TRACE = obj({"schema": STR, "tool": STR, "scene": STR, "mode": STR, "backend": STR, "renderer": STR, "surface": STR,
-             "policy": STR, "epsilon_px": NUM, "max_level": INT, "path": STR, "path_duration_s": NUM, "loop": BOOL,
+             "policy": STR, "epsilon_px": NUM, "max_level": INT, "scene_budget": INT, "path": STR, "path_duration_s": NUM, "loop": BOOL,
              "fps": NUM, "dt_ms": NUM, "width": INT, "height": INT, "screenshot_every": INT,
              "frames_requested": INT, "frames_completed": INT, "stopped": STR, "wall_s": NUM,
              "objects": ("list", OBJECT_INFO), "frames": ("list", FRAME), "objects_inline": INT,
              "object_counts_file": STR, "animation": STR, "animation_duration_s": NUM, "warning_count": INT,
              "warnings": ("list", STR)})
 DIST = obj({k: NUM for k in ("mean", "p50", "p95", "p99", "max", "min")})
-RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level": INT, "frames_requested": INT,
+RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level": INT, "scene_budget": INT,
+           "frames_requested": INT,
            "frames": INT, "stopped": STR, "wall_s": NUM, "frame_ms": DIST, "fps": NUM, "first_frame_ms": NUM,
            "scheduler_ms": DIST, "stage_ms_mean": obj({s: NUM for s in STAGES}), "backend_cpu_ms": DIST,
            "backend_wall_ms": DIST, "backend_gpu_ms_mean": NUM, "backend_gpu_frames": INT, "triangles": DIST,

@@ -233,6 +233,35 @@ TLOD_API tlod_scheduler_desc tlod_scheduler_query_desc(const tlod_scheduler* sch
  * update or destroy. Deterministic for the same inputs and history, for
  * any thread count. */
 TLOD_API tlod_result tlod_scheduler_update(tlod_scheduler* scheduler, const tlod_frame_desc* frame);
+/* Plans one frame for count schedulers (e.g. the objects of a scene, one
+ * scheduler per instance) under ONE triangle budget shared by all: the
+ * triangles go where the screen error is, not split evenly. frames[i] is
+ * scheduler i's frame (each instance has its own view). View 0 of every
+ * scheduler is the group's: silhouette and metric per scheduler, then one
+ * search raising one shared epsilon (from the largest of the members'
+ * epsilon_px * frame-time factor) until the members' summed targets
+ * (patterns + strips) fit triangle_budget, then geomorph and draw list per
+ * scheduler; every member's view 0 draw list reports that
+ * effective_epsilon. The group budget replaces each member's own
+ * desc.triangle_budget for view 0, and the budget is a hard cap in the
+ * geomorph stage as for one scheduler. A frame that fits unconstrained
+ * keeps each member's own epsilon. Views after the first are planned as
+ * tlod_scheduler_update does (locked views copy view 0). Only ERROR and
+ * HYBRID members follow epsilon: SILHOUETTE, UNIFORM and FLAT members keep
+ * their unbudgeted levels, counted in the sum (so the budget may not hold
+ * when they alone exceed it). triangle_budget 0: each scheduler updated on
+ * its own, exactly tlod_scheduler_update in order. Level 0 everywhere is
+ * the floor, as for one scheduler. Deterministic for the same inputs and
+ * histories, any thread count; no allocation after each member's first
+ * update. Threading: members run one after another on the calling thread,
+ * each stage through its context's parallel-for; no member may be used
+ * from another thread meanwhile. Checks: schedulers or frames NULL (with
+ * count > 0), a NULL member, a scheduler given twice, and each frame as
+ * tlod_scheduler_update does (stopping at the first that fails: members
+ * before it may have been updated); count 0 does nothing and succeeds.
+ * Members of different contexts: undefined. */
+TLOD_API tlod_result tlod_scheduler_update_group(tlod_scheduler* const* schedulers, const tlod_frame_desc* frames,
+                                                 uint32_t count, uint32_t triangle_budget);
 TLOD_API const tlod_draw_list* tlod_scheduler_draw_list(const tlod_scheduler* scheduler, uint32_t view);
 /* Forgets the geomorph history (the next update starts at its targets). */
 TLOD_API void tlod_scheduler_reset(tlod_scheduler* scheduler);

@@ -216,6 +216,9 @@ static int play_modes(play_session* p) {
   for (uint32_t k = 0; k < o->mode_count && rc == CLI_OK && (k == 0 || !play_interrupted); k++)
     rc = play_one_mode(p, &run, k);
   free(run.items);
+  free(run.group);
+  free(run.group_views);
+  free(run.group_frames);
   return rc;
 }
 

@@ -38,6 +38,7 @@ static int create_schedulers(play_run* r, const play_mode* m, play_trace* t) {
   t->policy = tool_policy_name(q.policy);
   t->epsilon = q.epsilon_px;
   t->max_level = q.max_level;
+  t->scene_budget = m->kind == MODE_ADAPTIVE ? r->o->scene_budget : 0;
   return CLI_OK;
 }
 
@@ -109,6 +110,28 @@ static int update_objects(play_run* r, const tlod_view_desc* view, uint32_t n, d
       return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
     os[i].update_at_ms = t0 - run_start;
     os[i].update_ms = cli_now_ms() - t0;
+    record_draw_list(tlod_scheduler_draw_list(s->objects[i].scheduler, 0), &os[i]);
+  }
+  return CLI_OK;
+}
+
+/* --scene-budget: every object in one group update, one budget for all;
+ * the update's time is shared out evenly over the objects. */
+static int update_group(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start, play_object_stats* os) {
+  play_scene* s = r->scene;
+  for (uint32_t i = 0; i < s->count; i++) {
+    r->group[i] = s->objects[i].scheduler;
+    object_view(view, s->objects[i].world, &r->group_views[i]);
+    r->group_frames[i] =
+        (tlod_frame_desc){.views = &r->group_views[i], .view_count = 1, .dt_ms = (float)(1000.0 / r->o->fps)};
+  }
+  double t0 = cli_now_ms();
+  if (tlod_scheduler_update_group(r->group, r->group_frames, s->count, r->o->scene_budget) != TLOD_SUCCESS)
+    return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
+  double share = (cli_now_ms() - t0) / (s->count ? s->count : 1);
+  for (uint32_t i = 0; i < s->count; i++) {
+    os[i].update_at_ms = t0 - run_start + share * i;
+    os[i].update_ms = share;
     record_draw_list(tlod_scheduler_draw_list(s->objects[i].scheduler, 0), &os[i]);
   }
   return CLI_OK;
@@ -231,7 +254,8 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
     rc = play_scene_pose(r->scene, fr->time_s);
     fr->anim_ms = cli_now_ms() - a0;
   }
-  if (rc == CLI_OK) rc = update_objects(r, &view, n, run_start, os);
+  if (rc == CLI_OK)
+    rc = r->grouped ? update_group(r, &view, n, run_start, os) : update_objects(r, &view, n, run_start, os);
   if (rc == CLI_OK) rc = draw_objects(r, &view, n, run_start, os);
   fr->frame_ms = cli_now_ms() - f0;
   if (rc != CLI_OK) return rc; /* the failed frame is not a record */
@@ -245,10 +269,23 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
   return CLI_OK;
 }
 
+/* The group update's arrays, once per run (kept for later modes). */
+static int alloc_group(play_run* r) {
+  uint32_t n = r->scene->count ? r->scene->count : 1;
+  if (!r->group) r->group = calloc(n, sizeof(*r->group));
+  if (!r->group_views) r->group_views = calloc(n, sizeof(*r->group_views));
+  if (!r->group_frames) r->group_frames = calloc(n, sizeof(*r->group_frames));
+  if (!r->group || !r->group_views || !r->group_frames)
+    return cli_error(CLI_FAILED, "out of memory for %u group members", n);
+  return CLI_OK;
+}
+
 int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
   int rc = create_schedulers(r, m, t);
   if (rc == CLI_OK && !r->items && !(r->items = calloc(r->scene->count, sizeof(tlod_draw_item))))
     rc = cli_error(CLI_FAILED, "out of memory for %u draw items", r->scene->count);
+  r->grouped = r->o->scene_budget && m->kind == MODE_ADAPTIVE;
+  if (rc == CLI_OK && r->grouped) rc = alloc_group(r);
   if (rc != CLI_OK) return rc;
   char err[PLAY_PATH_MAX + 512];
   if (!play_trace_digests_open(t, r->run_dir, err, sizeof(err)) ||

@@ -26,6 +26,8 @@ void play_usage(FILE* f) {
       "  --epsilon PX        adaptive: screen-space error bound in pixels (default 0.5)\n"
       "  --policy P          adaptive: error | silhouette | hybrid (default hybrid)\n"
       "  --max-level L       adaptive: finest level, 1..%d (default 6)\n"
+      "  --scene-budget N    adaptive: at most N triangles per frame over all objects, shared by their\n"
+      "                      screen error (one epsilon for all), not split evenly (default: none)\n"
       "  --size WxH          viewport in pixels (default 1280x720)\n"
       "  --path P            orbit (default) | flyby | zoom | FILE.json (keyframes, see docs/play.md)\n"
       "                      | gltf[:N] (camera N of the glTF scene, with its animation)\n"
@@ -106,6 +108,8 @@ static int parse_lod(int argc, char** argv, int* i, play_options* o) {
     o->surface = (tlod_surface_type)(TLOD_SURFACE_PHONG + e);
     return CLI_OK;
   }
+  if (!strcmp(a, "--scene-budget"))
+    return cli_usage_unless((v = cli_value(argc, argv, i)) && cli_parse_uint(a, v, 1, UINT32_MAX, &o->scene_budget));
   int rc = cli_parse_lod_option(argc, argv, i, &o->epsilon, &o->policy, &o->max_level);
   if (rc != CLI_NOT_MINE) return rc;
   return parse_modes(argc, argv, i, o);

@@ -30,6 +30,7 @@ typedef struct play_options {
   float epsilon;
   tlod_lod_policy policy;
   uint32_t max_level;
+  uint32_t scene_budget; /* triangles per frame over all objects; 0: none */
   uint32_t width, height;
   uint32_t frames; /* 0: from --duration or the path */
   float duration;  /* 0: not given */

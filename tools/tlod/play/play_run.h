@@ -23,6 +23,12 @@ typedef struct play_run {
   uint64_t first_draw;   /* the device's number of this mode's first draw (gpu times of earlier draws are not its) */
   bool tty;
   tlod_draw_item* items; /* one per object, reused every frame; freed by the caller */
+  /* --scene-budget: the group update's arrays, one entry per object, reused
+   * every frame; freed by the caller. */
+  tlod_scheduler** group;
+  tlod_view_desc* group_views;
+  tlod_frame_desc* group_frames;
+  bool grouped; /* this mode plays under --scene-budget (adaptive only) */
 } play_run;
 
 /* Set by the SIGINT handler, read between frames. */

@@ -108,10 +108,11 @@ typedef struct play_trace {
   const char* backend; /* "cpu" or "gl" */
   const char* renderer;
   const char* surface;
-  const char* policy; /* adaptive: the policy; uniform / flat: "error" */
-  float epsilon;      /* as given to the scheduler */
-  uint32_t max_level; /* scheduler max level */
-  const char* path;   /* "orbit", ... or the file */
+  const char* policy;    /* adaptive: the policy; uniform / flat: "error" */
+  float epsilon;         /* as given to the scheduler */
+  uint32_t max_level;    /* scheduler max level */
+  uint32_t scene_budget; /* --scene-budget in force (adaptive), 0 none */
+  const char* path;      /* "orbit", ... or the file */
   double path_duration_s;
   bool loop;
   double fps;

@@ -77,6 +77,7 @@ static bool summary_json(FILE* f, const void* data) {
     json_string(&w, "policy", t->policy);
     json_number(&w, "epsilon_px", t->epsilon);
     json_uint(&w, "max_level", t->max_level);
+    json_uint(&w, "scene_budget", t->scene_budget);
     json_uint(&w, "frames_requested", t->frames_requested);
     json_uint(&w, "frames", r.frames);
     json_string(&w, "stopped", t->stopped);

@@ -41,6 +41,7 @@ static void json_settings(json_writer* w, const play_trace* t) {
   json_string(w, "policy", t->policy);
   json_number(w, "epsilon_px", t->epsilon);
   json_uint(w, "max_level", t->max_level);
+  json_uint(w, "scene_budget", t->scene_budget);
   json_string(w, "path", t->path);
   json_number(w, "path_duration_s", t->path_duration_s);
   json_bool(w, "loop", t->loop);
