@@ -5,7 +5,9 @@ in vec3 v_normal;
 in vec3 v_world;
 flat in uint v_level;
 flat in uint v_strip;
+#if TLOD_TEXCOORD  // FULL and MASK programs only: the fetch costs per fragment even when skipped
 in vec2 v_texcoord;
+#endif
 #if TLOD_ATTRIBUTE_VARYINGS > 0
 in vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
 #endif
@@ -17,9 +19,11 @@ uniform vec3 u_eye;
 uniform uint u_ortho;
 uniform vec3 u_forward;
 uniform float u_alpha_cutoff;  // MASK (TLOD_MASK programs)
-uniform uint u_texcoord;       // attribute of the base colour texture's coordinates (v_texcoord); >= 8: none
 uniform uint u_attribute_count;
+#if TLOD_TEXCOORD
+uniform uint u_texcoord;       // attribute of the base colour texture's coordinates (v_texcoord); >= 8: none
 layout(binding = TLOD_TEXTURE_UNIT_BASE_COLOR) uniform sampler2D u_base_color_texture;
+#endif
 
 layout(location = 0) out vec4 o_color;
 
@@ -53,8 +57,10 @@ tlod_fragment fragment(vec3 n) {
   f.light_dir = u_light_dir;
   f.eye = u_eye;
   f.base_color = u_base_color;
+#if TLOD_TEXCOORD
   if (u_texcoord < uint(TLOD_SHADER_MAX_ATTRIBUTES))
     f.base_color *= texture(u_base_color_texture, v_texcoord);
+#endif
   for (int a = 0; a < TLOD_SHADER_MAX_ATTRIBUTES; a++)
 #if TLOD_ATTRIBUTE_VARYINGS > 0
     f.attributes[a] = v_attr[a];

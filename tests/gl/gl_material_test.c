@@ -412,6 +412,53 @@ TEST(test_texture) {
   gl_session_close(&gs);
 }
 
+/* An untextured item draws with programs that carry no texture coordinates
+ * or fetch (linked at creation); the first textured item links its own,
+ * once. Both give the same pixels where the texture is white (1x1). */
+TEST(test_plain_programs) {
+  gl_session gs;
+  CHECK_MSG(gl_session_open(&gs, W, H, 5, "gl_material_plain", (tlod_device_gl_desc){0}), "no GL context");
+  uint8_t *plain = malloc(4 * W * H), *full = malloc(4 * W * H);
+  CHECK(plain && full);
+  shape sph = shape_icosphere(2);
+  tlod_mesh_desc md = shape_mesh_desc(&sph);
+  float* uv = calloc(2u * md.vertex_count, sizeof(float)); /* a texture to sample, at (0, 0) */
+  CHECK(uv);
+  tlod_attribute_desc attr = {.data = uv, .components = 2, .name = "TEXCOORD_0"};
+  md.attributes = &attr, md.attribute_count = 1;
+  object o;
+  CHECK(object_make(&o, &gs, &md, TLOD_SURFACE_PHONG));
+  static const uint8_t white[4] = {255, 255, 255, 255};
+  tlod_device_texture* tex = NULL;
+  CHECK(tlod_device_create_texture(gs.dev, &(tlod_texture_desc){.width = 1, .height = 1, .rgba8 = white}, &tex) ==
+        TLOD_SUCCESS);
+  const uint32_t links = tlod_device_query_stats(gs.dev).gl.program_links;
+  tlod_draw_item item = {.color = {0.9f, 0.6f, 0.3f, 1}, .has_color = true};
+  CHECK(draw_scene(&gs, &o, &item, 1, plain));
+  CHECK_MSG(tlod_device_query_stats(gs.dev).gl.program_links == links, "an untextured item linked programs");
+  item.base_color_texture = tex;
+  for (int k = 0; k < 2; k++) {
+    CHECK(draw_scene(&gs, &o, &item, 1, full));
+    uint32_t more = tlod_device_query_stats(gs.dev).gl.program_links - links;
+    CHECK_MSG(more == 2, "textured draw %d: %u links in all (pattern + strip of phong, once: 2)", k, more);
+  }
+  size_t differ = 0, covered = 0;
+  for (size_t i = 0; i < 4u * W * H; i += 4) {
+    differ += memcmp(plain + i, full + i, 4) != 0;
+    covered += !is_background(plain + i);
+  }
+  printf("  plain against white-textured: %zu of %zu pixels differ (%zu covered)\n", differ, (size_t)W * H, covered);
+  CHECK_MSG(differ == 0, "%zu pixels differ between the plain and the textured programs", differ);
+  CHECK_MSG(covered > (size_t)W * H / 20, "the sphere covers %zu pixels only", covered);
+  tlod_device_destroy_texture(gs.dev, tex);
+  object_free(&o);
+  shape_free(&sph);
+  free(uv);
+  free(plain);
+  free(full);
+  gl_session_close(&gs);
+}
+
 /* ---- (c) several items ------------------------------------------------------- */
 
 TEST(test_items_colours_and_models) {
@@ -557,6 +604,7 @@ int main(void) {
   RUN(test_fragment_hook_uv);
   RUN(test_fragment_hook_error);
   RUN(test_texture);
+  RUN(test_plain_programs);
   RUN(test_items_colours_and_models);
   RUN(test_mask_blend_cull);
   GL_TEST_END();

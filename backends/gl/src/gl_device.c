@@ -16,6 +16,14 @@
 #include "gl_internal.h"
 
 enum { QUERY_RING = 4, TYPE_COUNT = TLOD_SURFACE_NUM };
+/* The programs a surface type may need, by what the item's fragments read:
+ * PLAIN neither texture coordinates nor attributes (the default look,
+ * linked at creation), FULL the base colour texture and, for a fragment
+ * hook, every attribute, MASK FULL with the alpha test (both linked at the
+ * first item that needs them). Each varying and the texture fetch cost per
+ * fragment even when a uniform skips the fetch (llvmpipe, measured: docs/
+ * shaders.md), so an untextured item never carries them. */
+enum { VARIANT_PLAIN, VARIANT_FULL, VARIANT_MASK, VARIANT_COUNT };
 
 /* The uniforms the device sets, by index; locations looked up once, at link
  * (backends/shaders/common.glsl, shade.frag and the vertex stages). */
@@ -63,12 +71,11 @@ typedef struct gl_device {
   tlod_device_stats* stats;
   uint32_t lmax;
   bool hardware;
-  char* fragment_hook; /* a copy of the desc's (MASK programs link later); NULL == material.glsl */
-  /* By resolved surface type and MASK: programs with `discard` (MASK
-   * items) are their own, linked at the first MASK item of the type: a
-   * shader that may discard loses the early depth test (llvmpipe: ~10% of
-   * a heavy frame), so the others never carry it. */
-  gl_programs programs[TYPE_COUNT][2];
+  char* fragment_hook; /* a copy of the desc's (FULL and MASK programs link later); NULL == material.glsl */
+  /* By resolved surface type and variant: programs with `discard` (MASK
+   * items) are their own: a shader that may discard loses the early depth
+   * test (llvmpipe: ~10% of a heavy frame), so the others never carry it. */
+  gl_programs programs[TYPE_COUNT][VARIANT_COUNT];
   GLuint vao_pattern, vao_strip;
   GLuint buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs;
   uint32_t index_first[2][TLOD_MAX_LEVEL + 1], index_count[2][TLOD_MAX_LEVEL + 1], shape_base[2];
@@ -131,7 +138,7 @@ static void gl_destroy(void* state) {
   glDeleteQueries(QUERY_RING, d->queries);
   glDeleteQueries(QUERY_RING, d->prim_queries);
   for (int t = 0; t < TYPE_COUNT; t++) {
-    for (int m = 0; m < 2; m++) {
+    for (int m = 0; m < VARIANT_COUNT; m++) {
       glDeleteProgram(d->programs[t][m].pattern.id);
       glDeleteProgram(d->programs[t][m].strip.id);
       glDeleteProgram(d->programs[t][m].tess[0].id);
@@ -173,16 +180,18 @@ static int stage_sources(const char* out[8], const char* version, const char* co
   return n;
 }
 
-static tlod_result build_programs(gl_device* d, tlod_surface_type type, bool mask) {
+static tlod_result build_programs(gl_device* d, tlod_surface_type type, int variant) {
   const char* surface = type == TLOD_SURFACE_PN      ? _tlod_shader_pn
                         : type == TLOD_SURFACE_PHONG ? _tlod_shader_phong
                                                      : _tlod_shader_flat;
   /* All attributes reach the fragment stage only for a hook: the built-in
    * material reads none, and each varying costs per fragment. */
-  char version[160];
+  bool full = variant != VARIANT_PLAIN;
+  char version[200];
   snprintf(version, sizeof(version),
-           "#version 450 core\n#define TLOD_GLSL 1\n#define TLOD_ATTRIBUTE_VARYINGS %d\n#define TLOD_MASK %d\n",
-           d->fragment_hook ? 8 : 0, mask ? 1 : 0);
+           "#version 450 core\n#define TLOD_GLSL 1\n#define TLOD_ATTRIBUTE_VARYINGS %d\n#define TLOD_TEXCOORD %d\n"
+           "#define TLOD_MASK %d\n",
+           full && d->fragment_hook ? 8 : 0, full ? 1 : 0, variant == VARIANT_MASK ? 1 : 0);
   const char *pattern[8], *strip[8];
   int np = stage_sources(pattern, version, NULL, surface, true, _tlod_shader_pattern_vert);
   int ns = stage_sources(strip, version, NULL, surface, true, _tlod_shader_strip_vert);
@@ -190,7 +199,7 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type, bool mas
   const char* frag[] = {version, _tlod_shader_layout, _tlod_shader_shade_frag, TLOD_GL_HOOK_LINE_DIRECTIVE,
                         d->fragment_hook ? d->fragment_hook : _tlod_shader_material};
   char error[1600] = "";
-  gl_programs* ps = &d->programs[type][mask];
+  gl_programs* ps = &d->programs[type][variant];
   ps->pattern.id = _tlod_gl_program(pattern, np, frag, 5, error, sizeof(error));
   if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, ns, frag, 5, error, sizeof(error));
   bool ok = ps->pattern.id && ps->strip.id;
@@ -301,7 +310,7 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   uint32_t mask = desc->gl.surface_types ? desc->gl.surface_types : (1u << TLOD_SURFACE_NUM) - 1u;
   if (mask & (1u << TLOD_SURFACE_DEFAULT)) mask |= 1u << TLOD_SURFACE_PHONG;
   for (int t = 1; t < TYPE_COUNT && r == TLOD_SUCCESS; t++) {
-    if (mask & (1u << t)) r = build_programs(d, (tlod_surface_type)t, false);
+    if (mask & (1u << t)) r = build_programs(d, (tlod_surface_type)t, VARIANT_PLAIN);
   }
   if (r == TLOD_SUCCESS) r = upload_patterns(d);
   if (r != TLOD_SUCCESS) {
@@ -520,8 +529,8 @@ static void set_view_uniforms(gl_device* d, const tlod_draw_desc* fr) {
     eye[i] = -(v[i * 4 + 0] * v[12] + v[i * 4 + 1] * v[13] + v[i * 4 + 2] * v[14]);
     fwd[i] = -v[i * 4 + 2];
   }
-  for (int t = 0; t < 2 * TYPE_COUNT; t++) {
-    gl_programs* ps = &d->programs[t / 2][t % 2];
+  for (int t = 0; t < VARIANT_COUNT * TYPE_COUNT; t++) {
+    gl_programs* ps = &d->programs[t / VARIANT_COUNT][t % VARIANT_COUNT];
     if (!ps->linked) continue;
     const gl_program* progs[4];
     for (int k = 0, n = programs_of(d, ps, progs); k < n; k++) {
@@ -709,12 +718,21 @@ static tlod_result order_items(gl_device* d, const tlod_draw_desc* fr, const _tl
   return TLOD_SUCCESS;
 }
 
+/* The variant an item draws with: PLAIN unless its fragments read a
+ * texture, or (a fragment hook) its mesh's attributes. */
+static int variant_of(const gl_device* d, const _tlod_draw_ref* it) {
+  const gl_surface* gs = it->surface_state;
+  if (it->item->blend == TLOD_BLEND_MASK) return VARIANT_MASK;
+  bool attributes = d->fragment_hook && gs->attribute_count > 0;
+  return it->item->base_color_texture || attributes ? VARIANT_FULL : VARIANT_PLAIN;
+}
+
 /* Item k: its patterns and strips, then (wireframe) its edges over them. */
 static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, uint32_t k,
                       tlod_draw_item_stats* st) {
   double t0 = tlod_now_ms();
   const gl_surface* gs = it->surface_state;
-  const gl_programs* ps = &d->programs[gs->type][it->item->blend == TLOD_BLEND_MASK];
+  const gl_programs* ps = &d->programs[gs->type][variant_of(d, it)];
   const tlod_draw_list* dl = it->item->draw_list;
   const struct gl_item_range* range = &d->ranges[k];
   _tlod_item_shading sh;
@@ -745,14 +763,16 @@ static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
   st->cpu_ms += tlod_now_ms() - t0;
 }
 
-/* The MASK programs of the surface types of this draw's MASK items, linked
- * the first time (they bind nothing: DSA and glProgramUniform only). */
-static tlod_result link_mask_programs(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items) {
+/* The FULL and MASK programs of the surface types of this draw's items
+ * that need them, linked the first time (they bind nothing: DSA and
+ * glProgramUniform only). */
+static tlod_result link_lazy_programs(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items) {
   for (uint32_t k = 0; k < fr->item_count; k++) {
     tlod_surface_type t = ((const gl_surface*)items[k].surface_state)->type;
-    if (items[k].item->blend != TLOD_BLEND_MASK || d->programs[t][1].linked) continue;
+    int v = variant_of(d, &items[k]);
+    if (d->programs[t][v].linked) continue;
     double t0 = tlod_now_ms();
-    tlod_result r = build_programs(d, t, true);
+    tlod_result r = build_programs(d, t, v);
     d->stats->gl.mask_link_ms += tlod_now_ms() - t0;
     if (r != TLOD_SUCCESS) return r;
   }
@@ -763,7 +783,7 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
                            tlod_draw_item_stats* item_stats) {
   gl_device* d = state;
   double t0 = tlod_now_ms();
-  tlod_result r = link_mask_programs(d, fr, items);
+  tlod_result r = link_lazy_programs(d, fr, items);
   if (r != TLOD_SUCCESS) return r;
   gl_saved_state saved;
   _tlod_gl_save_state(&saved);

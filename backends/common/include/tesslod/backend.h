@@ -309,8 +309,11 @@ typedef struct tlod_device_gl_stats {
    * it); 0 when none is ready. */
   uint64_t primitives_generated;
   uint32_t program_links;   /* since creation: a constant of the device's desc, plus as many again per
-                               surface type the first time a MASK item of that type is drawn */
-  double mask_link_ms;      /* time in those MASK links (inside the draws that made them) */
+                               surface type the first time a textured (or, with a fragment hook,
+                               attribute-reading) item of that type is drawn, and again at its first
+                               MASK item (tesslod/gl.h, GL OBJECTS) */
+  double mask_link_ms;      /* time in those later links, MASK and textured (inside the draws that
+                               made them) */
   uint32_t pattern_uploads; /* pattern vertex + index buffer uploads since creation (1) */
   uint64_t pattern_bytes;   /* bytes of those uploads */
   uint64_t patch_bytes;     /* patch record bytes uploaded since creation (surface create + update) */

@@ -46,11 +46,22 @@
  *     programs     pattern + strip per surface type in desc.gl.surface_types
  *                  (0 == flat, phong, pn), + two tessellation programs
  *                  (triangles, quads) per type with hardware_tessellation;
- *                  uniform locations looked up once, at link; the first
- *                  draw with a TLOD_BLEND_MASK item of a surface type links
- *                  that type's programs again with the alpha test (a shader
- *                  that can discard loses the early depth test, so the
- *                  others never carry it; stats gl.mask_link_ms);
+ *                  uniform locations looked up once, at link. These
+ *                  (the PLAIN variant) carry no texture coordinates, no
+ *                  texture fetch and no attribute reads: an item without
+ *                  base_color_texture (and, with a fragment hook, of a mesh
+ *                  without attributes) draws with them. Two more variants
+ *                  are linked on demand, by the first draw with an item of
+ *                  the surface type that needs them, each as many programs
+ *                  again (stats gl.program_links; the link time goes to
+ *                  gl.mask_link_ms): FULL, for the other non-MASK items
+ *                  (v_texcoord, the fetch, with a hook every attribute),
+ *                  and MASK, FULL plus the alpha test, for every
+ *                  TLOD_BLEND_MASK item. A fragment that can discard loses
+ *                  the early depth test and each varying or fetch costs
+ *                  per fragment (llvmpipe: also when a uniform skips it;
+ *                  docs/shaders.md),
+ *                  so the default look carries none of them;
  *     buffers      pattern vertices (binding TLOD_GL_BINDING_PATTERNS) and
  *                  pattern indices (GL_STATIC_DRAW, uploaded once);
  *                  instances, strips, strip references (GL_STREAM_DRAW,
@@ -97,8 +108,9 @@
  *
  * FRAGMENT HOOKS (tlod_device_gl_desc.fragment_hook)
  *   The device's fragment stage is assembled as "#version 450 core" and
- *   its defines (TLOD_GLSL 1, TLOD_ATTRIBUTE_VARYINGS 8 with a hook, 0
- *   without; TLOD_MASK 1 in the MASK programs) + layout.h + shade.frag +
+ *   its defines (TLOD_GLSL 1; TLOD_ATTRIBUTE_VARYINGS 8 with a hook in
+ *   the FULL and MASK programs, else 0; TLOD_TEXCOORD 1 in those, 0 in
+ *   PLAIN; TLOD_MASK 1 in the MASK programs) + layout.h + shade.frag +
  *   "#line 100001" + the hook (or, with NULL, the built-in material.glsl),
  *   so the hook is GLSL 4.50 core defining
  *       vec4 tlod_shade(tlod_fragment f);
@@ -107,7 +119,10 @@
  *   the engine binds at binding points / units the device does not use
  *   (binding points past TLOD_GL_BINDING_ATTRIBUTES, units other than
  *   TLOD_GL_TEXTURE_UNIT_BASE_COLOR). It must not define main, outputs or
- *   the names of shade.frag (u_*, v_*, o_color, level_color, fragment).
+ *   the names of shade.frag (u_*, v_*, o_color, level_color, fragment),
+ *   and reads the base colour texture and attributes through f only (the
+ *   PLAIN programs, which it is compiled into at creation, declare no
+ *   v_texcoord, v_attr or u_base_color_texture).
  *   tlod_fragment:
  *       vec3 position;     world
  *       vec3 normal;       world, unit; flipped on back faces (gl_FrontFacing)
