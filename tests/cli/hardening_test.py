@@ -7,13 +7,9 @@ does not grow with frames.
 Usage: hardening_test.py TLOD DATA_DIR WORK_DIR [gl|nogl]"""
 import json, os, resource, shutil, signal, subprocess, sys, time
 
-from tlod_cli import check, finish, init, load_json, one_error_line, run
+from tlod_cli import check, finish, load_json, setup, one_error_line, run
 
-TLOD, DATA, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
-BUILT_WITH_GL = (sys.argv[4] if len(sys.argv) > 4 else "gl") == "gl"
-init(TLOD)
-shutil.rmtree(WORK, ignore_errors=True)
-os.makedirs(WORK)
+TLOD, DATA, WORK, BUILT_WITH_GL = setup(sys.argv)
 SMALL = ["--backend", "cpu", "--size", "64x64", "-q"]
 BOX = os.path.join(DATA, "glTF-Sample-Models", "Box", "Box.gltf")
 

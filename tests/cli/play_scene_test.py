@@ -8,13 +8,9 @@ Usage: play_scene_test.py TLOD DATA_DIR WORK_DIR [gl|nogl]"""
 import base64, csv, json, math, os, shutil, struct, sys, zlib
 
 from png_read import pixel, png_rows
-from tlod_cli import check, finish, init, load_json, run
+from tlod_cli import check, finish, load_json, setup, run
 
-TLOD, DATA, WORK = (os.path.abspath(a) for a in sys.argv[1:4])
-BUILT_WITH_GL = (sys.argv[4] if len(sys.argv) > 4 else "gl") == "gl"
-init(TLOD)
-shutil.rmtree(WORK, ignore_errors=True)
-os.makedirs(WORK)
+TLOD, DATA, WORK, BUILT_WITH_GL = setup(sys.argv)
 W, H = 320, 200
 LIGHT = (0.3, 0.8, 0.5)  # tesslod/backend.h: the default light direction
 LAMBERT_Z = 0.15 + 0.85 * LIGHT[2] / math.sqrt(sum(c * c for c in LIGHT))  # a face looking along +z

@@ -2,7 +2,7 @@
 play_test.py): running it, one "ok"/"FAIL" line per check, the one-line
 error rule, and the closing "N passed, N failed" line and exit code.
 Call init(TLOD) before run()."""
-import json, os, subprocess, sys
+import json, os, shutil, subprocess, sys
 
 TLOD = None
 passed = failed = 0
@@ -11,6 +11,18 @@ passed = failed = 0
 def init(tlod):
     global TLOD
     TLOD = tlod
+
+
+def setup(argv):
+    """The common command line of the end-to-end tests, TLOD DATA_DIR WORK_DIR [gl|nogl]: init(TLOD), WORK made
+    empty; returns (TLOD, DATA, WORK, built_with_gl) with absolute paths. "gl": the build has the GL backend and a
+    GL context must work (a failure, never a skip); "nogl": it has none, and the GL checks are left out for that
+    reason alone."""
+    tlod, data, work = (os.path.abspath(a) for a in argv[1:4])
+    init(tlod)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    return tlod, data, work, (argv[4] if len(argv) > 4 else "gl") == "gl"
 
 
 def run(*args, cwd=None, timeout=300, env=None):
