@@ -5,7 +5,7 @@ numbers that used to wrap, a folder given as an input file, a camera with
 no view direction, a camera path too long to play, and a trace whose memory
 does not grow with frames.
 Usage: hardening_test.py TLOD DATA_DIR WORK_DIR [gl|nogl]"""
-import json, os, resource, shutil, signal, subprocess, sys, time
+import json, os, resource, signal, subprocess, sys, time
 
 from tlod_cli import check, finish, load_json, setup, one_error_line, run
 

@@ -5,7 +5,7 @@ positions computed here from the camera), a textured quad whose pixels match its
 Duck with its texture, node animation along the timeline, a skinned scene's per-object counts, --animation, and the
 importer's warnings printed once and kept in the trace and summary.
 Usage: play_scene_test.py TLOD DATA_DIR WORK_DIR [gl|nogl]"""
-import base64, csv, json, math, os, shutil, struct, sys, zlib
+import base64, csv, json, math, os, struct, sys, zlib
 
 from png_read import pixel, png_rows
 from tlod_cli import check, finish, load_json, setup, run
