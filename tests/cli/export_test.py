@@ -245,7 +245,8 @@ def scene_gltf(path):
            "meshes": [{"name": "cube", "primitives": [dict(prim, material=0)]},
                       {"name": "two", "primitives": [dict(prim, material=0), dict(prim, material=1)]}],
            "materials": [{"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]}},
-                         {"name": "cut", "pbrMetallicRoughness": {"baseColorFactor": [0, 1, 0, 0.5]},
+                         {"name": "cut", "pbrMetallicRoughness": {"baseColorFactor": [0, 1, 0, 0.5],
+                                                                  "metallicFactor": 0.25, "roughnessFactor": 0.5},
                           "alphaMode": "MASK", "alphaCutoff": 0.25, "doubleSided": True}],
            "accessors": acc, "bufferViews": views,
            "buffers": [{"byteLength": len(blob),
@@ -298,6 +299,11 @@ for ext in ("gltf", "glb"):
           doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] == [1, 0, 0, 1] and
           m1["pbrMetallicRoughness"]["baseColorFactor"] == [0, 1, 0, 0.5] and m1.get("alphaMode") == "MASK" and
           m1.get("alphaCutoff") == 0.25 and m1.get("doubleSided") is True, json.dumps(doc["materials"]))
+    # metallic and roughness: given values kept, absent ones written as glTF's default 1 (a viewer's look)
+    pbr = [m["pbrMetallicRoughness"] for m in doc["materials"]]
+    check("scene -> .%s: metallic and roughness kept (absent: 1, 1)" % ext,
+          [(p.get("metallicFactor", 1), p.get("roughnessFactor", 1)) for p in pbr] == [(1, 1), (0.25, 0.5)],
+          json.dumps(pbr))
 
 # with a camera, each instance of the shared cube gets its own tessellation and mesh
 o = os.path.join(WORK, "scene_eye.gltf")

@@ -114,7 +114,7 @@ static void fixture_init(fixture* f) {
   node_at(&f->nodes[0], "a\"b\xC3", TLOD_IMPORT_NONE, 1);
   node_at(&f->nodes[1], "mirror", 0, -1);
   f->material = (tlod_import_material){
-      "m", {1, 0.5f, 0, 1}, TLOD_IMPORT_NONE, TLOD_IMPORT_NONE, TLOD_IMPORT_ALPHA_BLEND, 0.5f, true};
+      "m", {1, 0.5f, 0, 1}, TLOD_IMPORT_NONE, TLOD_IMPORT_NONE, TLOD_IMPORT_ALPHA_BLEND, 0.5f, true, 0.0f, 1.0f};
   f->r.part_count = 2, f->r.parts = f->parts, f->r.mesh_count = 1, f->r.meshes = &f->mesh;
   f->r.node_count = 2, f->r.nodes = f->nodes, f->r.material_count = 1, f->r.materials = &f->material;
   f->out[0] = f->out[1] = triangle(NULL, 0);

@@ -139,12 +139,16 @@ static int _exp_texcoord_set(const tlod_import_result* r, const tlod_import_mate
   return atoi(name + 9);
 }
 
+/* A factor clamped to glTF's [0, 1]; non-finite: 1, glTF's default (the struct may come from a caller). */
+static float _exp_unit(float f) { return isfinite(f) ? fminf(fmaxf(f, 0.0f), 1.0f) : 1.0f; }
+
 static void _exp_material_json(_exp_text* t, const tlod_import_result* r, uint32_t i) {
   static const char* const modes[] = {"OPAQUE", "MASK", "BLEND"};
   const tlod_import_material* m = &r->materials[i];
   _exp_text_add(t, "%s{\"name\":", i ? "," : "");
   _exp_text_string(t, m->name, sizeof m->name);
-  _exp_text_add(t, ",\"pbrMetallicRoughness\":{\"metallicFactor\":0");
+  _exp_text_add(t, ",\"pbrMetallicRoughness\":{\"metallicFactor\":%.9g,\"roughnessFactor\":%.9g",
+                (double)_exp_unit(m->metallic), (double)_exp_unit(m->roughness));
   _exp_floats_json(t, "baseColorFactor", m->base_color, 4);
   const int set = _exp_texcoord_set(r, m);
   if (set >= 0) _exp_text_add(t, ",\"baseColorTexture\":{\"index\":%u,\"texCoord\":%d}", m->base_color_texture, set);

@@ -212,6 +212,9 @@ tlod_import_alpha_mode alpha_mode(const tinygltf::Material& mat, size_t i, Outpu
   return TLOD_IMPORT_ALPHA_OPAQUE;
 }
 
+// A factor of [0, 1] (glTF's range), clamped; a non-finite one: the glTF default 1.
+float unit_factor(double f) { return std::isfinite(f) ? float(std::fmin(std::fmax(f, 0.0), 1.0)) : 1.0f; }
+
 tlod_import_material make_material(const tinygltf::Model& m, size_t i, OutputBase& out) {
   const tinygltf::Material& mat = m.materials[i];
   tlod_import_material r{};
@@ -232,6 +235,8 @@ tlod_import_material make_material(const tinygltf::Model& m, size_t i, OutputBas
   r.alpha_mode = alpha_mode(mat, i, out);
   r.alpha_cutoff = std::isfinite(mat.alphaCutoff) ? float(mat.alphaCutoff) : 0.5f;
   r.double_sided = mat.doubleSided;
+  r.metallic = unit_factor(mat.pbrMetallicRoughness.metallicFactor);
+  r.roughness = unit_factor(mat.pbrMetallicRoughness.roughnessFactor);
   return r;
 }
 

@@ -49,6 +49,8 @@ void read_obj_materials(const std::vector<tinyobj::material_t>& mats, const char
     r.alpha_mode = m.dissolve < 1.0 ? TLOD_IMPORT_ALPHA_BLEND : TLOD_IMPORT_ALPHA_OPAQUE;
     r.alpha_cutoff = 0.5f;
     r.double_sided = true;
+    r.metallic = 0.0f;
+    r.roughness = 1.0f;
     r.base_color_texture = TLOD_IMPORT_NONE;
     r.base_color_texcoord = TLOD_IMPORT_NONE;
     if (!m.diffuse_texname.empty()) {

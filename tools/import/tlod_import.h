@@ -185,6 +185,9 @@ typedef struct tlod_import_material {
   tlod_import_alpha_mode alpha_mode;
   float alpha_cutoff; /* MASK: default 0.5 */
   bool double_sided;
+  /* pbrMetallicRoughness metallicFactor and roughnessFactor (glTF defaults 1 and 1: kept so that a round trip
+   * through tlod_export_scene_file() looks the same in a PBR viewer); OBJ: 0 and 1 (Kd is a diffuse colour). */
+  float metallic, roughness;
 } tlod_import_material;
 
 typedef struct tlod_import_texture {
