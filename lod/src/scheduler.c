@@ -260,20 +260,34 @@ static tlod_context* group_context(tlod_scheduler* const* schedulers, uint32_t c
   return NULL;
 }
 
+/* Marks member i with slot i + 1; a member already marked is given twice.
+ * Returns the count marked (all of them, or up to the duplicate). */
+static uint32_t mark_members(tlod_scheduler* const* schedulers, uint32_t count, uint32_t* first, uint32_t* second) {
+  for (uint32_t i = 0; i < count; i++) {
+    if (schedulers[i]->group_slot) {
+      *first = schedulers[i]->group_slot - 1, *second = i;
+      return i;
+    }
+    schedulers[i]->group_slot = i + 1;
+  }
+  return count;
+}
+
 static tlod_result validate_group(tlod_scheduler* const* schedulers, const tlod_frame_desc* frames, uint32_t count) {
   tlod_context* ctx = group_context(schedulers, count);
   if (!ctx) return count ? TLOD_ERROR_INVALID_ARGUMENT : TLOD_SUCCESS;
   if (!frames) return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_scheduler_update_group: NULL frames");
-  for (uint32_t i = 0; i < count; i++) {
+  for (uint32_t i = 0; i < count; i++)
     if (!schedulers[i])
       return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_scheduler_update_group: scheduler %u is NULL",
                                i);
-    for (uint32_t j = 0; j < i; j++)
-      if (schedulers[j] == schedulers[i])
-        return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
-                                 "tlod_scheduler_update_group: scheduler '%s' is given twice (%u and %u)",
-                                 schedulers[i]->label, j, i);
-  }
+  uint32_t first = 0, second = 0, marked = mark_members(schedulers, count, &first, &second);
+  for (uint32_t i = 0; i < marked; i++)
+    schedulers[i]->group_slot = 0;
+  if (marked < count)
+    return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "tlod_scheduler_update_group: scheduler '%s' is given twice (%u and %u)",
+                             schedulers[second]->label, first, second);
   return TLOD_SUCCESS;
 }
 

@@ -75,6 +75,9 @@ struct tlod_scheduler {
   float eps_scale;   /* frame-time control */
   float smoothed_ms; /* EMA of measured frame times */
   _tlod_frame group; /* view 0 between the stages of a group update */
+  /* Index + 1 of this scheduler in the group being validated, 0 outside
+   * validation: finds a scheduler given twice in one pass, not count^2. */
+  uint32_t group_slot;
 };
 
 /* scheduler_metric.c */

@@ -225,6 +225,11 @@ TEST(test_group_checks) {
   tlod_scheduler* twice[2] = {g[1], g[1]};
   CHECK(tlod_scheduler_update_group(twice, frames, 2, 100) == TLOD_ERROR_INVALID_ARGUMENT);
   CHECK_MSG(strstr(tlod_context_last_error(fx.ctx), "twice"), "%s", tlod_context_last_error(fx.ctx));
+  tlod_scheduler* pair[2] = {g[2], g[1]}; /* the refusal left no mark behind: the same members are fine now */
+  tlod_frame_desc pair_frames[2] = {frames[2], frames[1]};
+  CHECK_MSG(tlod_scheduler_update_group(pair, pair_frames, 2, 100) == TLOD_SUCCESS, "%s",
+            tlod_context_last_error(fx.ctx));
+  CHECK(tlod_scheduler_update_group(pair, pair_frames, 2, 100) == TLOD_SUCCESS);
   tlod_scheduler* holed[2] = {g[0], NULL};
   CHECK(tlod_scheduler_update_group(holed, frames, 2, 100) == TLOD_ERROR_INVALID_ARGUMENT);
   tlod_frame_desc bad[2] = {frames[0], {.views = NULL}};
