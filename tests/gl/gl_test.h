@@ -33,19 +33,7 @@
 #include "test_lod.h"
 #include "tlod_platform.h"
 
-/* Like TEST_END, but a failed run exits with _Exit: the early returns of a
- * failed check leave objects behind, and LeakSanitizer's report of them
- * would only bury the message that matters. */
-#define GL_TEST_END()                                                                                                  \
-  do {                                                                                                                 \
-    if (_test_failed) {                                                                                                \
-      printf("%d passed, %d failed\n", _test_passed, _test_failed);                                                    \
-      fflush(stdout);                                                                                                  \
-      fflush(stderr);                                                                                                  \
-      _Exit(1);                                                                                                        \
-    }                                                                                                                  \
-    TEST_END();                                                                                                        \
-  } while (0)
+#define GL_TEST_END() DEVICE_TEST_END()
 
 /* ------------------------------------------------------------------------ */
 /* Context                                                                  */

@@ -19,8 +19,23 @@
 #include "tesslod/backend.h"
 #include "tesslod/cpu.h"
 #include "tesslod/lod.h"
+#include "test.h"
 #include "test_camera.h"
 #include "test_lod.h"
+
+/* Like TEST_END, but a failed run exits with _Exit: the early returns of a
+ * failed check leave objects behind, and LeakSanitizer's report of them
+ * would only bury the message that matters. */
+#define DEVICE_TEST_END()                                                                                              \
+  do {                                                                                                                 \
+    if (_test_failed) {                                                                                                \
+      printf("%d passed, %d failed\n", _test_passed, _test_failed);                                                    \
+      fflush(stdout);                                                                                                  \
+      fflush(stderr);                                                                                                  \
+      _Exit(1);                                                                                                        \
+    }                                                                                                                  \
+    TEST_END();                                                                                                        \
+  } while (0)
 
 /* ------------------------------------------------------------------------ */
 /* Cameras (test_camera.h: double precision, stored as float)               */
@@ -207,5 +222,59 @@ static inline void one_draw_make(one_draw* o, const tlod_device_surface* ds, con
 #define BG_B 255
 
 static inline bool is_background(const uint8_t* px) { return px[0] == BG_R && px[1] == BG_G && px[2] == BG_B; }
+
+/* Coverage and colour differences of two images of one scene, where image b
+ * is the reference: a pixel covered in only one image is "on the band" when
+ * it, or one of its 8 neighbours, has the other coverage in b (a silhouette
+ * moved by less than a pixel); colour is compared where both are covered. */
+typedef struct compare_result {
+  uint32_t covered_a, covered_b, covered_either, covered_both;
+  uint32_t coverage_diff; /* covered in exactly one image */
+  uint32_t off_band;      /* ... of which not on the reference's boundary band */
+  int off_band_x, off_band_y;
+  uint32_t colour_ok; /* both covered, max channel diff <= the tolerance */
+  uint32_t max_colour_diff;
+  double mean_colour_diff;
+} compare_result;
+
+/* a, b: RGBA, same layout (rows in any order, the same for both). */
+static inline compare_result compare_images(const uint8_t* a, const uint8_t* b, uint32_t w, uint32_t h,
+                                            uint32_t colour_tolerance) {
+  compare_result r;
+  memset(&r, 0, sizeof r);
+  r.off_band_x = r.off_band_y = -1;
+  double colour_sum = 0;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      size_t i = (size_t)y * w + x;
+      bool ca = !is_background(a + 4 * i), cb = !is_background(b + 4 * i);
+      r.covered_a += ca;
+      r.covered_b += cb;
+      r.covered_either += ca || cb;
+      if (ca && cb) {
+        r.covered_both++;
+        uint32_t d = 0;
+        for (int c = 0; c < 3; ++c) {
+          int dc = abs((int)a[4 * i + c] - (int)b[4 * i + c]);
+          if ((uint32_t)dc > d) d = (uint32_t)dc;
+        }
+        r.colour_ok += d <= colour_tolerance;
+        if (d > r.max_colour_diff) r.max_colour_diff = d;
+        colour_sum += d;
+      }
+      if (ca == cb) continue;
+      r.coverage_diff++;
+      bool band = false;
+      for (int dy = -1; dy <= 1 && !band; ++dy)
+        for (int dx = -1; dx <= 1 && !band; ++dx) {
+          int nx = (int)x + dx, ny = (int)y + dy;
+          if (nx < 0 || ny < 0 || nx >= (int)w || ny >= (int)h) continue;
+          band = !is_background(b + 4 * ((size_t)ny * w + (size_t)nx)) != cb;
+        }
+      if (!band && r.off_band++ == 0) r.off_band_x = (int)x, r.off_band_y = (int)y;
+    }
+  r.mean_colour_diff = r.covered_both ? colour_sum / r.covered_both : 0;
+  return r;
+}
 
 #endif
