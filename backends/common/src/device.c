@@ -52,10 +52,16 @@ static const backend_entry backends[] = {
     {"gl", &_tlod_gl_device_vtbl},
 #endif
     {"null", &_tlod_null_device_vtbl},
+#if TLOD_HAS_VULKAN
+    {"vulkan", &_tlod_vk_device_vtbl},
+#endif
 };
 enum { BACKEND_COUNT = sizeof(backends) / sizeof(backends[0]) };
 
-const char* tlod_backend_names(void) { return TLOD_HAS_GL ? "cpu,gl,null" : "cpu,null"; }
+const char* tlod_backend_names(void) {
+  return TLOD_HAS_GL ? (TLOD_HAS_VULKAN ? "cpu,gl,null,vulkan" : "cpu,gl,null")
+                     : (TLOD_HAS_VULKAN ? "cpu,null,vulkan" : "cpu,null");
+}
 
 tlod_result tlod_device_create(tlod_context* ctx, const tlod_device_desc* desc, tlod_device** out) {
   if (out) *out = NULL;
@@ -73,10 +79,12 @@ tlod_result tlod_device_create(tlod_context* ctx, const tlod_device_desc* desc, 
     return tlod_context_fail(ctx, TLOD_ERROR_UNSUPPORTED,
                              "tlod_device_create: no backend '%s' in this build (it has: %s)", name,
                              tlod_backend_names());
-  if (desc->gl.surface_types & ~((1u << TLOD_SURFACE_NUM) - 1u))
+  if ((desc->gl.surface_types | desc->vk.surface_types) & ~((1u << TLOD_SURFACE_NUM) - 1u))
     return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
-                             "tlod_device_create: desc.gl.surface_types 0x%x has bits past TLOD_SURFACE_NUM",
-                             desc->gl.surface_types);
+                             "tlod_device_create: desc.%s.surface_types 0x%x has bits past TLOD_SURFACE_NUM",
+                             desc->gl.surface_types & ~((1u << TLOD_SURFACE_NUM) - 1u) ? "gl" : "vk",
+                             desc->gl.surface_types & ~((1u << TLOD_SURFACE_NUM) - 1u) ? desc->gl.surface_types
+                                                                                       : desc->vk.surface_types);
   tlod_device* dev = tlod_context_calloc(ctx, 1, sizeof(*dev));
   if (!dev) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_device_create: out of memory");
   dev->ctx = ctx;

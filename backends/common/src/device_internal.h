@@ -45,6 +45,9 @@ extern const _tlod_device_vtbl _tlod_null_device_vtbl;
 #if TLOD_HAS_GL
 extern const _tlod_device_vtbl _tlod_gl_device_vtbl;
 #endif
+#if TLOD_HAS_VULKAN
+extern const _tlod_device_vtbl _tlod_vk_device_vtbl;
+#endif
 
 const struct tlod_cpu_mesh* _tlod_cpu_device_mesh(const void* state, uint32_t item);
 

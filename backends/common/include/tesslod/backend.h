@@ -16,6 +16,9 @@
  *     "cpu"  the reference: realises each item's draw list as a mesh
  *            (tlod_cpu_device_mesh() below), draws no image;
  *     "gl"   OpenGL 4.5 core (when built with TLOD_BACKEND_GL; tesslod/gl.h);
+ *     "vulkan" Vulkan 1.3 on the engine's device, recording into the
+ *            engine's command buffer (when built with TLOD_BACKEND_VULKAN;
+ *            tesslod/vulkan.h);
  *     "null" draws nothing, validates every call exactly like the others and
  *            counts them (tests of code that drives a device, without a GPU).
  *
@@ -136,17 +139,46 @@ typedef struct tlod_device_gl_desc {
   const char* fragment_hook;
 } tlod_device_gl_desc;
 
+/* Options of the "vulkan" device (ignored by the others); tesslod/vulkan.h
+ * lists what it creates, records and requires. Handles are the engine's and
+ * are never destroyed by tesslod. Dispatchable handles as pointers,
+ * non-dispatchable ones as uint64_t (VkRenderPass). */
+typedef struct tlod_device_vk_desc {
+  void* instance;        /* VkInstance; required */
+  void* physical_device; /* VkPhysicalDevice; required */
+  void* device;          /* VkDevice; required */
+  void* queue;           /* VkQueue of queue_family; required. Used only inside tlod_device_create,
+                            tlod_device_create_texture (one upload submit + fence wait each, never
+                            in a frame); the engine must not use the queue concurrently with them */
+  uint32_t queue_family;
+  uint32_t frames_in_flight;    /* 0 == 2; 1..8: draws name a frame index below this */
+  uint64_t render_pass;         /* VkRenderPass; 0 == dynamic rendering (Vulkan 1.3 dynamicRendering
+                                   enabled) into colour_format + depth_format */
+  uint32_t subpass;             /* with render_pass */
+  uint32_t color_format;        /* VkFormat of colour attachment 0; required (also with render_pass:
+                                   pipelines are made for it) */
+  uint32_t depth_format;        /* VkFormat of the depth attachment; required (the device depth-tests) */
+  uint32_t samples;             /* rasterization samples of the attachments; 0 == 1 */
+  bool host_query_reset;        /* the device was created with hostQueryReset (Vulkan 1.2 feature):
+                                   gpu_ms and vk.primitives are measured; false: gpu_ms stays < 0 */
+  const char* shader_cache_dir; /* SPIR-V cache folder (created if missing); NULL == no disk cache */
+  bool hardware_tessellation;   /* as tlod_device_gl_desc (needs the tessellationShader feature) */
+  uint32_t surface_types;       /* as tlod_device_gl_desc */
+  const char* fragment_hook;    /* as tlod_device_gl_desc: GLSL 450 defining vec4 tlod_shade(tlod_fragment f) */
+} tlod_device_vk_desc;
+
 typedef struct tlod_device_desc {
   const char* backend;           /* a name of tlod_backend_names(); NULL == "cpu" */
   const tlod_patterns* patterns; /* required; must outlive the device. Draw lists must come
                                     from schedulers on these patterns (or on ones with the same
                                     or a lower max level). */
   tlod_device_gl_desc gl;
+  tlod_device_vk_desc vk;
   const char* label; /* names the device in messages; default: the backend name */
 } tlod_device_desc;
 
 /* The backends in this build, comma separated, in a fixed order
- * ("cpu,gl,null"). Asking tlod_device_create() for any other name is
+ * ("cpu,gl,null,vulkan"; gl and vulkan only when built). Asking tlod_device_create() for any other name is
  * TLOD_ERROR_UNSUPPORTED with a message listing these. */
 TLOD_API const char* tlod_backend_names(void);
 /* Creates a device: shared state made once (see WHAT IT DOES). */
@@ -264,6 +296,15 @@ typedef struct tlod_draw_item {
   bool cull_back_faces;
 } tlod_draw_item;
 
+typedef struct tlod_draw_vk_desc {
+  void* command_buffer; /* VkCommandBuffer of the device, recording, inside the engine's rendering
+                           (a render pass instance of desc.vk.render_pass / subpass, or dynamic
+                           rendering with the device's formats); required for "vulkan" */
+  uint32_t frame_index; /* < frames_in_flight: the upload ring this draw writes. The engine
+                           guarantees the GPU has finished the last submitted draw with this index
+                           (it waited on that frame's fence) */
+} tlod_draw_vk_desc;
+
 typedef struct tlod_draw_desc {
   const tlod_draw_item* items; /* required, item_count > 0; drawn in order */
   uint32_t item_count;
@@ -277,7 +318,9 @@ typedef struct tlod_draw_desc {
   float light_dir[3];
   tlod_debug_view debug;
   bool wireframe; /* overlay edges */
-  bool finish;    /* wait for the GPU and measure wall time (llvmpipe's timer queries miss most work) */
+  bool finish;    /* wait for the GPU and measure wall time (llvmpipe's timer queries miss most work);
+                     ignored by "vulkan" (it submits nothing: wall_ms == cpu_ms, the recording time) */
+  tlod_draw_vk_desc vk;
 } tlod_draw_desc;
 
 /* Draws every item for one view: first every item whose blend is not
@@ -295,7 +338,8 @@ typedef struct tlod_draw_desc {
  * has_alpha_cutoff) is not finite. */
 TLOD_API tlod_result tlod_device_draw(tlod_device* dev, const tlod_draw_desc* desc);
 /* Reads width x height RGBA8 pixels at (0, 0) of the bound read framebuffer,
- * bottom row first. Devices without an image ("cpu", "null"):
+ * bottom row first. Devices without an image ("cpu", "null") and "vulkan"
+ * (the image is the engine's; platform/ reads it back):
  * TLOD_ERROR_UNSUPPORTED. */
 TLOD_API tlod_result tlod_device_read_image(tlod_device* dev, uint32_t width, uint32_t height, uint8_t* rgba);
 
@@ -324,6 +368,21 @@ typedef struct tlod_device_gl_stats {
   uint32_t buffer_streams;  /* per-draw buffer uploads of the last draw (instances, strips, strip refs) */
 } tlod_device_gl_stats;
 
+/* "vulkan" only (zero elsewhere). */
+typedef struct tlod_device_vk_stats {
+  uint32_t shader_compiles;   /* since creation: stages compiled by glslang */
+  uint32_t shader_cache_hits; /* stages loaded from shader_cache_dir */
+  double shader_ms;           /* time in compiles + cache loads */
+  uint32_t pipelines;         /* pipelines created since creation */
+  double create_ms;
+  uint64_t primitives;      /* pipeline statistics clipping invocations of the draw gpu_draw names */
+  uint64_t upload_bytes;    /* bytes written into the frame's ring by the last draw */
+  uint64_t ring_bytes;      /* capacity of all rings */
+  uint32_t memory_blocks;   /* VkDeviceMemory allocations live */
+  uint64_t memory_bytes;    /* their bytes */
+  uint32_t descriptor_sets; /* allocated by the last draw */
+} tlod_device_vk_stats;
+
 typedef struct tlod_device_stats {
   /* The last draw. */
   double cpu_ms;      /* CPU time of the call (staging + commands) */
@@ -341,6 +400,7 @@ typedef struct tlod_device_stats {
   uint32_t textures_live;
   uint64_t textures_created, textures_destroyed, texture_bytes; /* bytes: width * height * 4 of those created */
   tlod_device_gl_stats gl;
+  tlod_device_vk_stats vk;
 } tlod_device_stats;
 
 /* Item k of the last draw. */
