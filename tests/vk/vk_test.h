@@ -32,8 +32,7 @@ static const float vk_test_clear[4] = {BG_R / 255.0f, BG_G / 255.0f, BG_B / 255.
 /* Headless Vulkan platform of w x h (validation: the Khronos layer with
  * synchronization validation, messages counted), or NULL with the reason
  * printed. */
-static inline tlod_platform* vk_test_platform(uint32_t w, uint32_t h, bool validation, char* error,
-                                              size_t error_size) {
+static inline tlod_platform* vk_test_platform(uint32_t w, uint32_t h, bool validation, char* error, size_t error_size) {
   tlod_platform* p = NULL;
   tlod_platform_desc d = {.width = w, .height = h, .api = TLOD_PLATFORM_VULKAN, .validation = validation};
   if (!tlod_platform_create(&d, &p, error, error_size)) {

@@ -24,6 +24,7 @@
  * reports leaked objects). Detector check: a platform whose layer sees one
  * deliberately invalid call (vkCreateBuffer with usage 0) counts it.
  */
+#define _POSIX_C_SOURCE 200809L /* dup, dup2, fileno */
 #include <unistd.h>
 #include <vulkan/vulkan.h>
 
