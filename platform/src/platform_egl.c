@@ -1,7 +1,7 @@
 /*
- * platform_egl.c -- headless OpenGL 4.5 core contexts through EGL, the
- * platform's framebuffer and read-back, and the public entry points that do
- * not depend on the mode (owned by platform/).
+ * platform_egl.c -- the GL part of platform/: headless OpenGL 4.5 core
+ * contexts through EGL (windows: platform_glfw.c), the framebuffer, clears,
+ * resizes and read-back behind the public entry points of platform.c.
  *
  * Based on the measured recipe of docs/platform.md section 1:
  * eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) (plain
@@ -18,23 +18,13 @@
 #include <GL/glext.h>
 #include <dlfcn.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "platform_internal.h"
 
 /* ------------------------------------------------------------------------ */
 /* Errors                                                                   */
 /* ------------------------------------------------------------------------ */
-
-void _tlod_platform_error(char* error, size_t error_size, const char* fmt, ...) {
-  if (!error || error_size == 0) return;
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(error, error_size, fmt, ap);
-  va_end(ap);
-}
 
 static const char* egl_error_name(EGLint e) {
   switch (e) {
@@ -326,8 +316,16 @@ static bool headless_framebuffer(tlod_platform* p, uint32_t requested_samples, c
   return true;
 }
 
+static void delete_framebuffers(tlod_platform* p) {
+  GLuint fbos[2] = {p->fbo, p->resolve_fbo}, rbs[3] = {p->color_rb, p->depth_rb, p->resolve_rb};
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(2, fbos);
+  glDeleteRenderbuffers(3, rbs);
+  p->fbo = p->resolve_fbo = p->color_rb = p->depth_rb = p->resolve_rb = 0;
+}
+
 /* ------------------------------------------------------------------------ */
-/* Public entry points                                                      */
+/* Entry points of the GL part (platform.c dispatches to them)              */
 /* ------------------------------------------------------------------------ */
 
 static void make_current(tlod_platform* p) {
@@ -350,104 +348,114 @@ static void keep_driver_loaded(void) {
     (void)dlopen(libs[i], RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
 }
 
-bool tlod_platform_create(const tlod_platform_desc* desc, tlod_platform** out, char* error, size_t error_size) {
-  if (error && error_size) error[0] = '\0';
+static bool headless_create(tlod_platform* p, const tlod_platform_desc* d, char* error, size_t error_size) {
+  if (!egl_create(p, error, error_size)) return false;
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major * 10 + minor < 45) {
+    _tlod_platform_error(error, error_size, "%s context is GL %d.%d, 4.5 is needed", p->kind, major, minor);
+    return false;
+  }
+  return headless_framebuffer(p, d->samples, error, error_size);
+}
+
+bool _tlod_platform_gl_create(tlod_platform* p, const tlod_platform_desc* d, char* error, size_t error_size) {
   keep_driver_loaded();
-  if (!out) {
-    _tlod_platform_error(error, error_size, "tlod_platform_create: out is NULL");
-    return false;
-  }
-  *out = NULL;
-  tlod_platform_desc d = desc ? *desc : (tlod_platform_desc){0};
-  if (d.width == 0) d.width = 640;
-  if (d.height == 0) d.height = 480;
-  if (d.width > 16384 || d.height > 16384) {
-    _tlod_platform_error(error, error_size, "tlod_platform_create: %ux%u is larger than 16384", d.width, d.height);
-    return false;
-  }
-  tlod_platform* p = calloc(1, sizeof *p);
-  if (!p) {
-    _tlod_platform_error(error, error_size, "tlod_platform_create: out of memory");
-    return false;
-  }
-  p->width = d.width;
-  p->height = d.height;
-  p->window = d.window;
-  bool ok;
-  if (d.window) {
-    ok = _tlod_platform_glfw_create(p, &d, error, error_size);
-  } else {
-    ok = egl_create(p, error, error_size);
-    if (ok) {
-      GLint major = 0, minor = 0;
-      glGetIntegerv(GL_MAJOR_VERSION, &major);
-      glGetIntegerv(GL_MINOR_VERSION, &minor);
-      if (major * 10 + minor < 45) {
-        _tlod_platform_error(error, error_size, "%s context is GL %d.%d, 4.5 is needed", p->kind, major, minor);
-        ok = false;
-      }
-    }
-    if (ok) ok = headless_framebuffer(p, d.samples, error, error_size);
-  }
-  if (!ok) {
-    tlod_platform_destroy(p);
+  if (d->window) {
+    if (!_tlod_platform_glfw_create(p, d, true, error, error_size)) return false;
+    GLint samples = 0;
+    glGetIntegerv(GL_SAMPLES, &samples);
+    p->samples = samples > 1 ? (uint32_t)samples : 0;
+  } else if (!headless_create(p, d, error, error_size)) {
     return false;
   }
   const char* renderer = (const char*)glGetString(GL_RENDERER);
   const char* version = (const char*)glGetString(GL_VERSION);
   snprintf(p->renderer, sizeof p->renderer, "%s", renderer ? renderer : "?");
   snprintf(p->version, sizeof p->version, "%s", version ? version : "?");
-  tlod_platform_bind(p);
-  *out = p;
+  _tlod_platform_gl_bind(p);
   return true;
 }
 
-void tlod_platform_destroy(tlod_platform* p) {
-  if (!p) return;
+void _tlod_platform_gl_destroy(tlod_platform* p) {
   if (p->window) {
     _tlod_platform_glfw_destroy(p);
   } else if (p->egl_context) {
     EGLDisplay dpy = (EGLDisplay)p->egl_display;
     make_current(p);
-    GLuint fbos[2] = {p->fbo, p->resolve_fbo}, rbs[3] = {p->color_rb, p->depth_rb, p->resolve_rb};
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteFramebuffers(2, fbos);
-    glDeleteRenderbuffers(3, rbs);
+    delete_framebuffers(p);
     eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(dpy, (EGLContext)p->egl_context);
     display_release(dpy);
     eglReleaseThread();
   }
-  free(p);
 }
 
-const char* tlod_platform_describe(const tlod_platform* p, char* buf, size_t size) {
-  if (!buf || size == 0) return buf;
-  if (!p) {
-    snprintf(buf, size, "no platform");
-    return buf;
-  }
-  snprintf(buf, size, "%s, GL_RENDERER %s, GL_VERSION %s, %ux%u, samples %u", p->kind, p->renderer, p->version,
-           p->width, p->height, p->samples);
-  return buf;
-}
-
-void tlod_platform_bind(tlod_platform* p) {
-  if (!p) return;
+void _tlod_platform_gl_bind(tlod_platform* p) {
   make_current(p);
   glBindFramebuffer(GL_FRAMEBUFFER, p->window ? 0 : p->fbo);
   glViewport(0, 0, (GLsizei)p->width, (GLsizei)p->height);
 }
 
-uint32_t tlod_platform_framebuffer(const tlod_platform* p) { return p && !p->window ? p->fbo : 0; }
-
-void tlod_platform_size(const tlod_platform* p, uint32_t* width, uint32_t* height) {
-  if (width) *width = p ? p->width : 0;
-  if (height) *height = p ? p->height : 0;
+/* The clear writes every pixel: colour, depth and stencil masks are opened
+ * for it and restored, the scissor test is off meanwhile. */
+void _tlod_platform_gl_clear(tlod_platform* p, const float rgba[4]) {
+  _tlod_platform_gl_bind(p);
+  GLboolean color_mask[4], depth_mask = GL_TRUE, scissor = glIsEnabled(GL_SCISSOR_TEST);
+  glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_SCISSOR_TEST);
+  glClearColor(rgba[0], rgba[1], rgba[2], rgba[3]);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);
+  glDepthMask(depth_mask);
+  if (scissor) glEnable(GL_SCISSOR_TEST);
 }
 
-bool tlod_platform_read_rgba(tlod_platform* p, uint8_t* rgba) {
-  if (!p || !rgba) return false;
+bool _tlod_platform_gl_resize(tlod_platform* p, uint32_t width, uint32_t height, char* error, size_t error_size) {
+  if (p->window) {
+    _tlod_platform_glfw_resize(p, width, height);
+    _tlod_platform_gl_bind(p);
+    return true;
+  }
+  make_current(p);
+  delete_framebuffers(p);
+  uint32_t old_w = p->width, old_h = p->height, samples = p->samples;
+  p->width = width;
+  p->height = height;
+  if (!headless_framebuffer(p, samples, error, error_size)) {
+    /* Keep a usable platform: the old size again (it worked before). */
+    delete_framebuffers(p);
+    p->width = old_w;
+    p->height = old_h;
+    (void)headless_framebuffer(p, samples, NULL, 0);
+    _tlod_platform_gl_bind(p);
+    return false;
+  }
+  _tlod_platform_gl_bind(p);
+  return true;
+}
+
+/* GL rows are bottom first: swap them in place. */
+static void flip_rows(uint8_t* rgba, GLsizei w, GLsizei h) {
+  size_t stride = (size_t)w * 4;
+  uint8_t tmp[4096];
+  for (GLsizei y = 0; y < h / 2; ++y) {
+    uint8_t *a = rgba + (size_t)y * stride, *b = rgba + (size_t)(h - 1 - y) * stride;
+    for (size_t off = 0; off < stride; off += sizeof tmp) {
+      size_t n = stride - off < sizeof tmp ? stride - off : sizeof tmp;
+      memcpy(tmp, a + off, n);
+      memcpy(a + off, b + off, n);
+      memcpy(b + off, tmp, n);
+    }
+  }
+}
+
+bool _tlod_platform_gl_read_rgba(tlod_platform* p, uint8_t* rgba) {
   GLint read_fbo = 0, draw_fbo = 0, pack_buffer = 0, alignment = 4, row_length = 0, skip_rows = 0, skip_pixels = 0;
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo);
@@ -484,18 +492,7 @@ bool tlod_platform_read_rgba(tlod_platform* p, uint8_t* rgba) {
     glPixelStorei(GL_PACK_SKIP_ROWS, 0);
     glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
     glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
-    /* GL rows are bottom first. */
-    size_t stride = (size_t)w * 4;
-    uint8_t tmp[4096];
-    for (GLsizei y = 0; y < h / 2; ++y) {
-      uint8_t *a = rgba + (size_t)y * stride, *b = rgba + (size_t)(h - 1 - y) * stride;
-      for (size_t off = 0; off < stride; off += sizeof tmp) {
-        size_t n = stride - off < sizeof tmp ? stride - off : sizeof tmp;
-        memcpy(tmp, a + off, n);
-        memcpy(a + off, b + off, n);
-        memcpy(b + off, tmp, n);
-      }
-    }
+    flip_rows(rgba, w, h);
     glBindBuffer(GL_PIXEL_PACK_BUFFER, (GLuint)pack_buffer);
     glPixelStorei(GL_PACK_ALIGNMENT, alignment);
     glPixelStorei(GL_PACK_ROW_LENGTH, row_length);
@@ -505,16 +502,4 @@ bool tlod_platform_read_rgba(tlod_platform* p, uint8_t* rgba) {
   if (p->window) glReadBuffer((GLenum)read_buffer);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)read_fbo);
   return ok;
-}
-
-bool tlod_platform_should_close(tlod_platform* p) { return p && p->window && _tlod_platform_glfw_should_close(p); }
-
-void tlod_platform_swap(tlod_platform* p) {
-  if (p && p->window) _tlod_platform_glfw_swap(p);
-}
-
-double tlod_platform_time_ms(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "device_stage.h"
 #include "gl_internal.h"
 
 enum { QUERY_RING = 4, TYPE_COUNT = TLOD_SURFACE_NUM };
@@ -83,27 +84,11 @@ typedef struct gl_device {
   GLuint prim_queries[QUERY_RING];
   uint64_t query_draw[QUERY_RING]; /* the draw (stats numbering) each query measured */
   uint64_t frame;
-  /* Staging, grown as needed, for all items of a draw. */
-  tlod_gl_instance* instances;
-  uint32_t instance_cap;
-  tlod_gl_strip* strips;
-  uint32_t strip_cap;
-  uint32_t (*refs)[2];
-  uint32_t ref_cap;
-  uint32_t* instance_of; /* patch -> instance of the item being staged */
-  uint32_t instance_of_cap;
+  _tlod_stage st;             /* staging of every item of a draw (device_stage.h) */
   tlod_patch_record* records; /* surface upload */
   uint32_t record_cap;
   float (*attributes)[4]; /* surface upload */
   uint32_t attribute_cap;
-  uint32_t* order; /* draw order of the items: non-BLEND in item order, then BLEND farthest first */
-  float* order_depth;
-  uint32_t order_cap, order_depth_cap;
-  /* Per item of the draw: where its data starts in the staging arrays. */
-  struct gl_item_range {
-    uint32_t instance_first, ref_first, ref_count;
-  } * ranges;
-  uint32_t range_cap;
 } gl_device;
 
 typedef struct gl_surface {
@@ -146,10 +131,9 @@ static void gl_destroy(void* state) {
     }
   }
   tlod_context_free(d->ctx, d->fragment_hook);
-  void* arrays[] = {d->instances, d->strips, d->refs,        d->instance_of, d->records,
-                    d->ranges,    d->order,  d->order_depth, d->attributes};
-  for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
-    tlod_context_free(d->ctx, arrays[i]);
+  _tlod_stage_free(d->ctx, &d->st);
+  tlod_context_free(d->ctx, d->records);
+  tlod_context_free(d->ctx, d->attributes);
   tlod_context_free(d->ctx, d);
 }
 
@@ -232,50 +216,20 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type, int vari
 }
 
 static tlod_result upload_patterns(gl_device* d) {
-  const tlod_patterns* p = d->patterns;
-  uint32_t counts[2], total = 0, indices = 0;
-  const tlod_pattern_vertex* pv[2];
-  for (int sh = 0; sh < 2; sh++) {
-    pv[sh] = tlod_patterns_vertices(p, (tlod_pattern_shape)sh, &counts[sh]);
-    d->shape_base[sh] = total;
-    total += counts[sh];
-    for (uint32_t l = 0; l <= d->lmax; l++) {
-      tlod_patterns_indices(p, (tlod_pattern_shape)sh, l, &d->index_count[sh][l]);
-      d->index_first[sh][l] = indices;
-      indices += d->index_count[sh][l];
-    }
-  }
-  tlod_gl_pattern_vertex* verts = tlod_context_calloc(d->ctx, total, sizeof(tlod_gl_pattern_vertex));
-  uint32_t* idx = tlod_context_alloc(d->ctx, sizeof(uint32_t) * indices);
-  if (!verts || !idx) {
-    tlod_context_free(d->ctx, verts);
-    tlod_context_free(d->ctx, idx);
+  _tlod_pattern_data pd;
+  if (!_tlod_pattern_data_make(d->ctx, d->patterns, &pd)) {
+    _tlod_pattern_data_free(d->ctx, &pd);
     return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory for patterns");
   }
-  for (int sh = 0; sh < 2; sh++) {
-    uint32_t corners = sh == TLOD_PATTERN_QUAD ? 4u : 3u;
-    for (uint32_t x = 0; x < counts[sh]; x++) {
-      const tlod_pattern_vertex* v = &pv[sh][x];
-      tlod_gl_pattern_vertex* o = &verts[d->shape_base[sh] + x];
-      o->uv[0] = v->u, o->uv[1] = v->v;
-      o->parent0 = v->parent[0], o->parent1 = v->parent[1];
-      uint32_t param = 0, kind = tlod_grid_point_kind(corners, d->lmax, v->i, v->j, &param);
-      o->code = kind | (uint32_t)v->level << TLOD_CODE_LEVEL_SHIFT;
-      o->param = param;
-    }
-    for (uint32_t l = 0; l <= d->lmax; l++) {
-      uint32_t count;
-      const uint32_t* src = tlod_patterns_indices(p, (tlod_pattern_shape)sh, l, &count);
-      memcpy(idx + d->index_first[sh][l], src, sizeof(uint32_t) * count);
-    }
-  }
-  size_t vbytes = sizeof(tlod_gl_pattern_vertex) * total, ibytes = sizeof(uint32_t) * indices;
-  glNamedBufferData(d->buf_pattern, (GLsizeiptr)vbytes, verts, GL_STATIC_DRAW);
-  glNamedBufferData(d->buf_indices, (GLsizeiptr)ibytes, idx, GL_STATIC_DRAW);
+  memcpy(d->index_first, pd.index_first, sizeof(d->index_first));
+  memcpy(d->index_count, pd.index_count, sizeof(d->index_count));
+  memcpy(d->shape_base, pd.shape_base, sizeof(d->shape_base));
+  size_t vbytes = sizeof(tlod_gl_pattern_vertex) * pd.vertex_count, ibytes = sizeof(uint32_t) * pd.index_total;
+  glNamedBufferData(d->buf_pattern, (GLsizeiptr)vbytes, pd.vertices, GL_STATIC_DRAW);
+  glNamedBufferData(d->buf_indices, (GLsizeiptr)ibytes, pd.indices, GL_STATIC_DRAW);
   d->stats->gl.pattern_uploads++;
   d->stats->gl.pattern_bytes += vbytes + ibytes;
-  tlod_context_free(d->ctx, verts);
-  tlod_context_free(d->ctx, idx);
+  _tlod_pattern_data_free(d->ctx, &pd);
   return TLOD_SUCCESS;
 }
 
@@ -290,6 +244,7 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   d->patterns = desc->patterns;
   d->lmax = tlod_patterns_max_level(desc->patterns);
   d->hardware = desc->gl.hardware_tessellation;
+  d->st.hardware = d->hardware;
   if (desc->gl.fragment_hook) {
     size_t n = strlen(desc->gl.fragment_hook) + 1;
     d->fragment_hook = tlod_context_alloc(ctx, n);
@@ -331,22 +286,6 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
 
 /* ---- surfaces -------------------------------------------------------------- */
 
-/* The centre of the box around the patches' bounding spheres: where a
- * BLEND item is, for the back-to-front order. */
-static void surface_center(const tlod_surface* s, float out[3]) {
-  tlod_surface_view v = tlod_surface_query_view(s);
-  float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  for (uint32_t p = 0; p < v.patch_count; p++) {
-    for (int k = 0; k < 3; k++) {
-      float a = v.patches[p].center[k] - v.patches[p].radius, b = v.patches[p].center[k] + v.patches[p].radius;
-      lo[k] = p == 0 || a < lo[k] ? a : lo[k];
-      hi[k] = p == 0 || b > hi[k] ? b : hi[k];
-    }
-  }
-  for (int k = 0; k < 3; k++)
-    out[k] = 0.5f * (lo[k] + hi[k]);
-}
-
 /* The mesh attributes per patch and corner (tlod_mesh_patch_attributes), the
  * layout of TLOD_BINDING_ATTRIBUTES; one vec4 of zeros without any. */
 static tlod_result upload_attributes(gl_device* d, gl_surface* gs, const tlod_surface* s) {
@@ -378,7 +317,7 @@ static tlod_result upload_surface(gl_device* d, gl_surface* gs, const tlod_surfa
   if (!n) memset(d->records, 0, sizeof(tlod_patch_record));
   glNamedBufferData(gs->buf_patches, (GLsizeiptr)bytes, d->records, GL_STATIC_DRAW);
   d->stats->gl.patch_bytes += bytes;
-  surface_center(s, gs->center);
+  _tlod_surface_center(s, gs->center);
   r = upload_attributes(d, gs, s);
   if (r != TLOD_SUCCESS) return r;
   d->stats->gl.surface_upload_ms += tlod_now_ms() - t0;
@@ -426,88 +365,17 @@ static void gl_destroy_surface(void* state, void* surface_state) {
 
 /* ---- staging ----------------------------------------------------------------- */
 
-/* Hardware path: an edge is tessellated at the finer of its two sides'
- * levels, so both sides generate the same points. */
-static uint32_t edge_levels(const tlod_mesh_view* m, const tlod_draw_list* dl, const tlod_draw_instance* in) {
-  uint32_t packed = 0;
-  for (uint32_t e = 0; e < m->face_corners[in->patch]; e++) {
-    uint32_t l = in->level, g = m->links[in->patch][e].face;
-    if (g != UINT32_MAX && dl->levels[g] > (int8_t)l) l = (uint32_t)dl->levels[g];
-    packed |= l << (8 * e);
-  }
-  return packed;
-}
-
-static uint32_t strip_refs(const gl_device* d, const tlod_draw_list* dl) {
-  uint32_t refs = 0;
-  for (uint32_t k = 0; k < dl->strip_count; k++) {
-    uint32_t count;
-    tlod_patterns_connection(d->patterns, dl->strips[k].level_a, dl->strips[k].level_b, &count);
-    refs += 3 * count;
-  }
-  return refs;
-}
-
-/* Every item's instances, strips and strip references into one array each
- * (one upload per array per draw); item k's start in ranges[k]. */
+/* Every item's instances, strips and strip references (device_stage.h),
+ * then one upload per array. */
 static tlod_result stage(gl_device* d, const tlod_draw_desc* desc, const _tlod_draw_ref* items,
                          tlod_draw_item_stats* item_stats) {
-  uint32_t instances = 0, strips = 0, refs = 0, patches = 0;
-  for (uint32_t k = 0; k < desc->item_count; k++) {
-    const tlod_draw_list* dl = items[k].item->draw_list;
-    instances += dl->instance_count;
-    strips += dl->strip_count;
-    refs += strip_refs(d, dl);
-    patches = dl->patch_count > patches ? dl->patch_count : patches;
-  }
-  if (!_tlod_device_grow(d->ctx, (void**)&d->instances, &d->instance_cap, instances + 1, sizeof(tlod_gl_instance)) ||
-      !_tlod_device_grow(d->ctx, (void**)&d->strips, &d->strip_cap, strips + 1, sizeof(tlod_gl_strip)) ||
-      !_tlod_device_grow(d->ctx, (void**)&d->refs, &d->ref_cap, refs + 1, sizeof(uint32_t[2])) ||
-      !_tlod_device_grow(d->ctx, (void**)&d->instance_of, &d->instance_of_cap, patches + 1, sizeof(uint32_t)) ||
-      !_tlod_device_grow(d->ctx, (void**)&d->ranges, &d->range_cap, desc->item_count, sizeof(*d->ranges)))
-    return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory staging a draw");
-  uint32_t i0 = 0, s0 = 0, r = 0;
-  for (uint32_t k = 0; k < desc->item_count; k++) {
-    double t0 = tlod_now_ms();
-    const tlod_draw_list* dl = items[k].item->draw_list;
-    tlod_mesh_view m = tlod_mesh_query_view(tlod_surface_mesh(items[k].surface));
-    d->ranges[k].instance_first = i0;
-    d->ranges[k].ref_first = r;
-    for (uint32_t j = 0; j < dl->instance_count; j++) {
-      const tlod_draw_instance* in = &dl->instances[j];
-      d->instances[i0 + j] =
-          (tlod_gl_instance){.patch = in->patch,
-                             .level = in->level,
-                             .edge_levels = d->hardware ? edge_levels(&m, dl, in) : 0u,
-                             .morph = {in->morph, in->edge_morph[0], in->edge_morph[1], in->edge_morph[2]},
-                             .morph_e3 = {in->edge_morph[3], 0, 0, 0}};
-      if (in->patch < dl->patch_count) d->instance_of[in->patch] = j;
-    }
-    for (uint32_t j = 0; j < dl->strip_count; j++) {
-      const tlod_draw_strip* st = &dl->strips[j];
-      /* Each side blends its edge points as its own patch does. */
-      float ma = dl->instances[d->instance_of[st->patch_a]].edge_morph[st->edge_a];
-      float mb = dl->instances[d->instance_of[st->patch_b]].edge_morph[st->edge_b];
-      d->strips[s0 + j] = (tlod_gl_strip){st->patch_a,
-                                          st->patch_b,
-                                          st->edge_a | (uint32_t)st->edge_b << 8,
-                                          st->level_a | (uint32_t)st->level_b << 8,
-                                          {ma, mb, 0.0f, 0.0f}};
-      uint32_t count;
-      const uint32_t* tris = tlod_patterns_connection(d->patterns, st->level_a, st->level_b, &count);
-      for (uint32_t t = 0; t < 3 * count; t++)
-        d->refs[r][0] = s0 + j, d->refs[r++][1] = tris[t];
-    }
-    d->ranges[k].ref_count = r - d->ranges[k].ref_first;
-    i0 += dl->instance_count;
-    s0 += dl->strip_count;
-    item_stats[k].cpu_ms = tlod_now_ms() - t0;
-  }
+  tlod_result r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "gl device", desc, items, item_stats);
+  if (r != TLOD_SUCCESS) return r;
   /* Orphans each buffer and fills it: the driver never waits for a draw in flight. */
   const GLuint bufs[3] = {d->buf_instances, d->buf_strips, d->buf_refs};
-  const void* data[3] = {d->instances, d->strips, d->refs};
-  const size_t bytes[3] = {sizeof(tlod_gl_instance) * instances, sizeof(tlod_gl_strip) * strips,
-                           sizeof(uint32_t[2]) * r};
+  const void* data[3] = {d->st.instances, d->st.strips, d->st.refs};
+  const size_t bytes[3] = {sizeof(tlod_gl_instance) * d->st.instance_count, sizeof(tlod_gl_strip) * d->st.strip_count,
+                           sizeof(uint32_t[2]) * d->st.ref_count};
   for (int b = 0; b < 3; b++) {
     glNamedBufferData(bufs[b], (GLsizeiptr)(bytes[b] ? bytes[b] : 16), NULL, GL_STREAM_DRAW);
     if (bytes[b]) glNamedBufferSubData(bufs[b], 0, (GLsizeiptr)bytes[b], data[b]);
@@ -527,22 +395,15 @@ static int programs_of(const gl_device* d, const gl_programs* ps, const gl_progr
 
 /* The view's uniforms, on every program the device linked. */
 static void set_view_uniforms(gl_device* d, const tlod_draw_desc* fr) {
-  float light[3] = {fr->light_dir[0], fr->light_dir[1], fr->light_dir[2]};
-  if (light[0] == 0.0f && light[1] == 0.0f && light[2] == 0.0f) light[0] = 0.3f, light[1] = 0.8f, light[2] = 0.5f;
-  float len = sqrtf(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
-  const float* v = fr->view;
-  float eye[3], fwd[3];
-  for (int i = 0; i < 3; i++) {
-    eye[i] = -(v[i * 4 + 0] * v[12] + v[i * 4 + 1] * v[13] + v[i * 4 + 2] * v[14]);
-    fwd[i] = -v[i * 4 + 2];
-  }
+  float light[3], eye[3], fwd[3];
+  _tlod_view_vectors(fr, light, eye, fwd);
   for (int t = 0; t < VARIANT_COUNT * TYPE_COUNT; t++) {
     gl_programs* ps = &d->programs[t / VARIANT_COUNT][t % VARIANT_COUNT];
     if (!ps->linked) continue;
     const gl_program* progs[4];
     for (int k = 0, n = programs_of(d, ps, progs); k < n; k++) {
       const gl_program* p = progs[k];
-      glProgramUniform3f(p->id, p->loc[U_LIGHT_DIR], light[0] / len, light[1] / len, light[2] / len);
+      glProgramUniform3fv(p->id, p->loc[U_LIGHT_DIR], 1, light);
       glProgramUniform1ui(p->id, p->loc[U_DEBUG], (uint32_t)fr->debug);
       glProgramUniform3fv(p->id, p->loc[U_EYE], 1, eye);
       glProgramUniform3fv(p->id, p->loc[U_FORWARD], 1, fwd);
@@ -597,7 +458,7 @@ static void set_debug(const gl_device* d, const gl_programs* ps, uint32_t debug)
 
 /* One instanced draw per refinement pattern, then the item's strips in one draw. */
 static uint32_t issue_draws(const gl_device* d, const gl_programs* ps, const tlod_draw_list* dl,
-                            const struct gl_item_range* range, uint64_t* vertices) {
+                            const _tlod_stage_range* range, uint64_t* vertices) {
   uint32_t calls = 0;
   const gl_program* p = &ps->pattern;
   glUseProgram(p->id);
@@ -623,17 +484,10 @@ static uint32_t issue_draws(const gl_device* d, const gl_programs* ps, const tlo
   return calls;
 }
 
-/* Tessellated vertices of a patch whose largest level is l (docs/platform.md section 1.2). */
-static uint32_t tess_vertices(uint32_t corners, uint32_t l) {
-  uint32_t n = 1u << l;
-  if (corners == 4) return (n + 1) * (n + 1);
-  return n == 1 ? 3u : 3u * n * n / 4u + 3u * n / 2u + 1u;
-}
-
 /* Hardware path: per bucket, draws of whole patches kept under 65,536
- * tessellated vertices each (Mesa drops what lies past that, silently). */
+ * tessellated vertices each (_tlod_tess_batch). */
 static uint32_t issue_tess_draws(const gl_device* d, const gl_programs* ps, const tlod_draw_list* dl,
-                                 const struct gl_item_range* range, uint64_t* vertices) {
+                                 const _tlod_stage_range* range, uint64_t* vertices) {
   uint32_t calls = 0;
   for (uint32_t k = 0; k < dl->bucket_count; k++) {
     const tlod_draw_bucket* bk = &dl->buckets[k];
@@ -643,28 +497,12 @@ static uint32_t issue_tess_draws(const gl_device* d, const gl_programs* ps, cons
     glBindVertexArray(d->vao_pattern);
     glPatchParameteri(GL_PATCH_VERTICES, (GLint)corners);
     glProgramUniform1ui(p->id, p->loc[U_CORNERS], corners);
-    uint32_t start = range->instance_first + bk->first, end = start + bk->count, batch_vertices = 0;
-    for (uint32_t i = start; i <= end; i++) {
-      uint32_t v = 0;
-      if (i < end) {
-        uint32_t l = d->instances[i].level;
-        for (uint32_t e = 0; e < corners; e++) {
-          uint32_t le = (d->instances[i].edge_levels >> (8 * e)) & 255u;
-          l = le > l ? le : l;
-        }
-        v = tess_vertices(corners, l);
-      }
-      if (i == end || batch_vertices + v > 65535u) {
-        if (i > start) {
-          glProgramUniform1ui(p->id, p->loc[U_FIRST_INSTANCE], start);
-          glDrawArrays(GL_PATCHES, 0, (GLsizei)((i - start) * corners));
-          calls++;
-        }
-        start = i;
-        batch_vertices = 0;
-      }
-      batch_vertices += v;
-      *vertices += v;
+    uint32_t end = range->instance_first + bk->first + bk->count;
+    for (uint32_t start = range->instance_first + bk->first, next; start < end; start = next) {
+      next = _tlod_tess_batch(d->st.instances, start, end, corners, vertices);
+      glProgramUniform1ui(p->id, p->loc[U_FIRST_INSTANCE], start);
+      glDrawArrays(GL_PATCHES, 0, (GLsizei)((next - start) * corners));
+      calls++;
     }
   }
   return calls;
@@ -685,45 +523,7 @@ static void read_query(gl_device* d) {
   d->stats->gl.primitives_generated = prims;
 }
 
-/* Eye-space depth (negative in front of the camera) of the item's centre. */
-static float item_depth(const tlod_draw_desc* fr, const _tlod_draw_ref* it) {
-  static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  const float* m = it->item->has_model ? it->item->model : identity;
-  const float* c = ((const gl_surface*)it->surface_state)->center;
-  float w[3];
-  for (int r = 0; r < 3; r++)
-    w[r] = m[r] * c[0] + m[4 + r] * c[1] + m[8 + r] * c[2] + m[12 + r];
-  const float* v = fr->view;
-  return v[2] * w[0] + v[6] * w[1] + v[10] * w[2] + v[14];
-}
-
-/* d->order: the non-BLEND items in item order, then the BLEND items
- * farthest first (most negative eye z; a stable insertion sort: equal
- * depths keep item order, and blended items are few). */
-static tlod_result order_items(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items) {
-  uint32_t n = fr->item_count, opaque = 0, blended = 0;
-  if (!_tlod_device_grow(d->ctx, (void**)&d->order, &d->order_cap, n, sizeof(uint32_t)) ||
-      !_tlod_device_grow(d->ctx, (void**)&d->order_depth, &d->order_depth_cap, n, sizeof(float)))
-    return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "gl device: out of memory ordering %u items", n);
-  for (uint32_t k = 0; k < n; k++)
-    opaque += items[k].item->blend != TLOD_BLEND_BLEND;
-  for (uint32_t k = 0, o = 0; k < n; k++) {
-    if (items[k].item->blend != TLOD_BLEND_BLEND) {
-      d->order[o++] = k;
-      continue;
-    }
-    float z = item_depth(fr, &items[k]);
-    uint32_t j = blended++;
-    while (j > 0 && d->order_depth[j - 1] > z) {
-      d->order_depth[j] = d->order_depth[j - 1];
-      d->order[opaque + j] = d->order[opaque + j - 1];
-      j--;
-    }
-    d->order_depth[j] = z;
-    d->order[opaque + j] = k;
-  }
-  return TLOD_SUCCESS;
-}
+static const float* gl_surface_center(const void* surface_state) { return ((const gl_surface*)surface_state)->center; }
 
 /* The variant an item draws with: PLAIN unless its fragments read a
  * texture, or (a fragment hook) its mesh's attributes. */
@@ -741,7 +541,7 @@ static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
   const gl_surface* gs = it->surface_state;
   const gl_programs* ps = &d->programs[gs->type][variant_of(d, it)];
   const tlod_draw_list* dl = it->item->draw_list;
-  const struct gl_item_range* range = &d->ranges[k];
+  const _tlod_stage_range* range = &d->st.ranges[k];
   _tlod_item_shading sh;
   _tlod_item_shading_of(fr, it->item, &sh);
   set_item_uniforms(d, ps, &sh, it->item, gs);
@@ -795,7 +595,7 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   gl_saved_state saved;
   _tlod_gl_save_state(&saved);
   r = stage(d, fr, items, item_stats);
-  if (r == TLOD_SUCCESS) r = order_items(d, fr, items);
+  if (r == TLOD_SUCCESS) r = _tlod_stage_order(d->ctx, &d->st, "gl device", fr, items, gl_surface_center);
   if (r != TLOD_SUCCESS) {
     _tlod_gl_restore_state(&saved);
     return r;
@@ -828,7 +628,7 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   }
   set_view_uniforms(d, fr);
   for (uint32_t j = 0; j < fr->item_count; j++) {
-    uint32_t k = d->order[j];
+    uint32_t k = d->st.order[j];
     draw_item(d, fr, &items[k], k, &item_stats[k]);
   }
   if (timed) {
