@@ -85,7 +85,7 @@ static void block_destroy(vk_memory* m, vk_block* b) {
 static bool block_take(vk_memory* m, vk_block* b, VkDeviceSize size, VkDeviceSize align, VkDeviceSize* offset) {
   for (uint32_t i = 0; i < b->free_count; i++) {
     vk_range f = b->free[i];
-    VkDeviceSize start = _tlod_vk_align(f.offset, align), end = start + size;
+    VkDeviceSize start = _tlod_vkb_align(f.offset, align), end = start + size;
     if (end > f.offset + f.size) continue;
     bool before = start > f.offset, after = end < f.offset + f.size;
     if (before && after) { /* one range becomes two */
@@ -146,7 +146,7 @@ static bool block_give(vk_memory* m, vk_block* b, VkDeviceSize offset, VkDeviceS
   return true;
 }
 
-VkResult _tlod_vk_memory_alloc(vk_memory* m, const VkMemoryRequirements* req, int kind, vk_alloc* out) {
+VkResult _tlod_vkb_memory_alloc(vk_memory* m, const VkMemoryRequirements* req, int kind, vk_alloc* out) {
   memset(out, 0, sizeof(*out));
   int type = memory_type(m, req->memoryTypeBits, kind);
   if (type < 0) return VK_ERROR_FEATURE_NOT_PRESENT;
@@ -174,7 +174,7 @@ VkResult _tlod_vk_memory_alloc(vk_memory* m, const VkMemoryRequirements* req, in
   return VK_SUCCESS;
 }
 
-void _tlod_vk_memory_free(vk_memory* m, vk_alloc* a) {
+void _tlod_vkb_memory_free(vk_memory* m, vk_alloc* a) {
   vk_block* b = a->block;
   if (!b) return;
   block_give(m, b, a->offset, a->size);
@@ -182,12 +182,12 @@ void _tlod_vk_memory_free(vk_memory* m, vk_alloc* a) {
   memset(a, 0, sizeof(*a));
 }
 
-void _tlod_vk_memory_destroy(vk_memory* m) {
+void _tlod_vkb_memory_destroy(vk_memory* m) {
   while (m->blocks)
     block_destroy(m, m->blocks);
 }
 
-VkResult _tlod_vk_buffer_create(vk_memory* m, VkDeviceSize size, VkBufferUsageFlags usage, int host, vk_buffer* out) {
+VkResult _tlod_vkb_buffer_create(vk_memory* m, VkDeviceSize size, VkBufferUsageFlags usage, int host, vk_buffer* out) {
   memset(out, 0, sizeof(*out));
   VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
                            .size = size,
@@ -197,18 +197,18 @@ VkResult _tlod_vk_buffer_create(vk_memory* m, VkDeviceSize size, VkBufferUsageFl
   if (r != VK_SUCCESS) return r;
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(m->device, out->buffer, &req);
-  r = _tlod_vk_memory_alloc(m, &req, (host ? VK_MEM_HOST : VK_MEM_DEVICE) | VK_MEM_LINEAR, &out->mem);
+  r = _tlod_vkb_memory_alloc(m, &req, (host ? VK_MEM_HOST : VK_MEM_DEVICE) | VK_MEM_LINEAR, &out->mem);
   if (r == VK_SUCCESS) r = vkBindBufferMemory(m->device, out->buffer, out->mem.memory, out->mem.offset);
   if (r != VK_SUCCESS) {
-    _tlod_vk_buffer_destroy(m, out);
+    _tlod_vkb_buffer_destroy(m, out);
     return r;
   }
   out->size = size;
   return VK_SUCCESS;
 }
 
-void _tlod_vk_buffer_destroy(vk_memory* m, vk_buffer* b) {
+void _tlod_vkb_buffer_destroy(vk_memory* m, vk_buffer* b) {
   if (b->buffer) vkDestroyBuffer(m->device, b->buffer, m->cb);
-  _tlod_vk_memory_free(m, &b->mem);
+  _tlod_vkb_memory_free(m, &b->mem);
   memset(b, 0, sizeof(*b));
 }

@@ -18,7 +18,7 @@ static const VkDescriptorType binding_types[7] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
 
-tlod_result _tlod_vk_pipelines_init(vk_pipelines* p) {
+tlod_result _tlod_vkb_pipelines_init(vk_pipelines* p) {
   VkDescriptorSetLayoutBinding b[7];
   for (uint32_t i = 0; i < 7; i++)
     b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
@@ -39,7 +39,7 @@ tlod_result _tlod_vk_pipelines_init(vk_pipelines* p) {
   if (r == VK_SUCCESS) r = vkCreatePipelineCache(p->device, &ci, p->cb, &p->cache);
   if (r != VK_SUCCESS)
     return tlod_context_fail(p->ctx, TLOD_ERROR_BACKEND, "vulkan device '%s': pipeline layout: %s", p->label,
-                             _tlod_vk_result_name(r));
+                             _tlod_vkb_result_name(r));
   return TLOD_SUCCESS;
 }
 
@@ -59,7 +59,7 @@ static void destroy_modules(vk_pipelines* p, vk_modules* m) {
   memset(m, 0, sizeof(*m));
 }
 
-void _tlod_vk_pipelines_destroy(vk_pipelines* p) {
+void _tlod_vkb_pipelines_destroy(vk_pipelines* p) {
   VkPipeline* all = &p->pipelines[0][0][0][0][0];
   for (size_t i = 0; i < sizeof(p->pipelines) / sizeof(VkPipeline); i++)
     if (all[i]) vkDestroyPipeline(p->device, all[i], p->cb);
@@ -117,7 +117,7 @@ static tlod_result make_module(vk_pipelines* p, glslang_stage_t stage, const sta
   tlod_context_free(p->ctx, words);
   if (vr != VK_SUCCESS)
     return tlod_context_fail(p->ctx, TLOD_ERROR_BACKEND, "vulkan device '%s': %s: vkCreateShaderModule: %s", p->label,
-                             s->name[s->count - 1], _tlod_vk_result_name(vr));
+                             s->name[s->count - 1], _tlod_vkb_result_name(vr));
   return TLOD_SUCCESS;
 }
 
@@ -136,7 +136,7 @@ static tlod_result build_tess(vk_pipelines* p, vk_modules* m, const char* define
   return r;
 }
 
-tlod_result _tlod_vk_modules(vk_pipelines* p, tlod_surface_type type, int variant) {
+tlod_result _tlod_vkb_modules(vk_pipelines* p, tlod_surface_type type, int variant) {
   vk_modules* m = &p->modules[type][variant];
   if (m->built) return TLOD_SUCCESS;
   bool full = variant != VK_VARIANT_PLAIN;
@@ -277,14 +277,14 @@ static int stages_of(const vk_modules* m, int kind, VkPipelineShaderStageCreateI
   return n;
 }
 
-tlod_result _tlod_vk_pipeline(vk_pipelines* p, tlod_surface_type type, int variant, int kind, bool blend, bool line,
-                              VkPipeline* out) {
+tlod_result _tlod_vkb_pipeline(vk_pipelines* p, tlod_surface_type type, int variant, int kind, bool blend, bool line,
+                               VkPipeline* out) {
   VkPipeline* slot = &p->pipelines[type][variant][kind][blend][line];
   if (*slot) {
     *out = *slot;
     return TLOD_SUCCESS;
   }
-  tlod_result r = _tlod_vk_modules(p, type, variant);
+  tlod_result r = _tlod_vkb_modules(p, type, variant);
   if (r != TLOD_SUCCESS) return r;
   fixed_state f;
   fixed(p, &f, kind, blend, line);
@@ -309,7 +309,7 @@ tlod_result _tlod_vk_pipeline(vk_pipelines* p, tlod_surface_type type, int varia
   if (vr != VK_SUCCESS) {
     *slot = VK_NULL_HANDLE;
     return tlod_context_fail(p->ctx, TLOD_ERROR_BACKEND, "vulkan device '%s': %s pipeline (kind %d): %s", p->label,
-                             tlod_surface_type_name(type), kind, _tlod_vk_result_name(vr));
+                             tlod_surface_type_name(type), kind, _tlod_vkb_result_name(vr));
   }
   p->stats->vk.pipelines++;
   *out = *slot;
