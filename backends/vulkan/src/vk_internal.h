@@ -103,7 +103,7 @@ enum { VK_KIND_PATTERN, VK_KIND_STRIP, VK_KIND_TESS3, VK_KIND_TESS4, VK_KINDS };
 
 typedef struct vk_modules {
   bool built;
-  VkShaderModule pattern_vert, strip_vert, frag, tess_vert[2], tesc[2], tese[2];
+  VkShaderModule pattern_vert, strip_vert, tess_vert[2], tesc[2], tese[2];
 } vk_modules;
 
 typedef struct vk_pipelines {
@@ -123,6 +123,7 @@ typedef struct vk_pipelines {
   char* hook;         /* the desc's fragment hook, copied; NULL == material.glsl */
   void* shader_cache; /* vk_shader_cache (vk_shader.h) */
   vk_modules modules[VK_TYPES][VK_VARIANTS];
+  VkShaderModule frag[VK_VARIANTS]; /* the fragment stage does not depend on the surface type */
   /* [type][variant][kind][blend][line] */
   VkPipeline pipelines[VK_TYPES][VK_VARIANTS][VK_KINDS][2][2];
 } vk_pipelines;
