@@ -34,6 +34,21 @@ static void dump(const char* name, const uint8_t* rgba) {
   fclose(f);
 }
 
+/* Destroys the session (device before platform) and checks the validation
+ * layer said nothing, destruction included. */
+static void platform_clean(tlod_platform* p) {
+  uint64_t messages = tlod_platform_validation_messages(p);
+  tlod_platform_destroy(p);
+  CHECK_MSG(messages == 0, "%llu validation messages (printed above)", (unsigned long long)messages);
+}
+
+static void close_clean(vk_session* s) {
+  tlod_platform* p = s->platform;
+  s->platform = NULL;
+  vk_session_close(s);
+  CALL(platform_clean(p));
+}
+
 static bool has(const char* s, const char* part) { return s && strstr(s, part) != NULL; }
 
 static camera front_camera(void) { return camera_look(0, -4.0, 0.8, 0, 0, 0, 45, W, H); }
@@ -89,9 +104,7 @@ TEST(test_desc_fields_refused) {
     CALL(refuse(ctx, pat, &cases[i]));
   tlod_patterns_destroy(pat);
   tlod_context_destroy(ctx);
-  uint64_t messages = tlod_platform_validation_messages(p);
-  tlod_platform_destroy(p);
-  CHECK_MSG(messages == 0, "%llu validation messages (printed above)", (unsigned long long)messages);
+  CALL(platform_clean(p));
 }
 
 /* ---- desc.vk of a draw ---------------------------------------------------------- */
@@ -136,12 +149,7 @@ TEST(test_draw_fields_refused) {
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
   shape_free(&sph);
-  tlod_platform* p = s.platform;
-  s.platform = NULL;
-  vk_session_close(&s);
-  uint64_t messages = tlod_platform_validation_messages(p);
-  tlod_platform_destroy(p);
-  CHECK_MSG(messages == 0, "%llu validation messages (printed above)", (unsigned long long)messages);
+  CALL(close_clean(&s));
 }
 
 /* ---- everything freed -------------------------------------------------------- */
@@ -284,9 +292,7 @@ TEST(test_destroy_frees_everything) {
   CHECK_MSG(ca.allocs == ca.frees, "%ld allocations, %ld frees", ca.allocs, ca.frees);
   CHECK_MSG(at_create > 40, "only %ld allocations at create: Vulkan's host allocations do not reach the context",
             at_create);
-  uint64_t messages = tlod_platform_validation_messages(p);
-  tlod_platform_destroy(p);
-  CHECK_MSG(messages == 0, "%llu validation messages (printed above)", (unsigned long long)messages);
+  CALL(platform_clean(p));
 }
 
 /* ---- frame slots ------------------------------------------------------------- */
@@ -344,12 +350,7 @@ TEST(test_update_reaches_every_slot) {
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
   shape_free(&sph);
-  tlod_platform* p = s.platform;
-  s.platform = NULL;
-  vk_session_close(&s);
-  uint64_t messages = tlod_platform_validation_messages(p);
-  tlod_platform_destroy(p);
-  CHECK_MSG(messages == 0, "%llu validation messages (printed above)", (unsigned long long)messages);
+  CALL(close_clean(&s));
 }
 
 /* Two views in one frame: the second draw appends to the frame's ring (it
@@ -393,12 +394,71 @@ TEST(test_two_draws_in_one_frame) {
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
   shape_free(&sph);
-  tlod_platform* p = s.platform;
-  s.platform = NULL;
-  vk_session_close(&s);
-  uint64_t messages = tlod_platform_validation_messages(p);
-  tlod_platform_destroy(p);
-  CHECK_MSG(messages == 0, "%llu validation messages (printed above)", (unsigned long long)messages);
+  CALL(close_clean(&s));
+}
+
+/* Every debug view, with and without wireframe, on the pattern path and on
+ * the hardware path (tessellation pipelines, batches): drawn, and clean. */
+static void draw_views(bool hardware) {
+  vk_session s;
+  tlod_device_vk_desc opt = {.hardware_tessellation = hardware};
+  CHECK_MSG(vk_session_open(&s, W, H, 5, "vk_views", true, opt), "no Vulkan device");
+  shape torus = shape_torus(12, 8);
+  fixture fx;
+  CHECK(fixture_make(&fx, s.ctx, &torus, TLOD_SURFACE_PN, s.pat, s.dev));
+  tlod_scheduler_desc sd = {.max_level = 5, .morph = hardware ? TLOD_MORPH_NONE : TLOD_MORPH_DEFAULT};
+  tlod_scheduler* sch = new_scheduler(&fx, sd);
+  camera cam = camera_look(0, -2.6, 1.4, 0, 0, 0, 45, W, H);
+  tlod_view_desc v = make_view(&cam);
+  const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
+  CHECK(sch && dl);
+  one_draw od;
+  one_draw_make(&od, fx.ds, dl, &v);
+  uint8_t* rgba = malloc(4 * W * H);
+  CHECK(rgba);
+  for (int k = 0; k < 2 * TLOD_DEBUG_NUM; k++) {
+    od.desc.debug = (tlod_debug_view)(k % TLOD_DEBUG_NUM);
+    od.desc.wireframe = k >= TLOD_DEBUG_NUM;
+    CHECK_MSG(vk_draw_frame(s.platform, s.dev, s.ctx, &od.desc, rgba), "debug %d wireframe %d", k % TLOD_DEBUG_NUM,
+              od.desc.wireframe);
+    CHECK_MSG(covered_pixels(rgba, W, H) > W * H / 20, "debug %d wireframe %d: %u pixels", k % TLOD_DEBUG_NUM,
+              od.desc.wireframe, covered_pixels(rgba, W, H));
+  }
+  tlod_device_stats st = tlod_device_query_stats(s.dev);
+  printf("  %s path: %u debug views x wireframe off/on drawn, %u pipelines, %u draw calls in the last\n",
+         hardware ? "hardware" : "pattern", TLOD_DEBUG_NUM, st.vk.pipelines, st.draw_calls);
+  free(rgba);
+  tlod_scheduler_destroy(sch);
+  fixture_free(&fx);
+  shape_free(&torus);
+  CALL(close_clean(&s));
+}
+
+TEST(test_debug_views_and_wireframe) {
+  CALL(draw_views(false));
+  CALL(draw_views(true));
+}
+
+/* A fragment hook that does not compile: TLOD_ERROR_BACKEND naming the
+ * hook's line. */
+TEST(test_hook_error_names_line) {
+  char err[512] = "";
+  tlod_platform* p = vk_test_platform(W, H, true, err, sizeof err);
+  CHECK_MSG(p, "no Vulkan device: %s", err);
+  tlod_context* ctx = NULL;
+  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 1}, &ctx) == TLOD_SUCCESS);
+  tlod_patterns* pat = new_patterns(ctx, 3);
+  CHECK(pat);
+  tlod_device_vk_desc vk = vk_desc_of(p);
+  vk.fragment_hook = "vec4 tlod_shade(tlod_fragment f) {\n  return no_such_name;\n}\n";
+  tlod_device* dev = (tlod_device*)1;
+  tlod_result r = tlod_device_create(ctx, &(tlod_device_desc){.backend = "vulkan", .patterns = pat, .vk = vk}, &dev);
+  const char* msg = tlod_context_last_error(ctx);
+  printf("  bad hook: %s: %s\n", tlod_result_string(r), msg);
+  CHECK_MSG(r == TLOD_ERROR_BACKEND && dev == NULL && has(msg, "fragment_hook:2"), "%s", msg);
+  tlod_patterns_destroy(pat);
+  tlod_context_destroy(ctx);
+  CALL(platform_clean(p));
 }
 
 int main(void) {
@@ -407,5 +467,7 @@ int main(void) {
   RUN(test_destroy_frees_everything);
   RUN(test_update_reaches_every_slot);
   RUN(test_two_draws_in_one_frame);
+  RUN(test_debug_views_and_wireframe);
+  RUN(test_hook_error_names_line);
   VK_TEST_END();
 }

@@ -39,9 +39,7 @@ static tlod_result check_vk(vk_device* d, const tlod_draw_desc* fr) {
  * fragment hook) its mesh's attributes; MASK items their own. */
 static int variant_of(const vk_device* d, const _tlod_draw_ref* it) {
   const vk_surface* vs = it->surface_state;
-  if (it->item->blend == TLOD_BLEND_MASK) return VK_VARIANT_MASK;
-  bool attributes = d->pipelines.hook && vs->attribute_count > 0;
-  return it->item->base_color_texture || attributes ? VK_VARIANT_FULL : VK_VARIANT_PLAIN;
+  return _tlod_stage_variant(d->pipelines.hook != NULL, vs->attribute_count, it->item);
 }
 
 /* Every pipeline the items need, before anything is recorded (a failure
