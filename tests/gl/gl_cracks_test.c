@@ -175,26 +175,6 @@ static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, c
   return hc;
 }
 
-/* A random camera: 40% near (1.3-2.2 x the bounding radius), 30% far
- * (4-12), 30% grazing (near, aimed past the object so its silhouette
- * crosses the image at a steep angle). Always outside the object. */
-static camera random_camera(shape_rng* rng) {
-  double dir[3], off[3];
-  shape_rng_direction(rng, dir);
-  shape_rng_direction(rng, off);
-  double u = shape_rng_unit(rng), dist, aim = 0.0;
-  if (u < 0.4) {
-    dist = shape_rng_range(rng, 1.9, 3.0);
-  } else if (u < 0.7) {
-    dist = shape_rng_range(rng, 4.0, 12.0);
-  } else {
-    dist = shape_rng_range(rng, 1.9, 2.6);
-    aim = shape_rng_range(rng, 0.6, 1.1);
-  }
-  double fov = shape_rng_range(rng, 30.0, 75.0);
-  return camera_look(dist * dir[0], dist * dir[1], dist * dir[2], aim * off[0], aim * off[1], aim * off[2], fov, W, H);
-}
-
 static bool env_init(gl_env* env, char* err, size_t err_size) {
   memset(env, 0, sizeof *env);
   env->platform = gl_test_platform(W, H, err, err_size);
@@ -270,7 +250,7 @@ TEST(test_no_holes) {
       shape_rng rng = {0x5EED0000u + 10u * (uint64_t)si + (uint64_t)ti};
       uint32_t case_failures = 0;
       for (int k = 0; k < CAMERAS; ++k) {
-        camera cam = random_camera(&rng);
+        camera cam = random_camera(&rng, W, H);
         tlod_view_desc v = make_view(&cam);
         const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
         CHECK(dl);
@@ -390,7 +370,7 @@ TEST(test_hardware_path_no_holes) {
       CHECK(sch);
       shape_rng rng = {0xA4D00000u + 10u * (uint64_t)si + (uint64_t)ti};
       for (int k = 0; k < 20; ++k) {
-        camera cam = random_camera(&rng);
+        camera cam = random_camera(&rng, W, H);
         tlod_view_desc v = make_view(&cam);
         const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
         CHECK(dl);
@@ -479,7 +459,7 @@ TEST(test_uv_seam_no_holes) {
     shape_rng rng = {0x5EA40000u + (uint64_t)ti};
     uint32_t case_failures = 0;
     for (int k = 0; k < SEAM_CAMERAS; ++k) {
-      camera cam = random_camera(&rng);
+      camera cam = random_camera(&rng, W, H);
       tlod_view_desc v = make_view(&cam);
       const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
       CHECK(dl);

@@ -63,6 +63,26 @@ static inline void camera_print(const camera* c, char* buf, size_t size) {
            c->fovy * 180.0 / SHAPES_PI);
 }
 
+/* A random camera: 40% near (1.3-2.2 x the bounding radius), 30% far
+ * (4-12), 30% grazing (near, aimed past the object so its silhouette
+ * crosses the image at a steep angle). Always outside the object. */
+static inline camera random_camera(shape_rng* rng, uint32_t w, uint32_t h) {
+  double dir[3], off[3];
+  shape_rng_direction(rng, dir);
+  shape_rng_direction(rng, off);
+  double u = shape_rng_unit(rng), dist, aim = 0.0;
+  if (u < 0.4) {
+    dist = shape_rng_range(rng, 1.9, 3.0);
+  } else if (u < 0.7) {
+    dist = shape_rng_range(rng, 4.0, 12.0);
+  } else {
+    dist = shape_rng_range(rng, 1.9, 2.6);
+    aim = shape_rng_range(rng, 0.6, 1.1);
+  }
+  double fov = shape_rng_range(rng, 30.0, 75.0);
+  return camera_look(dist * dir[0], dist * dir[1], dist * dir[2], aim * off[0], aim * off[1], aim * off[2], fov, w, h);
+}
+
 /* ------------------------------------------------------------------------ */
 /* tesslod fixtures                                                         */
 /* ------------------------------------------------------------------------ */
