@@ -61,50 +61,6 @@ typedef struct hole_count {
   bool reference_drawn;
 } hole_count;
 
-/* Background pixels 4-connected to the border: reached[i] = 1. */
-static void flood_background(gl_env* env) {
-  memset(env->reached, 0, W * H);
-  uint32_t head = 0, tail = 0;
-  for (uint32_t y = 0; y < H; ++y)
-    for (uint32_t x = 0; x < W; ++x) {
-      if (x != 0 && y != 0 && x != W - 1 && y != H - 1) continue;
-      uint32_t i = y * W + x;
-      if (is_background(env->rgba + 4 * i) && !env->reached[i]) {
-        env->reached[i] = 1;
-        env->queue[tail++] = i;
-      }
-    }
-  while (head < tail) {
-    uint32_t i = env->queue[head++], x = i % W, y = i / W;
-    uint32_t next[4] = {x > 0 ? i - 1 : i, x + 1 < W ? i + 1 : i, y > 0 ? i - W : i, y + 1 < H ? i + W : i};
-    for (int k = 0; k < 4; ++k) {
-      uint32_t j = next[k];
-      if (!env->reached[j] && is_background(env->rgba + 4 * j)) {
-        env->reached[j] = 1;
-        env->queue[tail++] = j;
-      }
-    }
-  }
-}
-
-/* Reference shows a front face at (x, y) and its 8 neighbours. */
-static bool reference_solid(const gl_env* env, uint32_t x, uint32_t y) {
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      int nx = (int)x + dx, ny = (int)y + dy;
-      if (nx < 0 || ny < 0 || nx >= W || ny >= H) return false;
-      size_t j = (size_t)ny * W + (size_t)nx;
-      if (env->ref_stencil[j] != 1 || is_background(env->ref_rgba + 4 * j)) return false;
-    }
-  return true;
-}
-
-/* Eye-space distance of a window depth d for the camera's near / far. */
-static double linear_depth(const camera* c, float d) {
-  double z = 2.0 * (double)d - 1.0;
-  return 2.0 * c->zfar * c->znear / (c->zfar + c->znear - z * (c->zfar - c->znear));
-}
-
 /* Draws dl with the backend (stencil records facing) and counts holes;
  * reference_dl is the complete draw list for the reference. */
 static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, const tlod_draw_list* dl,
@@ -129,7 +85,7 @@ static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, c
   gl_read_rgba(W, H, env->rgba);
   gl_read_stencil(W, H, env->stencil);
   gl_read_depth(W, H, env->depth);
-  flood_background(env);
+  flood_background(env->rgba, W, H, env->reached, env->queue);
   for (uint32_t i = 0; i < W * H; ++i) {
     bool bg = is_background(env->rgba + 4 * i);
     hc.enclosed_candidates += bg && !env->reached[i];
@@ -153,7 +109,7 @@ static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, c
         uint32_t i = y * W + x;
         bool bg = is_background(env->rgba + 4 * i);
         bool enclosed = bg && !env->reached[i], back = !bg && env->stencil[i] == 2;
-        if (!(enclosed || back) || !reference_solid(env, x, y)) continue;
+        if (!(enclosed || back) || !reference_solid(env->ref_rgba, env->ref_stencil, W, H, x, y)) continue;
         /* Seen through: what the backend shows lies behind the reference's
          * surface (background is at the far plane). A back-facing strip
          * wall seen edge-on can own a pixel next to its shared edge with a

@@ -243,6 +243,58 @@ static inline void one_draw_make(one_draw* o, const tlod_device_surface* ds, con
 
 static inline bool is_background(const uint8_t* px) { return px[0] == BG_R && px[1] == BG_G && px[2] == BG_B; }
 
+/* ------------------------------------------------------------------------ */
+/* Crack detection (tests/gl/gl_cracks_test.c, tests/vk/vk_cracks_test.c)   */
+/* ------------------------------------------------------------------------ */
+
+/* Background pixels of rgba (w x h) 4-connected to the border: reached[i]
+ * = 1, else 0. queue: w * h entries of scratch. */
+static inline void flood_background(const uint8_t* rgba, uint32_t w, uint32_t h, uint8_t* reached, uint32_t* queue) {
+  memset(reached, 0, (size_t)w * h);
+  uint32_t head = 0, tail = 0;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      if (x != 0 && y != 0 && x != w - 1 && y != h - 1) continue;
+      uint32_t i = y * w + x;
+      if (is_background(rgba + 4 * i) && !reached[i]) {
+        reached[i] = 1;
+        queue[tail++] = i;
+      }
+    }
+  while (head < tail) {
+    uint32_t i = queue[head++], x = i % w, y = i / w;
+    uint32_t next[4] = {x > 0 ? i - 1 : i, x + 1 < w ? i + 1 : i, y > 0 ? i - w : i, y + 1 < h ? i + w : i};
+    for (int k = 0; k < 4; ++k) {
+      uint32_t j = next[k];
+      if (!reached[j] && is_background(rgba + 4 * j)) {
+        reached[j] = 1;
+        queue[tail++] = j;
+      }
+    }
+  }
+}
+
+/* The reference (ref_rgba, ref_stencil: 1 = front face) shows a front face
+ * at (x, y) and its 8 neighbours. */
+static inline bool reference_solid(const uint8_t* ref_rgba, const uint8_t* ref_stencil, uint32_t w, uint32_t h,
+                                   uint32_t x, uint32_t y) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      int nx = (int)x + dx, ny = (int)y + dy;
+      if (nx < 0 || ny < 0 || nx >= (int)w || ny >= (int)h) return false;
+      size_t j = (size_t)ny * w + (size_t)nx;
+      if (ref_stencil[j] != 1 || is_background(ref_rgba + 4 * j)) return false;
+    }
+  return true;
+}
+
+/* Eye-space distance of a window depth d (GL's [0, 1]) for the camera's
+ * near / far. */
+static inline double linear_depth(const camera* c, float d) {
+  double z = 2.0 * (double)d - 1.0;
+  return 2.0 * c->zfar * c->znear / (c->zfar + c->znear - z * (c->zfar - c->znear));
+}
+
 /* Coverage and colour differences of two images of one scene, where image b
  * is the reference: a pixel covered in only one image is "on the band" when
  * it, or one of its 8 neighbours, has the other coverage in b (a silhouette

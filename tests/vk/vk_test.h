@@ -90,7 +90,10 @@ typedef struct vk_session {
   uint32_t w, h;
 } vk_session;
 
+/* The engine's duty before destroying tesslod objects: the GPU is done with
+ * every frame that used them (tesslod never waits). */
 static inline void vk_session_close(vk_session* s) {
+  if (s->platform) tlod_platform_finish(s->platform);
   tlod_device_destroy(s->dev);
   tlod_patterns_destroy(s->pat);
   tlod_context_destroy(s->ctx);

@@ -280,6 +280,7 @@ TEST(test_playback_is_validation_clean) {
          "validation messages\n",
          FRAMES, W0, H0, W1, H1, RESIZE_AT, covered_before, covered_after, (unsigned long long)after_play);
   CHECK_MSG(covered_before > W0 * H0 / 10 && covered_after > W1 * H1 / 10, "the scene is not in the image");
+  CHECK_MSG(tlod_platform_finish(s.platform) >= 0, "tlod_platform_finish");
   scene_free(&sc, s.dev);
   tlod_device_destroy(dev_b);
   tlod_device_destroy(s.dev);
