@@ -48,12 +48,12 @@ static void* vk_realloc_fn(void* user, void* old, size_t size, size_t alignment,
   return p;
 }
 
-void _tlod_vk_callbacks(tlod_context* ctx, VkAllocationCallbacks* out) {
+void _tlod_vkb_callbacks(tlod_context* ctx, VkAllocationCallbacks* out) {
   *out = (VkAllocationCallbacks){
       .pUserData = ctx, .pfnAllocation = vk_alloc_fn, .pfnReallocation = vk_realloc_fn, .pfnFree = vk_free_fn};
 }
 
-const char* _tlod_vk_result_name(VkResult r) {
+const char* _tlod_vkb_result_name(VkResult r) {
   switch (r) {
   case VK_SUCCESS:
     return "VK_SUCCESS";

@@ -95,15 +95,18 @@ static void query_support(vk_device* d, const tlod_device_vk_desc* v, bool* time
 
 /* ---- create and destroy ------------------------------------------------------ */
 
+/* Frames the engine submitted may still read what is destroyed here: the
+ * one wait of the device's life (tesslod/vulkan.h; never in a draw). */
 static void vk_destroy(void* state) {
   vk_device* d = state;
-  _tlod_vk_frames_destroy(&d->frames);
-  _tlod_vk_pipelines_destroy(&d->pipelines);
-  if (d->white) _tlod_vk_texture_destroy(d->ctx, &d->memory, d->white);
-  _tlod_vk_buffer_destroy(&d->memory, &d->pattern_vertices);
-  _tlod_vk_buffer_destroy(&d->memory, &d->pattern_indices);
-  _tlod_vk_upload_destroy(&d->upload);
-  _tlod_vk_memory_destroy(&d->memory);
+  if (d->device) vkDeviceWaitIdle(d->device);
+  _tlod_vkb_frames_destroy(&d->frames);
+  _tlod_vkb_pipelines_destroy(&d->pipelines);
+  if (d->white) _tlod_vkb_texture_destroy(d->ctx, &d->memory, d->white);
+  _tlod_vkb_buffer_destroy(&d->memory, &d->pattern_vertices);
+  _tlod_vkb_buffer_destroy(&d->memory, &d->pattern_indices);
+  _tlod_vkb_upload_destroy(&d->upload);
+  _tlod_vkb_memory_destroy(&d->memory);
   if (d->glslang) glslang_finalize_process();
   _tlod_stage_free(d->ctx, &d->st);
   tlod_context_free(d->ctx, d->uniforms);
@@ -120,22 +123,22 @@ static tlod_result upload_patterns(vk_device* d) {
     memcpy(d->index_first, pd.index_first, sizeof(d->index_first));
     memcpy(d->index_count, pd.index_count, sizeof(d->index_count));
     memcpy(d->shape_base, pd.shape_base, sizeof(d->shape_base));
-    r = _tlod_vk_buffer_upload(&d->memory, &d->upload, pd.vertices, sizeof(tlod_gl_pattern_vertex) * pd.vertex_count,
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &d->pattern_vertices);
+    r = _tlod_vkb_buffer_upload(&d->memory, &d->upload, pd.vertices, sizeof(tlod_gl_pattern_vertex) * pd.vertex_count,
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, &d->pattern_vertices);
     if (r == VK_SUCCESS)
-      r = _tlod_vk_buffer_upload(&d->memory, &d->upload, pd.indices, sizeof(uint32_t) * pd.index_total,
-                                 VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &d->pattern_indices);
+      r = _tlod_vkb_buffer_upload(&d->memory, &d->upload, pd.indices, sizeof(uint32_t) * pd.index_total,
+                                  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &d->pattern_indices);
   }
   _tlod_pattern_data_free(d->ctx, &pd);
   if (r == VK_SUCCESS) return TLOD_SUCCESS;
   return tlod_context_fail(d->ctx, r == VK_ERROR_OUT_OF_HOST_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
-                           "vulkan device '%s': pattern buffers: %s", d->label, _tlod_vk_result_name(r));
+                           "vulkan device '%s': pattern buffers: %s", d->label, _tlod_vkb_result_name(r));
 }
 
 static tlod_result make_white(vk_device* d) {
   static const uint8_t white[4] = {255, 255, 255, 255};
   tlod_texture_desc t = {.width = 1, .height = 1, .rgba8 = white, .mipmaps_off = true, .label = "white"};
-  return _tlod_vk_texture_create(d->ctx, &d->memory, &d->upload, d->physical, &t, &d->white);
+  return _tlod_vkb_texture_create(d->ctx, &d->memory, &d->upload, d->physical, &t, &d->white);
 }
 
 /* The fields of the device from the desc (no Vulkan call yet). */
@@ -150,7 +153,7 @@ static tlod_result setup(vk_device* d, tlod_context* ctx, const tlod_device_desc
   d->instance = v->instance;
   d->physical = v->physical_device;
   d->device = v->device;
-  _tlod_vk_callbacks(ctx, &d->callbacks);
+  _tlod_vkb_callbacks(ctx, &d->callbacks);
   d->memory = (vk_memory){.ctx = ctx,
                           .device = d->device,
                           .cb = &d->callbacks,
@@ -195,7 +198,7 @@ static void ring_layout(vk_device* d) {
   VkDeviceSize a = d->limits.minStorageBufferOffsetAlignment, u = d->limits.minUniformBufferOffsetAlignment;
   d->ring_align = a > u ? a : u;
   if (d->ring_align < 16) d->ring_align = 16;
-  d->uniform_stride = _tlod_vk_align(sizeof(tlod_vk_uniforms), u ? u : 1);
+  d->uniform_stride = _tlod_vkb_align(sizeof(tlod_vk_uniforms), u ? u : 1);
 }
 
 static tlod_result build(vk_device* d, const tlod_device_desc* desc) {
@@ -205,15 +208,15 @@ static tlod_result build(vk_device* d, const tlod_device_desc* desc) {
   ring_layout(d);
   bool timestamps, statistics;
   query_support(d, v, &timestamps, &statistics);
-  VkResult vr = _tlod_vk_upload_init(&d->upload, d->device, (VkQueue)v->queue, v->queue_family, &d->callbacks);
+  VkResult vr = _tlod_vkb_upload_init(&d->upload, d->device, (VkQueue)v->queue, v->queue_family, &d->callbacks);
   if (vr != VK_SUCCESS)
     return tlod_context_fail(d->ctx, TLOD_ERROR_BACKEND, "vulkan device '%s': command pool / fence: %s", d->label,
-                             _tlod_vk_result_name(vr));
+                             _tlod_vkb_result_name(vr));
   r = upload_patterns(d);
   if (r == TLOD_SUCCESS) r = make_white(d);
-  if (r == TLOD_SUCCESS) r = _tlod_vk_pipelines_init(&d->pipelines);
+  if (r == TLOD_SUCCESS) r = _tlod_vkb_pipelines_init(&d->pipelines);
   d->frames.set_layout = d->pipelines.set_layout;
-  if (r == TLOD_SUCCESS) r = _tlod_vk_frames_init(&d->frames, timestamps, statistics);
+  if (r == TLOD_SUCCESS) r = _tlod_vkb_frames_init(&d->frames, timestamps, statistics);
   d->glslang = r == TLOD_SUCCESS && glslang_initialize_process();
   if (r == TLOD_SUCCESS && !d->glslang)
     return tlod_context_fail(d->ctx, TLOD_ERROR_BACKEND, "vulkan device '%s': glslang_initialize_process failed",
@@ -221,11 +224,11 @@ static tlod_result build(vk_device* d, const tlod_device_desc* desc) {
   uint32_t mask = v->surface_types ? v->surface_types : (1u << TLOD_SURFACE_NUM) - 1u;
   if (mask & (1u << TLOD_SURFACE_DEFAULT)) mask |= 1u << TLOD_SURFACE_PHONG;
   for (int t = 1; t < VK_TYPES && r == TLOD_SUCCESS; t++)
-    if (mask & (1u << t)) r = _tlod_vk_modules(&d->pipelines, (tlod_surface_type)t, VK_VARIANT_PLAIN);
+    if (mask & (1u << t)) r = _tlod_vkb_modules(&d->pipelines, (tlod_surface_type)t, VK_VARIANT_PLAIN);
   return r;
 }
 
-void _tlod_vk_shader_stats(vk_device* d) {
+void _tlod_vkb_shader_stats(vk_device* d) {
   const vk_shader_cache* c = d->shader_cache;
   d->stats->vk.shader_compiles = c->compiles;
   d->stats->vk.shader_cache_hits = c->hits;
@@ -240,7 +243,7 @@ static tlod_result vk_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   if (!d) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "vulkan device: out of memory");
   r = setup(d, ctx, desc, stats);
   if (r == TLOD_SUCCESS) r = build(d, desc);
-  if (d->shader_cache) _tlod_vk_shader_stats(d);
+  if (d->shader_cache) _tlod_vkb_shader_stats(d);
   if (r != TLOD_SUCCESS) {
     vk_destroy(d);
     return r;
@@ -254,21 +257,22 @@ static tlod_result vk_create(tlod_context* ctx, const tlod_device_desc* desc, tl
 
 static tlod_result vk_create_texture(void* state, const tlod_texture_desc* desc, void** texture_state) {
   vk_device* d = state;
-  return _tlod_vk_texture_create(d->ctx, &d->memory, &d->upload, d->physical, desc, (vk_texture**)texture_state);
+  return _tlod_vkb_texture_create(d->ctx, &d->memory, &d->upload, d->physical, desc, (vk_texture**)texture_state);
 }
 
 /* A frame in flight may still sample it: destroyed once none can. */
 static void vk_destroy_texture(void* state, void* texture_state) {
   vk_device* d = state;
-  if (!_tlod_vk_retire_texture(&d->frames, texture_state)) _tlod_vk_texture_destroy(d->ctx, &d->memory, texture_state);
+  if (!_tlod_vkb_retire_texture(&d->frames, texture_state))
+    _tlod_vkb_texture_destroy(d->ctx, &d->memory, texture_state);
 }
 
 const _tlod_device_vtbl _tlod_vk_device_vtbl = {.create = vk_create,
                                                 .destroy = vk_destroy,
-                                                .create_surface = _tlod_vk_surface_create,
-                                                .update_surface = _tlod_vk_surface_update,
-                                                .destroy_surface = _tlod_vk_surface_destroy,
-                                                .draw = _tlod_vk_draw,
+                                                .create_surface = _tlod_vkb_surface_create,
+                                                .update_surface = _tlod_vkb_surface_update,
+                                                .destroy_surface = _tlod_vkb_surface_destroy,
+                                                .draw = _tlod_vkb_draw,
                                                 .read_image = NULL,
                                                 .times_draws = false,
                                                 .create_texture = vk_create_texture,

@@ -39,9 +39,7 @@ static tlod_result check_vk(vk_device* d, const tlod_draw_desc* fr) {
  * fragment hook) its mesh's attributes; MASK items their own. */
 static int variant_of(const vk_device* d, const _tlod_draw_ref* it) {
   const vk_surface* vs = it->surface_state;
-  if (it->item->blend == TLOD_BLEND_MASK) return VK_VARIANT_MASK;
-  bool attributes = d->pipelines.hook && vs->attribute_count > 0;
-  return it->item->base_color_texture || attributes ? VK_VARIANT_FULL : VK_VARIANT_PLAIN;
+  return _tlod_stage_variant(d->pipelines.hook != NULL, vs->attribute_count, it->item);
 }
 
 /* Every pipeline the items need, before anything is recorded (a failure
@@ -54,7 +52,7 @@ static tlod_result prepare(vk_device* d, const tlod_draw_desc* fr, const _tlod_d
     for (int kind = k0; kind < k0 + 2; kind++) {
       for (int line = 0; line <= (int)fr->wireframe; line++) {
         VkPipeline p;
-        tlod_result r = _tlod_vk_pipeline(&d->pipelines, vs->type, v, kind, blend, line, &p);
+        tlod_result r = _tlod_vkb_pipeline(&d->pipelines, vs->type, v, kind, blend, line, &p);
         if (r != TLOD_SUCCESS) return r;
       }
     }
@@ -95,13 +93,13 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
   VkDeviceSize sb = sizeof(tlod_gl_strip) * (VkDeviceSize)d->st.strip_count;
   VkDeviceSize rb = sizeof(uint32_t[2]) * (VkDeviceSize)d->st.ref_count;
   rv->instance_bytes = ib ? ib : 16, rv->strip_bytes = sb ? sb : 16;
-  VkDeviceSize i0 = _tlod_vk_align(n * d->uniform_stride, a), s0 = _tlod_vk_align(i0 + rv->instance_bytes, a);
-  VkDeviceSize r0 = _tlod_vk_align(s0 + rv->strip_bytes, a), total = r0 + (rb ? rb : 16), base = 0;
-  VkResult r = _tlod_vk_ring_take(&d->frames, total, a, &base, d->stats);
+  VkDeviceSize i0 = _tlod_vkb_align(n * d->uniform_stride, a), s0 = _tlod_vkb_align(i0 + rv->instance_bytes, a);
+  VkDeviceSize r0 = _tlod_vkb_align(s0 + rv->strip_bytes, a), total = r0 + (rb ? rb : 16), base = 0;
+  VkResult r = _tlod_vkb_ring_take(&d->frames, total, a, &base, d->stats);
   if (r != VK_SUCCESS)
     return tlod_context_fail(d->ctx, r == VK_ERROR_OUT_OF_HOST_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
                              "tlod_device_draw: device '%s': upload ring of %llu bytes: %s", d->label,
-                             (unsigned long long)total, _tlod_vk_result_name(r));
+                             (unsigned long long)total, _tlod_vkb_result_name(r));
   const vk_slot* s = &d->frames.slots[d->frames.current];
   rv->buffer = s->ring.buffer;
   rv->mapped = s->ring.mem.mapped;
@@ -152,14 +150,14 @@ static tlod_result descriptors(vk_device* d, const tlod_draw_desc* fr, const _tl
   uint32_t n = fr->item_count;
   VkResult r = VK_SUCCESS;
   for (uint32_t k = 0; k < n && r == VK_SUCCESS; k++)
-    r = _tlod_vk_surface_sync(d, items[k].surface_state, d->frames.current);
+    r = _tlod_vkb_surface_sync(d, items[k].surface_state, d->frames.current);
   if (r == VK_SUCCESS && !_tlod_device_grow(d->ctx, (void**)&d->sets, &d->set_cap, n, sizeof(VkDescriptorSet)))
     r = VK_ERROR_OUT_OF_HOST_MEMORY;
-  if (r == VK_SUCCESS) r = _tlod_vk_sets(&d->frames, n, d->sets);
+  if (r == VK_SUCCESS) r = _tlod_vkb_sets(&d->frames, n, d->sets);
   if (r != VK_SUCCESS)
     return tlod_context_fail(d->ctx, r == VK_ERROR_OUT_OF_HOST_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
                              "tlod_device_draw: device '%s': surface copies / descriptor sets: %s", d->label,
-                             _tlod_vk_result_name(r));
+                             _tlod_vkb_result_name(r));
   for (uint32_t k = 0; k < n; k++)
     write_set(d, d->sets[k], &items[k], rv);
   d->stats->vk.descriptor_sets = n;
@@ -298,14 +296,14 @@ static void end_queries(vk_device* d, VkCommandBuffer cmd) {
 
 static const float* vk_surface_center(const void* surface_state) { return ((const vk_surface*)surface_state)->center; }
 
-tlod_result _tlod_vk_draw(void* state, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
-                          tlod_draw_item_stats* item_stats) {
+tlod_result _tlod_vkb_draw(void* state, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
+                           tlod_draw_item_stats* item_stats) {
   vk_device* d = state;
   tlod_result r = check_vk(d, fr);
   if (r != TLOD_SUCCESS) return r;
-  _tlod_vk_frames_begin(&d->frames, fr->vk.frame_index, d->stats);
+  _tlod_vkb_frames_begin(&d->frames, fr->vk.frame_index, d->stats);
   r = prepare(d, fr, items);
-  _tlod_vk_shader_stats(d);
+  _tlod_vkb_shader_stats(d);
   if (r == TLOD_SUCCESS) r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "vulkan device", fr, items, item_stats);
   if (r == TLOD_SUCCESS) r = _tlod_stage_order(d->ctx, &d->st, "vulkan device", fr, items, vk_surface_center);
   ring_view rv;

@@ -30,25 +30,25 @@ static VkResult make_queries(vk_frames* f, vk_slot* s, bool statistics) {
   return r;
 }
 
-tlod_result _tlod_vk_frames_init(vk_frames* f, bool queries, bool statistics) {
+tlod_result _tlod_vkb_frames_init(vk_frames* f, bool queries, bool statistics) {
   f->queries = queries;
   for (uint32_t i = 0; i < f->count && queries; i++) {
     VkResult r = make_queries(f, &f->slots[i], statistics);
     if (r != VK_SUCCESS)
-      return tlod_context_fail(f->ctx, TLOD_ERROR_BACKEND, "vulkan device: query pools: %s", _tlod_vk_result_name(r));
+      return tlod_context_fail(f->ctx, TLOD_ERROR_BACKEND, "vulkan device: query pools: %s", _tlod_vkb_result_name(r));
   }
   return TLOD_SUCCESS;
 }
 
 static void free_retired(vk_frames* f, vk_retired* r) {
-  if (r->buffer.buffer) _tlod_vk_buffer_destroy(f->memory, &r->buffer);
-  if (r->texture) _tlod_vk_texture_destroy(f->ctx, f->memory, r->texture);
+  if (r->buffer.buffer) _tlod_vkb_buffer_destroy(f->memory, &r->buffer);
+  if (r->texture) _tlod_vkb_texture_destroy(f->ctx, f->memory, r->texture);
 }
 
-void _tlod_vk_frames_destroy(vk_frames* f) {
+void _tlod_vkb_frames_destroy(vk_frames* f) {
   for (uint32_t i = 0; i < f->count; i++) {
     vk_slot* s = &f->slots[i];
-    _tlod_vk_buffer_destroy(f->memory, &s->ring);
+    _tlod_vkb_buffer_destroy(f->memory, &s->ring);
     for (uint32_t p = 0; p < s->pool_count; p++)
       vkDestroyDescriptorPool(f->device, s->pools[p], f->cb);
     tlod_context_free(f->ctx, s->pools);
@@ -96,7 +96,7 @@ static void collect(vk_frames* f) {
   f->retired_count = kept;
 }
 
-void _tlod_vk_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* stats) {
+void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* stats) {
   if (f->started && index == f->current) return;
   f->started = true;
   f->current = index;
@@ -111,45 +111,39 @@ void _tlod_vk_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* stat
 }
 
 static bool push_retired(vk_frames* f, vk_retired r) {
-  if (f->retired_count == f->retired_cap) {
-    uint32_t cap = f->retired_cap ? f->retired_cap * 2 : 16;
-    vk_retired* n = tlod_context_alloc(f->ctx, sizeof(vk_retired) * cap);
-    if (!n) return false;
-    if (f->retired_count) memcpy(n, f->retired, sizeof(vk_retired) * f->retired_count);
-    tlod_context_free(f->ctx, f->retired);
-    f->retired = n, f->retired_cap = cap;
-  }
+  if (!_tlod_vkb_room(f->ctx, (void**)&f->retired, &f->retired_cap, f->retired_count, 16, sizeof(vk_retired)))
+    return false;
   r.serial = f->serial;
   f->retired[f->retired_count++] = r;
   return true;
 }
 
-bool _tlod_vk_retire_buffer(vk_frames* f, vk_buffer* b) {
+bool _tlod_vkb_retire_buffer(vk_frames* f, vk_buffer* b) {
   if (!b->buffer) return true;
   bool ok = push_retired(f, (vk_retired){.buffer = *b});
   memset(b, 0, sizeof(*b));
   return ok;
 }
 
-bool _tlod_vk_retire_texture(vk_frames* f, vk_texture* t) { return push_retired(f, (vk_retired){.texture = t}); }
+bool _tlod_vkb_retire_texture(vk_frames* f, vk_texture* t) { return push_retired(f, (vk_retired){.texture = t}); }
 
-VkResult _tlod_vk_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize align, VkDeviceSize* offset,
-                            tlod_device_stats* stats) {
+VkResult _tlod_vkb_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize align, VkDeviceSize* offset,
+                             tlod_device_stats* stats) {
   vk_slot* s = &f->slots[f->current];
-  VkDeviceSize at = _tlod_vk_align(s->head, align);
+  VkDeviceSize at = _tlod_vkb_align(s->head, align);
   if (!s->ring.buffer || at + bytes > s->ring.size) {
     VkDeviceSize cap = s->ring.size ? s->ring.size * 2 : RING_MIN;
     while (cap < bytes)
       cap *= 2;
     vk_buffer ring;
-    VkResult r = _tlod_vk_buffer_create(f->memory, cap,
-                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
-                                            VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                        1, &ring);
+    VkResult r = _tlod_vkb_buffer_create(f->memory, cap,
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+                                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                         1, &ring);
     if (r != VK_SUCCESS) return r;
     stats->vk.ring_bytes += cap - s->ring.size;
-    if (!_tlod_vk_retire_buffer(f, &s->ring)) {
-      _tlod_vk_buffer_destroy(f->memory, &ring);
+    if (!_tlod_vkb_retire_buffer(f, &s->ring)) {
+      _tlod_vkb_buffer_destroy(f->memory, &ring);
       return VK_ERROR_OUT_OF_HOST_MEMORY;
     }
     s->ring = ring;
@@ -161,14 +155,8 @@ VkResult _tlod_vk_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize align
 }
 
 static VkResult add_pool(vk_frames* f, vk_slot* s) {
-  if (s->pool_count == s->pool_cap) {
-    uint32_t cap = s->pool_cap ? s->pool_cap * 2 : 4;
-    VkDescriptorPool* n = tlod_context_alloc(f->ctx, sizeof(VkDescriptorPool) * cap);
-    if (!n) return VK_ERROR_OUT_OF_HOST_MEMORY;
-    if (s->pool_count) memcpy(n, s->pools, sizeof(VkDescriptorPool) * s->pool_count);
-    tlod_context_free(f->ctx, s->pools);
-    s->pools = n, s->pool_cap = cap;
-  }
+  if (!_tlod_vkb_room(f->ctx, (void**)&s->pools, &s->pool_cap, s->pool_count, 4, sizeof(VkDescriptorPool)))
+    return VK_ERROR_OUT_OF_HOST_MEMORY;
   const VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * POOL_SETS},
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 2 * POOL_SETS},
                                          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, POOL_SETS},
@@ -182,7 +170,7 @@ static VkResult add_pool(vk_frames* f, vk_slot* s) {
   return r;
 }
 
-VkResult _tlod_vk_sets(vk_frames* f, uint32_t count, VkDescriptorSet* out) {
+VkResult _tlod_vkb_sets(vk_frames* f, uint32_t count, VkDescriptorSet* out) {
   vk_slot* s = &f->slots[f->current];
   for (uint32_t i = 0; i < count; i++) {
     VkResult r = VK_ERROR_OUT_OF_POOL_MEMORY;

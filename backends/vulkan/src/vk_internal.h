@@ -18,7 +18,7 @@ _Static_assert(sizeof(tlod_vk_uniforms) == 256 && sizeof(tlod_vk_push) == 16, "t
 /* ---- host allocations (vk_alloc.c) ------------------------------------------ */
 
 /* Vulkan's host allocations through the context's allocator (aligned). */
-void _tlod_vk_callbacks(tlod_context* ctx, VkAllocationCallbacks* out);
+void _tlod_vkb_callbacks(tlod_context* ctx, VkAllocationCallbacks* out);
 
 /* ---- device memory (vk_memory.c) ------------------------------------------- */
 
@@ -46,9 +46,9 @@ typedef struct vk_memory {
 enum { VK_MEM_DEVICE = 0, VK_MEM_HOST = 1 };
 enum { VK_MEM_LINEAR = 0, VK_MEM_OPTIMAL = 2 }; /* images and buffers never share a block (granularity) */
 
-VkResult _tlod_vk_memory_alloc(vk_memory* m, const VkMemoryRequirements* req, int kind, vk_alloc* out);
-void _tlod_vk_memory_free(vk_memory* m, vk_alloc* a);
-void _tlod_vk_memory_destroy(vk_memory* m);
+VkResult _tlod_vkb_memory_alloc(vk_memory* m, const VkMemoryRequirements* req, int kind, vk_alloc* out);
+void _tlod_vkb_memory_free(vk_memory* m, vk_alloc* a);
+void _tlod_vkb_memory_destroy(vk_memory* m);
 
 /* A buffer and its memory. */
 typedef struct vk_buffer {
@@ -57,8 +57,8 @@ typedef struct vk_buffer {
   VkDeviceSize size;
 } vk_buffer;
 
-VkResult _tlod_vk_buffer_create(vk_memory* m, VkDeviceSize size, VkBufferUsageFlags usage, int host, vk_buffer* out);
-void _tlod_vk_buffer_destroy(vk_memory* m, vk_buffer* b);
+VkResult _tlod_vkb_buffer_create(vk_memory* m, VkDeviceSize size, VkBufferUsageFlags usage, int host, vk_buffer* out);
+void _tlod_vkb_buffer_destroy(vk_memory* m, vk_buffer* b);
 
 /* ---- one-time uploads (vk_upload.c): a submit + fence wait, never in a frame */
 
@@ -71,14 +71,14 @@ typedef struct vk_upload {
   VkFence fence;
 } vk_upload;
 
-VkResult _tlod_vk_upload_init(vk_upload* u, VkDevice device, VkQueue queue, uint32_t family,
-                              const VkAllocationCallbacks* cb);
-void _tlod_vk_upload_destroy(vk_upload* u);
-VkResult _tlod_vk_upload_begin(vk_upload* u);
-VkResult _tlod_vk_upload_submit(vk_upload* u); /* ends, submits, waits for its fence */
+VkResult _tlod_vkb_upload_init(vk_upload* u, VkDevice device, VkQueue queue, uint32_t family,
+                               const VkAllocationCallbacks* cb);
+void _tlod_vkb_upload_destroy(vk_upload* u);
+VkResult _tlod_vkb_upload_begin(vk_upload* u);
+VkResult _tlod_vkb_upload_submit(vk_upload* u); /* ends, submits, waits for its fence */
 /* Device-local buffer filled with data through a staging buffer. */
-VkResult _tlod_vk_buffer_upload(vk_memory* m, vk_upload* u, const void* data, VkDeviceSize size,
-                                VkBufferUsageFlags usage, vk_buffer* out);
+VkResult _tlod_vkb_buffer_upload(vk_memory* m, vk_upload* u, const void* data, VkDeviceSize size,
+                                 VkBufferUsageFlags usage, vk_buffer* out);
 
 /* ---- textures (vk_texture.c) ------------------------------------------------ */
 
@@ -89,9 +89,9 @@ typedef struct vk_texture {
   vk_alloc mem;
 } vk_texture;
 
-tlod_result _tlod_vk_texture_create(tlod_context* ctx, vk_memory* m, vk_upload* u, VkPhysicalDevice pd,
-                                    const tlod_texture_desc* desc, vk_texture** out);
-void _tlod_vk_texture_destroy(tlod_context* ctx, vk_memory* m, vk_texture* t);
+tlod_result _tlod_vkb_texture_create(tlod_context* ctx, vk_memory* m, vk_upload* u, VkPhysicalDevice pd,
+                                     const tlod_texture_desc* desc, vk_texture** out);
+void _tlod_vkb_texture_destroy(tlod_context* ctx, vk_memory* m, vk_texture* t);
 
 /* ---- shaders and pipelines (vk_pipeline.c) ---------------------------------- */
 
@@ -103,7 +103,7 @@ enum { VK_KIND_PATTERN, VK_KIND_STRIP, VK_KIND_TESS3, VK_KIND_TESS4, VK_KINDS };
 
 typedef struct vk_modules {
   bool built;
-  VkShaderModule pattern_vert, strip_vert, frag, tess_vert[2], tesc[2], tese[2];
+  VkShaderModule pattern_vert, strip_vert, tess_vert[2], tesc[2], tese[2];
 } vk_modules;
 
 typedef struct vk_pipelines {
@@ -123,19 +123,20 @@ typedef struct vk_pipelines {
   char* hook;         /* the desc's fragment hook, copied; NULL == material.glsl */
   void* shader_cache; /* vk_shader_cache (vk_shader.h) */
   vk_modules modules[VK_TYPES][VK_VARIANTS];
+  VkShaderModule frag[VK_VARIANTS]; /* the fragment stage does not depend on the surface type */
   /* [type][variant][kind][blend][line] */
   VkPipeline pipelines[VK_TYPES][VK_VARIANTS][VK_KINDS][2][2];
 } vk_pipelines;
 
 /* The set layout and pipeline layout (the bindings of tesslod/vulkan.h). */
-tlod_result _tlod_vk_pipelines_init(vk_pipelines* p);
-void _tlod_vk_pipelines_destroy(vk_pipelines* p);
+tlod_result _tlod_vkb_pipelines_init(vk_pipelines* p);
+void _tlod_vkb_pipelines_destroy(vk_pipelines* p);
 /* The shader modules of a surface type and variant, compiled (or loaded
  * from the SPIR-V cache) the first time. */
-tlod_result _tlod_vk_modules(vk_pipelines* p, tlod_surface_type type, int variant);
+tlod_result _tlod_vkb_modules(vk_pipelines* p, tlod_surface_type type, int variant);
 /* The pipeline of a key, made the first time (its modules built first). */
-tlod_result _tlod_vk_pipeline(vk_pipelines* p, tlod_surface_type type, int variant, int kind, bool blend, bool line,
-                              VkPipeline* out);
+tlod_result _tlod_vkb_pipeline(vk_pipelines* p, tlod_surface_type type, int variant, int kind, bool blend, bool line,
+                               VkPipeline* out);
 
 /* ---- frames in flight (vk_frame.c) ------------------------------------------ */
 
@@ -177,21 +178,21 @@ typedef struct vk_frames {
   uint64_t timestamp_mask;
 } vk_frames;
 
-tlod_result _tlod_vk_frames_init(vk_frames* f, bool queries, bool statistics);
-void _tlod_vk_frames_destroy(vk_frames* f);
+tlod_result _tlod_vkb_frames_init(vk_frames* f, bool queries, bool statistics);
+void _tlod_vkb_frames_destroy(vk_frames* f);
 /* A draw with frame index `index`: when it is not the previous draw's,
  * slot `index` begins a new frame (its previous one has finished: the
  * frame-index contract): results read, queries, ring and pools reset,
  * what was retired before every other slot's last frame destroyed. */
-void _tlod_vk_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* stats);
+void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* stats);
 /* `bytes` at an offset aligned to `align` in the current slot's ring
  * (grown, the old ring retired, when it does not fit). */
-VkResult _tlod_vk_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize align, VkDeviceSize* offset,
-                            tlod_device_stats* stats);
+VkResult _tlod_vkb_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize align, VkDeviceSize* offset,
+                             tlod_device_stats* stats);
 /* `count` descriptor sets of the set layout from the current slot's pools. */
-VkResult _tlod_vk_sets(vk_frames* f, uint32_t count, VkDescriptorSet* out);
-bool _tlod_vk_retire_buffer(vk_frames* f, vk_buffer* b);
-bool _tlod_vk_retire_texture(vk_frames* f, vk_texture* t);
+VkResult _tlod_vkb_sets(vk_frames* f, uint32_t count, VkDescriptorSet* out);
+bool _tlod_vkb_retire_buffer(vk_frames* f, vk_buffer* b);
+bool _tlod_vkb_retire_texture(vk_frames* f, vk_texture* t);
 
 /* ---- the device (vk_device.c), surfaces (vk_surface.c), draws (vk_draw.c) -- */
 
@@ -240,20 +241,34 @@ typedef struct vk_surface {
   uint32_t dirty;
 } vk_surface;
 
-tlod_result _tlod_vk_surface_create(void* state, const tlod_surface* s, void** surface_state);
-tlod_result _tlod_vk_surface_update(void* state, void* surface_state, const tlod_surface* s);
-void _tlod_vk_surface_destroy(void* state, void* surface_state);
+tlod_result _tlod_vkb_surface_create(void* state, const tlod_surface* s, void** surface_state);
+tlod_result _tlod_vkb_surface_update(void* state, void* surface_state, const tlod_surface* s);
+void _tlod_vkb_surface_destroy(void* state, void* surface_state);
 /* Slot `slot`'s copy, refreshed when dirty (never in flight: the contract). */
-VkResult _tlod_vk_surface_sync(vk_device* d, vk_surface* vs, uint32_t slot);
+VkResult _tlod_vkb_surface_sync(vk_device* d, vk_surface* vs, uint32_t slot);
 /* stats.vk.shader_* from the shader cache's counters. */
-void _tlod_vk_shader_stats(vk_device* d);
-tlod_result _tlod_vk_draw(void* state, const tlod_draw_desc* desc, const _tlod_draw_ref* refs,
-                          tlod_draw_item_stats* item_stats);
+void _tlod_vkb_shader_stats(vk_device* d);
+tlod_result _tlod_vkb_draw(void* state, const tlod_draw_desc* desc, const _tlod_draw_ref* refs,
+                           tlod_draw_item_stats* item_stats);
 
 /* ---- helpers ---------------------------------------------------------------- */
 
-static inline VkDeviceSize _tlod_vk_align(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+/* Room for one more element in *arr (count used, *cap allocated; doubled
+ * from first, contents kept), through ctx. */
+static inline bool _tlod_vkb_room(const tlod_context* ctx, void** arr, uint32_t* cap, uint32_t count, uint32_t first,
+                                  size_t elem) {
+  if (count < *cap) return true;
+  uint32_t n = *cap ? *cap * 2 : first;
+  void* p = tlod_context_alloc(ctx, elem * n);
+  if (!p) return false;
+  if (count) memcpy(p, *arr, elem * count);
+  tlod_context_free(ctx, *arr);
+  *arr = p, *cap = n;
+  return true;
+}
 
-const char* _tlod_vk_result_name(VkResult r);
+static inline VkDeviceSize _tlod_vkb_align(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
+
+const char* _tlod_vkb_result_name(VkResult r);
 
 #endif

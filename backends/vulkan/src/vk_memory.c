@@ -40,8 +40,7 @@ static int memory_type(const vk_memory* m, uint32_t bits, int kind) {
 
 static VkResult block_create(vk_memory* m, VkDeviceSize size, uint32_t type, int kind, bool dedicated, vk_block** out) {
   vk_block* b = tlod_context_calloc(m->ctx, 1, sizeof(*b));
-  if (b) b->free = tlod_context_alloc(m->ctx, sizeof(vk_range) * 8);
-  if (!b || !b->free) {
+  if (!b || !_tlod_vkb_room(m->ctx, (void**)&b->free, &b->free_cap, 0, 8, sizeof(vk_range))) {
     tlod_context_free(m->ctx, b);
     return VK_ERROR_OUT_OF_HOST_MEMORY;
   }
@@ -57,7 +56,7 @@ static VkResult block_create(vk_memory* m, VkDeviceSize size, uint32_t type, int
   }
   b->size = size, b->type = type, b->kind = kind, b->dedicated = dedicated;
   b->free[0] = (vk_range){0, size};
-  b->free_count = 1, b->free_cap = 8;
+  b->free_count = 1;
   b->next = m->blocks;
   m->blocks = b;
   (*m->live_blocks)++;
@@ -85,17 +84,11 @@ static void block_destroy(vk_memory* m, vk_block* b) {
 static bool block_take(vk_memory* m, vk_block* b, VkDeviceSize size, VkDeviceSize align, VkDeviceSize* offset) {
   for (uint32_t i = 0; i < b->free_count; i++) {
     vk_range f = b->free[i];
-    VkDeviceSize start = _tlod_vk_align(f.offset, align), end = start + size;
+    VkDeviceSize start = _tlod_vkb_align(f.offset, align), end = start + size;
     if (end > f.offset + f.size) continue;
     bool before = start > f.offset, after = end < f.offset + f.size;
     if (before && after) { /* one range becomes two */
-      if (b->free_count == b->free_cap) {
-        vk_range* n = tlod_context_alloc(m->ctx, sizeof(vk_range) * b->free_cap * 2);
-        if (!n) return false;
-        memcpy(n, b->free, sizeof(vk_range) * b->free_count);
-        tlod_context_free(m->ctx, b->free);
-        b->free = n, b->free_cap *= 2;
-      }
+      if (!_tlod_vkb_room(m->ctx, (void**)&b->free, &b->free_cap, b->free_count, 8, sizeof(vk_range))) return false;
       memmove(&b->free[i + 2], &b->free[i + 1], sizeof(vk_range) * (b->free_count - i - 1));
       b->free_count++;
       b->free[i + 1] = (vk_range){end, f.offset + f.size - end};
@@ -132,13 +125,8 @@ static bool block_give(vk_memory* m, vk_block* b, VkDeviceSize offset, VkDeviceS
   } else if (right) {
     b->free[i].offset = offset, b->free[i].size += size;
   } else {
-    if (b->free_count == b->free_cap) {
-      vk_range* n = tlod_context_alloc(m->ctx, sizeof(vk_range) * b->free_cap * 2);
-      if (!n) return false; /* the range is lost until the block goes: never a double use */
-      memcpy(n, b->free, sizeof(vk_range) * b->free_count);
-      tlod_context_free(m->ctx, b->free);
-      b->free = n, b->free_cap *= 2;
-    }
+    /* Out of memory: the range is lost until the block goes, never used twice. */
+    if (!_tlod_vkb_room(m->ctx, (void**)&b->free, &b->free_cap, b->free_count, 8, sizeof(vk_range))) return false;
     memmove(&b->free[i + 1], &b->free[i], sizeof(vk_range) * (b->free_count - i));
     b->free[i] = (vk_range){offset, size};
     b->free_count++;
@@ -146,7 +134,7 @@ static bool block_give(vk_memory* m, vk_block* b, VkDeviceSize offset, VkDeviceS
   return true;
 }
 
-VkResult _tlod_vk_memory_alloc(vk_memory* m, const VkMemoryRequirements* req, int kind, vk_alloc* out) {
+VkResult _tlod_vkb_memory_alloc(vk_memory* m, const VkMemoryRequirements* req, int kind, vk_alloc* out) {
   memset(out, 0, sizeof(*out));
   int type = memory_type(m, req->memoryTypeBits, kind);
   if (type < 0) return VK_ERROR_FEATURE_NOT_PRESENT;
@@ -174,7 +162,7 @@ VkResult _tlod_vk_memory_alloc(vk_memory* m, const VkMemoryRequirements* req, in
   return VK_SUCCESS;
 }
 
-void _tlod_vk_memory_free(vk_memory* m, vk_alloc* a) {
+void _tlod_vkb_memory_free(vk_memory* m, vk_alloc* a) {
   vk_block* b = a->block;
   if (!b) return;
   block_give(m, b, a->offset, a->size);
@@ -182,12 +170,12 @@ void _tlod_vk_memory_free(vk_memory* m, vk_alloc* a) {
   memset(a, 0, sizeof(*a));
 }
 
-void _tlod_vk_memory_destroy(vk_memory* m) {
+void _tlod_vkb_memory_destroy(vk_memory* m) {
   while (m->blocks)
     block_destroy(m, m->blocks);
 }
 
-VkResult _tlod_vk_buffer_create(vk_memory* m, VkDeviceSize size, VkBufferUsageFlags usage, int host, vk_buffer* out) {
+VkResult _tlod_vkb_buffer_create(vk_memory* m, VkDeviceSize size, VkBufferUsageFlags usage, int host, vk_buffer* out) {
   memset(out, 0, sizeof(*out));
   VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
                            .size = size,
@@ -197,18 +185,18 @@ VkResult _tlod_vk_buffer_create(vk_memory* m, VkDeviceSize size, VkBufferUsageFl
   if (r != VK_SUCCESS) return r;
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(m->device, out->buffer, &req);
-  r = _tlod_vk_memory_alloc(m, &req, (host ? VK_MEM_HOST : VK_MEM_DEVICE) | VK_MEM_LINEAR, &out->mem);
+  r = _tlod_vkb_memory_alloc(m, &req, (host ? VK_MEM_HOST : VK_MEM_DEVICE) | VK_MEM_LINEAR, &out->mem);
   if (r == VK_SUCCESS) r = vkBindBufferMemory(m->device, out->buffer, out->mem.memory, out->mem.offset);
   if (r != VK_SUCCESS) {
-    _tlod_vk_buffer_destroy(m, out);
+    _tlod_vkb_buffer_destroy(m, out);
     return r;
   }
   out->size = size;
   return VK_SUCCESS;
 }
 
-void _tlod_vk_buffer_destroy(vk_memory* m, vk_buffer* b) {
+void _tlod_vkb_buffer_destroy(vk_memory* m, vk_buffer* b) {
   if (b->buffer) vkDestroyBuffer(m->device, b->buffer, m->cb);
-  _tlod_vk_memory_free(m, &b->mem);
+  _tlod_vkb_memory_free(m, &b->mem);
   memset(b, 0, sizeof(*b));
 }

@@ -18,7 +18,7 @@ static const VkDescriptorType binding_types[7] = {
     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
 
-tlod_result _tlod_vk_pipelines_init(vk_pipelines* p) {
+tlod_result _tlod_vkb_pipelines_init(vk_pipelines* p) {
   VkDescriptorSetLayoutBinding b[7];
   for (uint32_t i = 0; i < 7; i++)
     b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
@@ -39,7 +39,7 @@ tlod_result _tlod_vk_pipelines_init(vk_pipelines* p) {
   if (r == VK_SUCCESS) r = vkCreatePipelineCache(p->device, &ci, p->cb, &p->cache);
   if (r != VK_SUCCESS)
     return tlod_context_fail(p->ctx, TLOD_ERROR_BACKEND, "vulkan device '%s': pipeline layout: %s", p->label,
-                             _tlod_vk_result_name(r));
+                             _tlod_vkb_result_name(r));
   return TLOD_SUCCESS;
 }
 
@@ -50,7 +50,6 @@ static void destroy_module(vk_pipelines* p, VkShaderModule m) {
 static void destroy_modules(vk_pipelines* p, vk_modules* m) {
   destroy_module(p, m->pattern_vert);
   destroy_module(p, m->strip_vert);
-  destroy_module(p, m->frag);
   for (int sh = 0; sh < 2; sh++) {
     destroy_module(p, m->tess_vert[sh]);
     destroy_module(p, m->tesc[sh]);
@@ -59,13 +58,15 @@ static void destroy_modules(vk_pipelines* p, vk_modules* m) {
   memset(m, 0, sizeof(*m));
 }
 
-void _tlod_vk_pipelines_destroy(vk_pipelines* p) {
+void _tlod_vkb_pipelines_destroy(vk_pipelines* p) {
   VkPipeline* all = &p->pipelines[0][0][0][0][0];
   for (size_t i = 0; i < sizeof(p->pipelines) / sizeof(VkPipeline); i++)
     if (all[i]) vkDestroyPipeline(p->device, all[i], p->cb);
   for (int t = 0; t < VK_TYPES; t++)
     for (int v = 0; v < VK_VARIANTS; v++)
       destroy_modules(p, &p->modules[t][v]);
+  for (int v = 0; v < VK_VARIANTS; v++)
+    destroy_module(p, p->frag[v]);
   if (p->cache) vkDestroyPipelineCache(p->device, p->cache, p->cb);
   if (p->layout) vkDestroyPipelineLayout(p->device, p->layout, p->cb);
   if (p->set_layout) vkDestroyDescriptorSetLayout(p->device, p->set_layout, p->cb);
@@ -73,90 +74,66 @@ void _tlod_vk_pipelines_destroy(vk_pipelines* p) {
 
 /* ---- modules ----------------------------------------------------------------- */
 
-typedef struct stage_src {
-  const char* src[10];
-  const char* name[10];
-  int count;
-} stage_src;
-
-static void add(stage_src* s, const char* src, const char* name) {
-  s->src[s->count] = src;
-  s->name[s->count++] = name;
-}
-
-/* A vertex-side stage: the shared files, the surface type's evaluation,
- * the varyings when the stage feeds the fragment stage, then its main (the
- * GL device's order). */
-static void vertex_side(stage_src* s, const char* defines, const char* corners, tlod_surface_type type, bool last,
-                        const char* main_src, const char* main_name) {
-  s->count = 0;
-  add(s, defines, "defines");
-  if (corners) add(s, corners, "corners");
-  add(s, _tlod_shader_layout, "layout.h");
-  add(s, _tlod_shader_uniforms, "uniforms.glsl");
-  add(s, _tlod_shader_common, "common.glsl");
-  add(s, _tlod_shader_attributes, "attributes.glsl");
-  if (last) add(s, _tlod_shader_varyings, "varyings.glsl");
-  if (type == TLOD_SURFACE_PN)
-    add(s, _tlod_shader_pn, "pn.glsl");
-  else if (type == TLOD_SURFACE_PHONG)
-    add(s, _tlod_shader_phong, "phong.glsl");
-  else
-    add(s, _tlod_shader_flat, "flat.glsl");
-  add(s, main_src, main_name);
-}
-
-static tlod_result make_module(vk_pipelines* p, glslang_stage_t stage, const stage_src* s, VkShaderModule* out) {
+/* One stage from its strings (shader_program.c's order and names). */
+static tlod_result make_module(vk_pipelines* p, glslang_stage_t stage, const char* const* src, int count,
+                               VkShaderModule* out) {
+  const char* names[_TLOD_SHADER_STAGE_SOURCES];
+  _tlod_shader_names(src, count, p->hook, names);
   uint32_t* words = NULL;
-  size_t count = 0;
-  tlod_result r = _tlod_vk_spirv(p->ctx, p->shader_cache, stage, s->src, s->name, s->count, &words, &count);
+  size_t n = 0;
+  tlod_result r = _tlod_vk_spirv(p->ctx, p->shader_cache, stage, src, names, count, &words, &n);
   if (r != TLOD_SUCCESS) return r;
   VkShaderModuleCreateInfo mi = {
-      .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = count * sizeof(uint32_t), .pCode = words};
+      .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = n * sizeof(uint32_t), .pCode = words};
   VkResult vr = vkCreateShaderModule(p->device, &mi, p->cb, out);
   tlod_context_free(p->ctx, words);
   if (vr != VK_SUCCESS)
     return tlod_context_fail(p->ctx, TLOD_ERROR_BACKEND, "vulkan device '%s': %s: vkCreateShaderModule: %s", p->label,
-                             s->name[s->count - 1], _tlod_vk_result_name(vr));
+                             names[count - 1], _tlod_vkb_result_name(vr));
   return TLOD_SUCCESS;
+}
+
+static tlod_result vertex_module(vk_pipelines* p, glslang_stage_t stage, const char* defines, int corners,
+                                 tlod_surface_type type, bool last, const char* main_src, VkShaderModule* out) {
+  const char* src[_TLOD_SHADER_STAGE_SOURCES];
+  int n = _tlod_shader_vertex_side(src, defines, corners ? _tlod_shader_corners(corners) : NULL,
+                                   _tlod_shader_surface(type), last, main_src);
+  return make_module(p, stage, src, n, out);
 }
 
 static tlod_result build_tess(vk_pipelines* p, vk_modules* m, const char* defines, tlod_surface_type type) {
   tlod_result r = TLOD_SUCCESS;
   for (int sh = 0; sh < 2 && r == TLOD_SUCCESS; sh++) {
-    const char* corners = sh ? "#define TLOD_CORNERS 4\n" : "#define TLOD_CORNERS 3\n";
-    stage_src s;
-    vertex_side(&s, defines, corners, type, false, _tlod_shader_tess_vert, "tess.vert");
-    r = make_module(p, GLSLANG_STAGE_VERTEX, &s, &m->tess_vert[sh]);
-    vertex_side(&s, defines, corners, type, false, _tlod_shader_tess_tesc, "tess.tesc");
-    if (r == TLOD_SUCCESS) r = make_module(p, GLSLANG_STAGE_TESSCONTROL, &s, &m->tesc[sh]);
-    vertex_side(&s, defines, corners, type, true, _tlod_shader_tess_tese, "tess.tese");
-    if (r == TLOD_SUCCESS) r = make_module(p, GLSLANG_STAGE_TESSEVALUATION, &s, &m->tese[sh]);
+    int corners = sh ? 4 : 3;
+    r = vertex_module(p, GLSLANG_STAGE_VERTEX, defines, corners, type, false, _tlod_shader_tess_vert,
+                      &m->tess_vert[sh]);
+    if (r == TLOD_SUCCESS)
+      r = vertex_module(p, GLSLANG_STAGE_TESSCONTROL, defines, corners, type, false, _tlod_shader_tess_tesc,
+                        &m->tesc[sh]);
+    if (r == TLOD_SUCCESS)
+      r = vertex_module(p, GLSLANG_STAGE_TESSEVALUATION, defines, corners, type, true, _tlod_shader_tess_tese,
+                        &m->tese[sh]);
   }
   return r;
 }
 
-tlod_result _tlod_vk_modules(vk_pipelines* p, tlod_surface_type type, int variant) {
+tlod_result _tlod_vkb_modules(vk_pipelines* p, tlod_surface_type type, int variant) {
   vk_modules* m = &p->modules[type][variant];
   if (m->built) return TLOD_SUCCESS;
   bool full = variant != VK_VARIANT_PLAIN;
-  char defines[240];
-  snprintf(defines, sizeof(defines),
-           "#version 450 core\n#define TLOD_GLSL 1\n#define TLOD_VULKAN 1\n#define TLOD_ATTRIBUTE_VARYINGS %d\n"
-           "#define TLOD_TEXCOORD %d\n#define TLOD_MASK %d\n",
-           full && p->hook ? 8 : 0, full ? 1 : 0, variant == VK_VARIANT_MASK ? 1 : 0);
-  stage_src s;
-  vertex_side(&s, defines, NULL, type, true, _tlod_shader_pattern_vert, "pattern.vert");
-  tlod_result r = make_module(p, GLSLANG_STAGE_VERTEX, &s, &m->pattern_vert);
-  vertex_side(&s, defines, NULL, type, true, _tlod_shader_strip_vert, "strip.vert");
-  if (r == TLOD_SUCCESS) r = make_module(p, GLSLANG_STAGE_VERTEX, &s, &m->strip_vert);
-  s.count = 0;
-  add(&s, defines, "defines");
-  add(&s, _tlod_shader_layout, "layout.h");
-  add(&s, _tlod_shader_uniforms, "uniforms.glsl");
-  add(&s, _tlod_shader_shade_frag, "shade.frag");
-  add(&s, p->hook ? p->hook : _tlod_shader_material, p->hook ? "fragment_hook" : "material.glsl");
-  if (r == TLOD_SUCCESS) r = make_module(p, GLSLANG_STAGE_FRAGMENT, &s, &m->frag);
+  _tlod_shader_variant sv = {.vulkan = true,
+                             .attribute_varyings = full && p->hook ? TLOD_SHADER_MAX_ATTRIBUTES : 0,
+                             .texcoord = full,
+                             .mask = variant == VK_VARIANT_MASK};
+  char defines[_TLOD_SHADER_DEFINES_BYTES];
+  _tlod_shader_defines(&sv, defines);
+  tlod_result r =
+      vertex_module(p, GLSLANG_STAGE_VERTEX, defines, 0, type, true, _tlod_shader_pattern_vert, &m->pattern_vert);
+  if (r == TLOD_SUCCESS)
+    r = vertex_module(p, GLSLANG_STAGE_VERTEX, defines, 0, type, true, _tlod_shader_strip_vert, &m->strip_vert);
+  const char* frag[_TLOD_SHADER_FRAGMENT_SOURCES];
+  int nf = _tlod_shader_fragment(frag, defines, NULL, p->hook);
+  if (r == TLOD_SUCCESS && !p->frag[variant]) r = make_module(p, GLSLANG_STAGE_FRAGMENT, frag, nf, &p->frag[variant]);
   if (r == TLOD_SUCCESS && p->hardware) r = build_tess(p, m, defines, type);
   if (r != TLOD_SUCCESS) {
     destroy_modules(p, m);
@@ -255,16 +232,16 @@ static void fixed(const vk_pipelines* p, fixed_state* f, int kind, bool blend, b
       .stencilAttachmentFormat = has_stencil(p->depth_format) ? p->depth_format : VK_FORMAT_UNDEFINED};
 }
 
-static int stages_of(const vk_modules* m, int kind, VkPipelineShaderStageCreateInfo st[4]) {
+static int stages_of(const vk_modules* m, VkShaderModule frag, int kind, VkPipelineShaderStageCreateInfo st[4]) {
   VkShaderModule mods[4] = {0};
   VkShaderStageFlagBits bits[4] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 0};
   int n = 2;
   if (kind == VK_KIND_PATTERN || kind == VK_KIND_STRIP) {
     mods[0] = kind == VK_KIND_PATTERN ? m->pattern_vert : m->strip_vert;
-    mods[1] = m->frag;
+    mods[1] = frag;
   } else {
     int sh = kind == VK_KIND_TESS4;
-    mods[0] = m->tess_vert[sh], mods[1] = m->tesc[sh], mods[2] = m->tese[sh], mods[3] = m->frag;
+    mods[0] = m->tess_vert[sh], mods[1] = m->tesc[sh], mods[2] = m->tese[sh], mods[3] = frag;
     bits[1] = VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, bits[2] = VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
     bits[3] = VK_SHADER_STAGE_FRAGMENT_BIT;
     n = 4;
@@ -277,21 +254,22 @@ static int stages_of(const vk_modules* m, int kind, VkPipelineShaderStageCreateI
   return n;
 }
 
-tlod_result _tlod_vk_pipeline(vk_pipelines* p, tlod_surface_type type, int variant, int kind, bool blend, bool line,
-                              VkPipeline* out) {
+tlod_result _tlod_vkb_pipeline(vk_pipelines* p, tlod_surface_type type, int variant, int kind, bool blend, bool line,
+                               VkPipeline* out) {
   VkPipeline* slot = &p->pipelines[type][variant][kind][blend][line];
   if (*slot) {
     *out = *slot;
     return TLOD_SUCCESS;
   }
-  tlod_result r = _tlod_vk_modules(p, type, variant);
+  tlod_result r = _tlod_vkb_modules(p, type, variant);
   if (r != TLOD_SUCCESS) return r;
   fixed_state f;
   fixed(p, &f, kind, blend, line);
   VkPipelineShaderStageCreateInfo st[4];
   VkGraphicsPipelineCreateInfo gi = {.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
                                      .pNext = p->render_pass ? NULL : &f.rendering,
-                                     .stageCount = (uint32_t)stages_of(&p->modules[type][variant], kind, st),
+                                     .stageCount =
+                                         (uint32_t)stages_of(&p->modules[type][variant], p->frag[variant], kind, st),
                                      .pStages = st,
                                      .pVertexInputState = &f.vertex,
                                      .pInputAssemblyState = &f.assembly,
@@ -309,7 +287,7 @@ tlod_result _tlod_vk_pipeline(vk_pipelines* p, tlod_surface_type type, int varia
   if (vr != VK_SUCCESS) {
     *slot = VK_NULL_HANDLE;
     return tlod_context_fail(p->ctx, TLOD_ERROR_BACKEND, "vulkan device '%s': %s pipeline (kind %d): %s", p->label,
-                             tlod_surface_type_name(type), kind, _tlod_vk_result_name(vr));
+                             tlod_surface_type_name(type), kind, _tlod_vkb_result_name(vr));
   }
   p->stats->vk.pipelines++;
   *out = *slot;

@@ -41,15 +41,15 @@ static tlod_result fill(vk_device* d, vk_surface* vs, const tlod_surface* s) {
 static void free_surface(vk_device* d, vk_surface* vs) {
   for (uint32_t i = 0; i < TLOD_VK_MAX_FRAMES_IN_FLIGHT; i++) {
     /* Out of host memory for the list: destroying now is the only way left. */
-    if (!_tlod_vk_retire_buffer(&d->frames, &vs->patches[i])) _tlod_vk_buffer_destroy(&d->memory, &vs->patches[i]);
-    if (!_tlod_vk_retire_buffer(&d->frames, &vs->attrs[i])) _tlod_vk_buffer_destroy(&d->memory, &vs->attrs[i]);
+    if (!_tlod_vkb_retire_buffer(&d->frames, &vs->patches[i])) _tlod_vkb_buffer_destroy(&d->memory, &vs->patches[i]);
+    if (!_tlod_vkb_retire_buffer(&d->frames, &vs->attrs[i])) _tlod_vkb_buffer_destroy(&d->memory, &vs->attrs[i]);
   }
   tlod_context_free(d->ctx, vs->records);
   tlod_context_free(d->ctx, vs->attributes);
   tlod_context_free(d->ctx, vs);
 }
 
-tlod_result _tlod_vk_surface_create(void* state, const tlod_surface* s, void** surface_state) {
+tlod_result _tlod_vkb_surface_create(void* state, const tlod_surface* s, void** surface_state) {
   vk_device* d = state;
   tlod_surface_view view = tlod_surface_query_view(s);
   if ((uint32_t)view.type >= VK_TYPES || !d->pipelines.modules[view.type][VK_VARIANT_PLAIN].built) {
@@ -73,25 +73,25 @@ tlod_result _tlod_vk_surface_create(void* state, const tlod_surface* s, void** s
   return TLOD_SUCCESS;
 }
 
-tlod_result _tlod_vk_surface_update(void* state, void* surface_state, const tlod_surface* s) {
+tlod_result _tlod_vkb_surface_update(void* state, void* surface_state, const tlod_surface* s) {
   return fill(state, surface_state, s);
 }
 
-void _tlod_vk_surface_destroy(void* state, void* surface_state) { free_surface(state, surface_state); }
+void _tlod_vkb_surface_destroy(void* state, void* surface_state) { free_surface(state, surface_state); }
 
 /* b holds bytes of data (a larger buffer is made when it does not; the old
  * one retired: a draw earlier in this frame may read it). */
 static VkResult copy_into(vk_device* d, vk_buffer* b, const void* data, size_t bytes) {
   if (b->size < bytes) {
-    if (!_tlod_vk_retire_buffer(&d->frames, b)) return VK_ERROR_OUT_OF_HOST_MEMORY;
-    VkResult r = _tlod_vk_buffer_create(&d->memory, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, b);
+    if (!_tlod_vkb_retire_buffer(&d->frames, b)) return VK_ERROR_OUT_OF_HOST_MEMORY;
+    VkResult r = _tlod_vkb_buffer_create(&d->memory, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, b);
     if (r != VK_SUCCESS) return r;
   }
   memcpy(b->mem.mapped, data, bytes);
   return VK_SUCCESS;
 }
 
-VkResult _tlod_vk_surface_sync(vk_device* d, vk_surface* vs, uint32_t slot) {
+VkResult _tlod_vkb_surface_sync(vk_device* d, vk_surface* vs, uint32_t slot) {
   if (!(vs->dirty & (1u << slot))) return VK_SUCCESS;
   VkResult r = copy_into(d, &vs->patches[slot], vs->records, vs->record_bytes);
   if (r == VK_SUCCESS) r = copy_into(d, &vs->attrs[slot], vs->attributes, vs->attribute_bytes);

@@ -67,10 +67,10 @@ static void record_mips(VkCommandBuffer cmd, VkImage image, uint32_t w, uint32_t
 static VkResult upload(vk_memory* m, vk_upload* u, vk_texture* t, const tlod_texture_desc* desc, uint32_t levels) {
   VkDeviceSize bytes = 4ull * desc->width * desc->height;
   vk_buffer staging;
-  VkResult r = _tlod_vk_buffer_create(m, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 1, &staging);
+  VkResult r = _tlod_vkb_buffer_create(m, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, 1, &staging);
   if (r != VK_SUCCESS) return r;
   memcpy(staging.mem.mapped, desc->rgba8, (size_t)bytes);
-  r = _tlod_vk_upload_begin(u);
+  r = _tlod_vkb_upload_begin(u);
   if (r == VK_SUCCESS) {
     barrier(u->cmd, t->image, 0, levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
             VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
@@ -78,9 +78,9 @@ static VkResult upload(vk_memory* m, vk_upload* u, vk_texture* t, const tlod_tex
                               .imageExtent = {desc->width, desc->height, 1}};
     vkCmdCopyBufferToImage(u->cmd, staging.buffer, t->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
     record_mips(u->cmd, t->image, desc->width, desc->height, levels);
-    r = _tlod_vk_upload_submit(u);
+    r = _tlod_vkb_upload_submit(u);
   }
-  _tlod_vk_buffer_destroy(m, &staging);
+  _tlod_vkb_buffer_destroy(m, &staging);
   return r;
 }
 
@@ -101,7 +101,7 @@ static VkResult make_image(vk_memory* m, vk_texture* t, VkFormat format, const t
   if (r != VK_SUCCESS) return r;
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(m->device, t->image, &req);
-  r = _tlod_vk_memory_alloc(m, &req, VK_MEM_DEVICE | VK_MEM_OPTIMAL, &t->mem);
+  r = _tlod_vkb_memory_alloc(m, &req, VK_MEM_DEVICE | VK_MEM_OPTIMAL, &t->mem);
   if (r == VK_SUCCESS) r = vkBindImageMemory(m->device, t->image, t->mem.memory, t->mem.offset);
   VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
                               .image = t->image,
@@ -125,8 +125,8 @@ static VkResult make_sampler(vk_memory* m, vk_texture* t, const tlod_texture_des
   return vkCreateSampler(m->device, &si, m->cb, &t->sampler);
 }
 
-tlod_result _tlod_vk_texture_create(tlod_context* ctx, vk_memory* m, vk_upload* u, VkPhysicalDevice pd,
-                                    const tlod_texture_desc* desc, vk_texture** out) {
+tlod_result _tlod_vkb_texture_create(tlod_context* ctx, vk_memory* m, vk_upload* u, VkPhysicalDevice pd,
+                                     const tlod_texture_desc* desc, vk_texture** out) {
   VkFormat format = desc->srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
   uint32_t levels = desc->mipmaps_off ? 1 : mip_levels(desc->width, desc->height);
   VkFormatProperties fp;
@@ -143,19 +143,19 @@ tlod_result _tlod_vk_texture_create(tlod_context* ctx, vk_memory* m, vk_upload* 
   if (r == VK_SUCCESS) r = upload(m, u, t, desc, levels);
   if (r == VK_SUCCESS) r = make_sampler(m, t, desc, levels);
   if (r != VK_SUCCESS) {
-    _tlod_vk_texture_destroy(ctx, m, t);
+    _tlod_vkb_texture_destroy(ctx, m, t);
     return tlod_context_fail(ctx, r == VK_ERROR_OUT_OF_DEVICE_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
                              "vulkan device: texture '%s' (%u x %u): %s", desc->label, desc->width, desc->height,
-                             _tlod_vk_result_name(r));
+                             _tlod_vkb_result_name(r));
   }
   *out = t;
   return TLOD_SUCCESS;
 }
 
-void _tlod_vk_texture_destroy(tlod_context* ctx, vk_memory* m, vk_texture* t) {
+void _tlod_vkb_texture_destroy(tlod_context* ctx, vk_memory* m, vk_texture* t) {
   if (t->sampler) vkDestroySampler(m->device, t->sampler, m->cb);
   if (t->view) vkDestroyImageView(m->device, t->view, m->cb);
   if (t->image) vkDestroyImage(m->device, t->image, m->cb);
-  _tlod_vk_memory_free(m, &t->mem);
+  _tlod_vkb_memory_free(m, &t->mem);
   tlod_context_free(ctx, t);
 }
