@@ -92,13 +92,8 @@ static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, c
     hc.back_candidates += !bg && env->stencil[i] == 2;
   }
   if (hc.enclosed_candidates + hc.back_candidates > 0) {
-    tlod_cpu_mesh* m = realise(fx, reference_dl);
+    tlod_cpu_mesh* m = ref_draw_list(&env->ref, fx, reference_dl, v, W, H, true);
     if (!m) return hc;
-    clear_frame(W, H);
-    gl_stencil_facing_begin();
-    ref_upload(&env->ref, m);
-    ref_draw(&env->ref, v);
-    gl_stencil_facing_end();
     tlod_cpu_mesh_destroy(fx->ctx, m);
     gl_read_rgba(W, H, env->ref_rgba);
     gl_read_stencil(W, H, env->ref_stencil);

@@ -202,6 +202,17 @@ static inline tlod_cpu_mesh* realise(const fixture* fx, const tlod_draw_list* dl
   return out;
 }
 
+/* A device of desc, or NULL with the reason printed (the GL and Vulkan
+ * tests then FAIL, never skip). */
+static inline tlod_device* new_device(tlod_context* ctx, const tlod_device_desc* desc) {
+  tlod_device* dev = NULL;
+  tlod_result r = tlod_device_create(ctx, desc, &dev);
+  if (r != TLOD_SUCCESS)
+    fprintf(stderr, "tlod_device_create(\"%s\"): %s: %s (this build has: %s)\n", desc->backend, tlod_result_string(r),
+            tlod_context_last_error(ctx), tlod_backend_names());
+  return dev;
+}
+
 static inline tlod_patterns* new_patterns(tlod_context* ctx, uint32_t max_level) {
   tlod_patterns* p = NULL;
   tlod_result r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = max_level}, &p);

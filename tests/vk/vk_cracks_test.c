@@ -35,8 +35,7 @@
  * including a dense frame (every patch at level 5) whose tessellated
  * vertices exceed lavapipe's 65,536 per draw, so batching is exercised.
  */
-#include "gl_test.h"
-#include "vk_test.h"
+#include "vk_gl_test.h"
 
 #define W 128
 #define H 128
@@ -44,11 +43,8 @@
 #define MAX_LEVEL 5
 
 typedef struct cracks_env {
-  tlod_platform *gl, *vk;
-  tlod_context* ctx;
-  tlod_patterns* pat;
+  vk_gl_env b;
   tlod_device* dev;
-  ref_renderer ref;
   uint8_t *rgba, *ref_rgba, *ref_stencil, *reached;
   float* ref_depth;
   uint32_t* queue;
@@ -70,39 +66,28 @@ static bool probe_back(const uint8_t* px) { return px[0] < 192; }
 static float probe_depth(const uint8_t* px) { return (float)(px[1] * 256 + px[2]) / 65535.0f; }
 
 static void env_close(cracks_env* env) {
-  if (env->vk) tlod_platform_finish(env->vk);
-  if (env->gl) tlod_platform_bind(env->gl), ref_free(&env->ref);
+  if (env->b.vk) tlod_platform_finish(env->b.vk);
   tlod_device_destroy(env->dev);
-  tlod_patterns_destroy(env->pat);
-  tlod_context_destroy(env->ctx);
   free(env->rgba), free(env->ref_rgba), free(env->ref_stencil), free(env->reached), free(env->ref_depth);
   free(env->queue);
-  if (env->vk) tlod_platform_destroy(env->vk);
-  if (env->gl) tlod_platform_destroy(env->gl);
+  vk_gl_close(&env->b);
   memset(env, 0, sizeof *env);
 }
 
-/* The GL platform (the reference) and the Vulkan one with a "vulkan"
- * device; false with the reason printed. */
+/* The platforms and a "vulkan" device drawing through the probe hook;
+ * false with the reason printed. */
 static bool env_open(cracks_env* env, bool hardware) {
-  char err[512] = "";
   memset(env, 0, sizeof *env);
-  env->gl = gl_test_platform(W, H, err, sizeof err);
-  env->vk = env->gl ? vk_test_platform(W, H, false, err, sizeof err) : NULL;
-  if (!env->vk) return false;
-  tlod_platform_bind(env->gl);
+  if (!vk_gl_open(&env->b, W, H, MAX_LEVEL)) return false;
   env->rgba = malloc(4 * W * H), env->ref_rgba = malloc(4 * W * H), env->ref_stencil = malloc(W * H);
   env->reached = malloc(W * H), env->ref_depth = malloc(sizeof(float) * W * H);
   env->queue = malloc(sizeof(uint32_t) * W * H);
-  if (!env->rgba || !env->ref_rgba || !env->ref_stencil || !env->reached || !env->ref_depth || !env->queue ||
-      !ref_init(&env->ref))
+  if (!env->rgba || !env->ref_rgba || !env->ref_stencil || !env->reached || !env->ref_depth || !env->queue)
     return false;
-  if (tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &env->ctx) != TLOD_SUCCESS) return false;
-  if (!(env->pat = new_patterns(env->ctx, MAX_LEVEL))) return false;
-  tlod_device_vk_desc vk = vk_desc_of(env->vk);
+  tlod_device_vk_desc vk = vk_desc_of(env->b.vk);
   vk.hardware_tessellation = hardware;
   vk.fragment_hook = k_probe_hook;
-  return (env->dev = new_vk_device(env->ctx, env->pat, "vk_cracks", vk)) != NULL;
+  return (env->dev = new_vk_device(env->b.ctx, env->b.pat, "vk_cracks", vk)) != NULL;
 }
 
 /* Rows of `row` bytes, bottom first (GL reads) -> top first. */
@@ -118,20 +103,15 @@ static void flip_rows(void* data, size_t row) {
 /* The reference (complete draw list) into ref_rgba / ref_stencil /
  * ref_depth, top row first like the platforms' reads. */
 static bool draw_reference(cracks_env* env, const fixture* fx, const tlod_draw_list* dl, const tlod_view_desc* v) {
-  tlod_cpu_mesh* m = realise(fx, dl);
+  tlod_platform_bind(env->b.gl);
+  tlod_cpu_mesh* m = ref_draw_list(&env->b.ref, fx, dl, v, W, H, true);
   if (!m) return false;
-  tlod_platform_bind(env->gl);
-  clear_frame(W, H);
-  gl_stencil_facing_begin();
-  ref_upload(&env->ref, m);
-  ref_draw(&env->ref, v);
-  gl_stencil_facing_end();
   tlod_cpu_mesh_destroy(fx->ctx, m);
   gl_read_stencil(W, H, env->ref_stencil);
   gl_read_depth(W, H, env->ref_depth);
   flip_rows(env->ref_stencil, W);
   flip_rows(env->ref_depth, sizeof(float) * W);
-  return tlod_platform_read_rgba(env->gl, env->ref_rgba);
+  return tlod_platform_read_rgba(env->b.gl, env->ref_rgba);
 }
 
 /* Confirms the candidates of the device image against the reference. */
@@ -159,7 +139,7 @@ static hole_count find_holes(cracks_env* env, const fixture* fx, const tlod_draw
   hole_count hc = {.x = -1, .y = -1};
   one_draw d;
   one_draw_make(&d, fx->ds, dl, &v);
-  *ok = vk_draw_frame(env->vk, env->dev, env->ctx, &d.desc, env->rgba);
+  *ok = vk_draw_frame(env->b.vk, env->dev, env->b.ctx, &d.desc, env->rgba);
   if (!*ok) return hc;
   hc.covered = covered_pixels(env->rgba, W, H);
   flood_background(env->rgba, W, H, env->reached, env->queue);
@@ -184,7 +164,7 @@ static void report(const char* what, int k, const hole_count* hc, const camera* 
 static uint32_t random_frames(cracks_env* env, const shape* s, tlod_surface_type type, tlod_scheduler_desc sd,
                               uint64_t seed, int cameras, uint32_t* mixed, uint64_t* contour_back) {
   fixture fx;
-  if (!fixture_make(&fx, env->ctx, s, type, env->pat, env->dev)) return UINT32_MAX;
+  if (!fixture_make(&fx, env->b.ctx, s, type, env->b.pat, env->dev)) return UINT32_MAX;
   tlod_scheduler* sch = new_scheduler(&fx, sd);
   shape_rng rng = {seed};
   uint32_t failures = 0;
@@ -245,7 +225,7 @@ TEST(test_detector_sees_missing_strips) {
   CHECK_MSG(opened, "no GL (reference) + Vulkan devices (see above)");
   shape cube = shape_cube_soft();
   fixture fx;
-  CHECK(fixture_make(&fx, env.ctx, &cube, TLOD_SURFACE_PN, env.pat, env.dev));
+  CHECK(fixture_make(&fx, env.b.ctx, &cube, TLOD_SURFACE_PN, env.b.pat, env.dev));
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
   CHECK(sch);
   const double eyes[4][3] = {{1.3, 1.1, 0.9}, {-1.2, 1.0, -1.1}, {0.4, -1.5, 0.8}, {-1.0, -1.1, 1.2}};
@@ -281,7 +261,7 @@ TEST(test_detector_sees_missing_strips) {
  * split under lavapipe's 65,536; lost patches show as holes. */
 static void dense_frame(cracks_env* env, const shape* s) {
   fixture fx;
-  CHECK(fixture_make(&fx, env->ctx, s, TLOD_SURFACE_PN, env->pat, env->dev));
+  CHECK(fixture_make(&fx, env->b.ctx, s, TLOD_SURFACE_PN, env->b.pat, env->dev));
   tlod_scheduler_desc sd = {.policy = TLOD_POLICY_ERROR,
                             .epsilon_px = 1e-6f,
                             .max_level = MAX_LEVEL,

@@ -39,8 +39,7 @@
  *     coverage may differ on R's silhouette band only (at most 0.5%), and
  *     colour within 8/255 on >= 99% of the commonly covered pixels.
  */
-#include "gl_test.h"
-#include "vk_test.h"
+#include "vk_gl_test.h"
 
 #define W 192
 #define H 192
@@ -54,11 +53,8 @@
 #define VR_FRACTION 0.99
 
 typedef struct parity_env {
-  tlod_platform *gl, *vk;
-  tlod_context* ctx;
-  tlod_patterns* pat;
+  vk_gl_env b;
   tlod_device *gl_dev, *vk_dev;
-  ref_renderer ref;
   uint8_t *img_gl, *img_vk, *img_ref;
 } parity_env;
 
@@ -97,14 +93,14 @@ static void check_pair(const uint8_t* vk, const uint8_t* ref, tolerance t, const
 /* The same desc drawn by both devices: img_gl, img_vk. desc.items name the
  * GL device's surfaces; vk_items the Vulkan device's (same order). */
 static void draw_both(parity_env* env, tlod_draw_desc* desc, const tlod_draw_item* vk_items, const char* what) {
-  tlod_platform_bind(env->gl);
+  tlod_platform_bind(env->b.gl);
   clear_frame(W, H);
   tlod_result r = tlod_device_draw(env->gl_dev, desc);
-  CHECK_MSG(r == TLOD_SUCCESS, "%s: gl draw: %s: %s", what, tlod_result_string(r), tlod_context_last_error(env->ctx));
-  CHECK_MSG(tlod_platform_read_rgba(env->gl, env->img_gl), "%s: gl read", what);
+  CHECK_MSG(r == TLOD_SUCCESS, "%s: gl draw: %s: %s", what, tlod_result_string(r), tlod_context_last_error(env->b.ctx));
+  CHECK_MSG(tlod_platform_read_rgba(env->b.gl, env->img_gl), "%s: gl read", what);
   tlod_draw_desc vd = *desc;
   vd.items = vk_items;
-  CHECK_MSG(vk_draw_frame(env->vk, env->vk_dev, env->ctx, &vd, env->img_vk), "%s: vulkan frame", what);
+  CHECK_MSG(vk_draw_frame(env->b.vk, env->vk_dev, env->b.ctx, &vd, env->img_vk), "%s: vulkan frame", what);
   s_totals.comparisons++;
   s_totals.covered += covered_pixels(env->img_gl, W, H);
 }
@@ -114,24 +110,21 @@ static const tolerance k_vs_ref = {VR_BAND_PERMILLE, VR_COLOUR, VR_FRACTION};
 
 /* The draw list's CPU mesh through the independent renderer: img_ref. */
 static void draw_reference(parity_env* env, const fixture* fx, const tlod_draw_list* dl, const tlod_view_desc* v) {
-  tlod_cpu_mesh* m = realise(fx, dl);
+  tlod_platform_bind(env->b.gl);
+  tlod_cpu_mesh* m = ref_draw_list(&env->b.ref, fx, dl, v, W, H, false);
   CHECK_MSG(m, "CPU realisation failed");
-  tlod_platform_bind(env->gl);
-  clear_frame(W, H);
-  ref_upload(&env->ref, m);
-  ref_draw(&env->ref, v);
   tlod_cpu_mesh_destroy(fx->ctx, m);
-  CHECK(tlod_platform_read_rgba(env->gl, env->img_ref));
+  CHECK(tlod_platform_read_rgba(env->b.gl, env->img_ref));
 }
 
 /* with_cpu: also against the CPU mesh (not on the hardware path: its
  * triangles are the tessellator's, not the draw list's). */
 static void one_shape(parity_env* env, const shape* s, tlod_surface_type type, bool with_cpu) {
   fixture fx;
-  CHECK(fixture_make(&fx, env->ctx, s, type, env->pat, env->gl_dev));
+  CHECK(fixture_make(&fx, env->b.ctx, s, type, env->b.pat, env->gl_dev));
   tlod_device_surface* vds = NULL;
   tlod_result r = tlod_device_create_surface(env->vk_dev, fx.surf, &vds);
-  CHECK_MSG(r == TLOD_SUCCESS, "vulkan surface: %s: %s", tlod_result_string(r), tlod_context_last_error(env->ctx));
+  CHECK_MSG(r == TLOD_SUCCESS, "vulkan surface: %s: %s", tlod_result_string(r), tlod_context_last_error(env->b.ctx));
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
   CHECK(sch);
   camera cams[2] = {camera_look(2.6, -3.4, 1.9, 0, 0, 0, 45, W, H),
@@ -159,36 +152,26 @@ static void one_shape(parity_env* env, const shape* s, tlod_surface_type type, b
 
 /* hardware: both devices on the hardware tessellation path. */
 static bool env_open(parity_env* env, bool hardware) {
-  char err[512] = "";
   memset(env, 0, sizeof *env);
-  env->gl = gl_test_platform(W, H, err, sizeof err);
-  env->vk = env->gl ? vk_test_platform(W, H, false, err, sizeof err) : NULL;
-  if (!env->vk) return false;
-  tlod_platform_bind(env->gl);
+  if (!vk_gl_open(&env->b, W, H, MAX_LEVEL)) return false;
   env->img_gl = malloc(4 * W * H), env->img_vk = malloc(4 * W * H), env->img_ref = malloc(4 * W * H);
-  if (!env->img_gl || !env->img_vk || !env->img_ref || !ref_init(&env->ref)) return false;
-  if (tlod_context_create(&(tlod_context_desc){.thread_count = 2}, &env->ctx) != TLOD_SUCCESS) return false;
-  if (!(env->pat = new_patterns(env->ctx, MAX_LEVEL))) return false;
-  env->gl_dev =
-      new_gl_device(env->ctx, env->pat, "parity gl", (tlod_device_gl_desc){.hardware_tessellation = hardware});
-  tlod_device_vk_desc vk = vk_desc_of(env->vk);
+  if (!env->img_gl || !env->img_vk || !env->img_ref) return false;
+  tlod_device_gl_desc gl = {.hardware_tessellation = hardware};
+  if (!(env->gl_dev = new_gl_device(env->b.ctx, env->b.pat, "parity gl", gl))) return false;
+  tlod_device_vk_desc vk = vk_desc_of(env->b.vk);
   vk.hardware_tessellation = hardware;
-  tlod_platform_bind(env->gl);
-  env->vk_dev = env->gl_dev ? new_vk_device(env->ctx, env->pat, "parity vulkan", vk) : NULL;
+  env->vk_dev = new_vk_device(env->b.ctx, env->b.pat, "parity vulkan", vk);
+  tlod_platform_bind(env->b.gl);
   return env->vk_dev != NULL;
 }
 
 static void env_close(parity_env* env) {
-  if (env->vk) tlod_platform_finish(env->vk);
-  if (env->gl) tlod_platform_bind(env->gl);
+  if (env->b.vk) tlod_platform_finish(env->b.vk);
+  if (env->b.gl) tlod_platform_bind(env->b.gl);
   tlod_device_destroy(env->gl_dev);
   tlod_device_destroy(env->vk_dev);
-  tlod_patterns_destroy(env->pat);
-  tlod_context_destroy(env->ctx);
-  if (env->gl) ref_free(&env->ref);
   free(env->img_gl), free(env->img_vk), free(env->img_ref);
-  if (env->vk) tlod_platform_destroy(env->vk);
-  if (env->gl) tlod_platform_destroy(env->gl);
+  vk_gl_close(&env->b);
   memset(env, 0, sizeof *env);
 }
 
@@ -249,7 +232,7 @@ static void material_open(material_scene* ms, parity_env* env) {
   tlod_mesh_desc descs[3] = {shape_mesh_desc(&ms->sph), shape_mesh_desc(&ms->torus), ms->uvs.desc};
   const tlod_surface_type types[3] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN, TLOD_SURFACE_PHONG};
   for (int k = 0; k < 3; ++k) {
-    CHECK(fixture_make_desc(&ms->fx[k], env->ctx, &descs[k], types[k], env->pat, env->gl_dev));
+    CHECK(fixture_make_desc(&ms->fx[k], env->b.ctx, &descs[k], types[k], env->b.pat, env->gl_dev));
     CHECK(tlod_device_create_surface(env->vk_dev, ms->fx[k].surf, &ms->vds[k]) == TLOD_SUCCESS);
   }
   CHECK(ms->gl_tex = checker(env->gl_dev));
@@ -295,7 +278,7 @@ static void material_plan(material_scene* ms, parity_env* env, const tlod_view_d
   for (int i = 0; i < 4; ++i) {
     tlod_view_desc ov = object_view(v, ms->gl_items[i].model);
     tlod_frame_desc f = {.views = &ov, .view_count = 1, .dt_ms = 0.0f};
-    CHECK(ms->gl_items[i].draw_list = scheduler_plan(env->ctx, ms->sch[i], &f));
+    CHECK(ms->gl_items[i].draw_list = scheduler_plan(env->b.ctx, ms->sch[i], &f));
     ms->vk_items[i] = ms->gl_items[i];
     ms->vk_items[i].surface = ms->vds[surf_of[i]];
     if (ms->gl_items[i].base_color_texture) ms->vk_items[i].base_color_texture = ms->vk_tex;

@@ -88,15 +88,20 @@ static tlod_device_texture* make_checker(tlod_device* dev, tlod_context* ctx) {
   return tex;
 }
 
-static bool object_make(object* o, tlod_context* ctx, const tlod_mesh_desc* md, tlod_surface_type type,
-                        const tlod_patterns* pat, tlod_device* dev, double x, double y, double z, double scale) {
-  if (!fixture_make_desc(&o->fx, ctx, md, type, pat, dev)) return false;
-  o->sch = new_scheduler(&o->fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
+/* Its own scheduler on fx's surface, placed at (x, y, z), scaled. */
+static bool object_place(object* o, const fixture* fx, double x, double y, double z, double scale) {
+  o->sch = new_scheduler(fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
   o->at[0] = x, o->at[1] = y, o->at[2] = z;
   o->scale = scale;
-  o->item.surface = o->fx.ds;
+  o->item.surface = fx->ds;
   o->item.has_model = true;
   return o->sch != NULL;
+}
+
+static bool object_make(object* o, tlod_context* ctx, const tlod_mesh_desc* md, tlod_surface_type type,
+                        const tlod_patterns* pat, tlod_device* dev, double x, double y, double z, double scale) {
+  memset(o, 0, sizeof *o);
+  return fixture_make_desc(&o->fx, ctx, md, type, pat, dev) && object_place(o, &o->fx, x, y, z, scale);
 }
 
 static void object_free(object* o) {
@@ -108,12 +113,7 @@ static void object_free(object* o) {
 /* A second object drawing another object's surface (its own scheduler). */
 static bool object_share(object* o, const object* of, double x, double y, double z, double scale) {
   memset(o, 0, sizeof *o);
-  o->sch = new_scheduler(&of->fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
-  o->at[0] = x, o->at[1] = y, o->at[2] = z;
-  o->scale = scale;
-  o->item.surface = of->fx.ds;
-  o->item.has_model = true;
-  return o->sch != NULL;
+  return object_place(o, &of->fx, x, y, z, scale);
 }
 
 static void colour(tlod_draw_item* it, float r, float g, float b, float a) {
