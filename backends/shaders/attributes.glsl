@@ -3,8 +3,8 @@
 // inputs and order on both sides of an edge, like positions), interior
 // points with the corner weights of interior_point. Attributes are linear
 // in the patch parameters, so geomorphs need nothing: the midpoint of the
-// parents' values is the value at the vertex.
-uniform uint u_attribute_count;  // of the item's mesh, 0..TLOD_SHADER_MAX_ATTRIBUTES
+// parents' values is the value at the vertex. u_attribute_count
+// (uniforms.glsl): of the item's mesh, 0..TLOD_SHADER_MAX_ATTRIBUTES.
 
 vec4 corner_attribute(uint patch_id, uint c, uint a) {
   return patch_attributes[(patch_id * 4u + c) * u_attribute_count + a];

@@ -1,15 +1,9 @@
 // tesslod shaders -- shared declarations after layout.h (the storage
-// buffers, their structs and binding points, shared with C): the uniforms of
-// every program, and the canonical edge evaluation (docs/design.md invariant
-// 1: both patches of an edge evaluate its points with the same function,
-// inputs and order, marked precise so no FMA contraction can differ).
-
-// Uniform locations are looked up once, when the device links the program.
-uniform mat4 u_view_proj;      // proj * view * model of the item drawn
-uniform mat4 u_model;          // the item's model matrix (world position for shading)
-uniform mat3 u_normal_matrix;  // inverse transpose of the model's 3x3
-uniform uint u_grid;           // N = 2^max_level (set at link time)
-uniform uint u_max_level;      // (set at link time)
+// buffers, their structs and binding points, shared with C) and
+// uniforms.glsl (u_grid, u_model, u_normal_matrix): the canonical edge
+// evaluation (docs/design.md invariant 1: both patches of an edge evaluate
+// its points with the same function, inputs and order, marked precise so no
+// FMA contraction can differ).
 
 // World-space outputs of a surface point (identity model: exactly pos and nrm).
 vec3 world_position(vec3 pos) { return (u_model * vec4(pos, 1.0)).xyz; }

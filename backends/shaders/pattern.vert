@@ -1,17 +1,15 @@
 // Refinement patterns drawn instanced: one instance per patch, the pattern
-// vertex from gl_VertexID (the element buffer holds pattern indices).
-uniform uint u_first_instance;
-uniform uint u_shape_base;  // offset of this shape's vertices in Pattern
-
-out vec3 v_normal;
-out vec3 v_world;
-flat out uint v_level;
-flat out uint v_strip;
+// vertex from gl_VertexID (the element buffer holds pattern indices);
+// u_first_instance and u_shape_base (uniforms.glsl) place the draw call.
+layout(location = TLOD_LOCATION_NORMAL) out vec3 v_normal;
+layout(location = TLOD_LOCATION_WORLD) out vec3 v_world;
+layout(location = TLOD_LOCATION_LEVEL) flat out uint v_level;
+layout(location = TLOD_LOCATION_STRIP) flat out uint v_strip;
 
 void main() {
-  Instance ins = instances[u_first_instance + uint(gl_InstanceID)];
+  Instance ins = instances[u_first_instance + uint(TLOD_INSTANCE_ID)];
   Patch P = patches[ins.patch_id];
-  PatternVertex v = pattern[u_shape_base + uint(gl_VertexID)];
+  PatternVertex v = pattern[u_shape_base + uint(TLOD_VERTEX_ID)];
   vec3 pos, nrm;
   pattern_point(P, v, pos, nrm);
   uint kind = v.code & 255u, level = v.code >> 8;

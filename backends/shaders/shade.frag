@@ -1,28 +1,16 @@
 // Shading: the material function tlod_shade() (the built-in one,
 // material.glsl, or the device's fragment hook, compiled after this file)
 // on the interpolated surface point, or a debug colour.
-in vec3 v_normal;
-in vec3 v_world;
-flat in uint v_level;
-flat in uint v_strip;
+// The uniforms are in uniforms.glsl.
+layout(location = TLOD_LOCATION_NORMAL) in vec3 v_normal;
+layout(location = TLOD_LOCATION_WORLD) in vec3 v_world;
+layout(location = TLOD_LOCATION_LEVEL) flat in uint v_level;
+layout(location = TLOD_LOCATION_STRIP) flat in uint v_strip;
 #if TLOD_TEXCOORD  // FULL and MASK programs only: the fetch costs per fragment even when skipped
-in vec2 v_texcoord;
+layout(location = TLOD_LOCATION_TEXCOORD) in vec2 v_texcoord;
 #endif
 #if TLOD_ATTRIBUTE_VARYINGS > 0
-in vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
-#endif
-
-uniform vec3 u_light_dir;   // normalised, towards the light
-uniform vec4 u_base_color;
-uniform uint u_debug;       // 0 shaded, 1 levels, 2 silhouette depth, 3 strips, 4 wire
-uniform vec3 u_eye;
-uniform uint u_ortho;
-uniform vec3 u_forward;
-uniform float u_alpha_cutoff;  // MASK (TLOD_MASK programs)
-uniform uint u_attribute_count;
-#if TLOD_TEXCOORD
-uniform uint u_texcoord;       // attribute of the base colour texture's coordinates (v_texcoord); >= 8: none
-layout(binding = TLOD_TEXTURE_UNIT_BASE_COLOR) uniform sampler2D u_base_color_texture;
+layout(location = TLOD_LOCATION_ATTRIBUTES) in vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
 #endif
 
 layout(location = 0) out vec4 o_color;

@@ -4,10 +4,10 @@
 // edge vertices, geomorph included, so strip and patch meet bitwise.
 layout(location = TLOD_ATTRIB_STRIP_REF) in uvec2 a_ref;  // strip, point
 
-out vec3 v_normal;
-out vec3 v_world;
-flat out uint v_level;
-flat out uint v_strip;
+layout(location = TLOD_LOCATION_NORMAL) out vec3 v_normal;
+layout(location = TLOD_LOCATION_WORLD) out vec3 v_world;
+layout(location = TLOD_LOCATION_LEVEL) flat out uint v_level;
+layout(location = TLOD_LOCATION_STRIP) flat out uint v_strip;
 
 // Point i of the level-l polyline on edge e of P, with e's blend a.
 void polyline_point(Patch P, uint e, uint l, uint i, float a, out vec3 pos, out vec3 nrm) {

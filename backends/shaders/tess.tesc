@@ -2,9 +2,9 @@
 // finer of the two sides' 2^level, so both sides of an edge generate the
 // same points (no strips needed, but split normals still crack).
 layout(vertices = TLOD_CORNERS) out;
-flat in uint vc_inst[];
-flat in uint vc_corner[];
-patch out uint tc_inst;
+layout(location = TLOD_LOCATION_TESS_INSTANCE) flat in uint vc_inst[];
+layout(location = TLOD_LOCATION_TESS_CORNER) flat in uint vc_corner[];
+layout(location = TLOD_LOCATION_TESS_INSTANCE) patch out uint tc_inst;
 
 void main() {
   if (gl_InvocationID == 0) {

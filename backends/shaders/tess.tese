@@ -5,12 +5,12 @@ layout(triangles, equal_spacing, ccw) in;
 #else
 layout(quads, equal_spacing, ccw) in;
 #endif
-patch in uint tc_inst;
+layout(location = TLOD_LOCATION_TESS_INSTANCE) patch in uint tc_inst;
 
-out vec3 v_normal;
-out vec3 v_world;
-flat out uint v_level;
-flat out uint v_strip;
+layout(location = TLOD_LOCATION_NORMAL) out vec3 v_normal;
+layout(location = TLOD_LOCATION_WORLD) out vec3 v_world;
+layout(location = TLOD_LOCATION_LEVEL) flat out uint v_level;
+layout(location = TLOD_LOCATION_STRIP) flat out uint v_strip;
 
 void main() {
   Instance ins = instances[tc_inst];

@@ -7,11 +7,10 @@
 // variants). Each varying costs interpolation per fragment (llvmpipe:
 // measurably), and the PLAIN variant reads no attribute at all.
 #if TLOD_TEXCOORD
-uniform uint u_texcoord;
-out vec2 v_texcoord;
+layout(location = TLOD_LOCATION_TEXCOORD) out vec2 v_texcoord;
 #endif
 #if TLOD_ATTRIBUTE_VARYINGS > 0
-out vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
+layout(location = TLOD_LOCATION_ATTRIBUTES) out vec4 v_attr[TLOD_SHADER_MAX_ATTRIBUTES];
 #endif
 void write_varyings(uint patch_id, Patch P, uint kind, uint num, vec2 uv) {
 #if TLOD_TEXCOORD

@@ -1,6 +1,6 @@
 /*
  * gl_glsl_include_test.c -- the GLSL shipped for engines (docs/shaders.md:
- * layout.h, common.glsl, attributes.glsl, then phong.glsl, pn.glsl or
+ * layout.h, uniforms.glsl, common.glsl, attributes.glsl, then phong.glsl, pn.glsl or
  * flat.glsl, installed under share/tesslod/glsl) compiles into an engine's
  * own vertex shader and evaluates patches as the library does (owned by
  * the GL tests). Public API only, plus the shader files of the source tree.
@@ -62,19 +62,19 @@ static const char* const k_engine_main =
 /* Compiles "#version 450 core" + TLOD_GLSL + the files + k_engine_main into a
  * transform feedback program; 0 with the log printed. */
 static GLuint engine_program(const char* surface_file) {
-  const char* files[4] = {"layout.h", "common.glsl", "attributes.glsl", surface_file};
-  char* text[4] = {0};
-  const char* src[6] = {"#version 450 core\n#define TLOD_GLSL 1\n"};
-  for (int i = 0; i < 4; i++) {
+  const char* files[5] = {"layout.h", "uniforms.glsl", "common.glsl", "attributes.glsl", surface_file};
+  char* text[5] = {0};
+  const char* src[7] = {"#version 450 core\n#define TLOD_GLSL 1\n"};
+  for (int i = 0; i < 5; i++) {
     text[i] = read_text(files[i]);
     if (!text[i]) fprintf(stderr, "cannot read %s/%s\n", TLOD_GLSL_SOURCE_DIR, files[i]);
     src[1 + i] = text[i] ? text[i] : "";
   }
-  src[5] = k_engine_main;
+  src[6] = k_engine_main;
   GLuint sh = glCreateShader(GL_VERTEX_SHADER);
-  glShaderSource(sh, 6, src, NULL);
+  glShaderSource(sh, 7, src, NULL);
   glCompileShader(sh);
-  for (int i = 0; i < 4; i++)
+  for (int i = 0; i < 5; i++)
     free(text[i]);
   if (!gl_status_ok(sh, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, "engine vertex shader")) return 0;
   GLuint prog = glCreateProgram();

@@ -150,12 +150,14 @@ static void locate(gl_device* d, gl_program* p) {
 
 /* A vertex-side stage: the shared files, the surface type's evaluation,
  * the varyings when the stage feeds the fragment stage, then its main. */
-static int stage_sources(const char* out[8], const char* version, const char* corners, const char* surface, bool last,
-                         const char* main_src) {
+#define STAGE_SOURCES 9
+static int stage_sources(const char* out[STAGE_SOURCES], const char* version, const char* corners, const char* surface,
+                         bool last, const char* main_src) {
   int n = 0;
   out[n++] = version;
   if (corners) out[n++] = corners;
   out[n++] = _tlod_shader_layout;
+  out[n++] = _tlod_shader_uniforms;
   out[n++] = _tlod_shader_common;
   out[n++] = _tlod_shader_attributes;
   if (last) out[n++] = _tlod_shader_varyings;
@@ -176,23 +178,28 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type, int vari
            "#version 450 core\n#define TLOD_GLSL 1\n#define TLOD_ATTRIBUTE_VARYINGS %d\n#define TLOD_TEXCOORD %d\n"
            "#define TLOD_MASK %d\n",
            full && d->fragment_hook ? 8 : 0, full ? 1 : 0, variant == VARIANT_MASK ? 1 : 0);
-  const char *pattern[8], *strip[8];
+  const char *pattern[STAGE_SOURCES], *strip[STAGE_SOURCES];
   int np = stage_sources(pattern, version, NULL, surface, true, _tlod_shader_pattern_vert);
   int ns = stage_sources(strip, version, NULL, surface, true, _tlod_shader_strip_vert);
   /* The material's lines are numbered from TLOD_GL_HOOK_LINE: the driver's log names them. */
-  const char* frag[] = {version, _tlod_shader_layout, _tlod_shader_shade_frag, TLOD_GL_HOOK_LINE_DIRECTIVE,
+  const char* frag[] = {version,
+                        _tlod_shader_layout,
+                        _tlod_shader_uniforms,
+                        _tlod_shader_shade_frag,
+                        TLOD_GL_HOOK_LINE_DIRECTIVE,
                         d->fragment_hook ? d->fragment_hook : _tlod_shader_material};
+  enum { FRAG_SOURCES = sizeof(frag) / sizeof(frag[0]) };
   char error[1600] = "";
   gl_programs* ps = &d->programs[type][variant];
-  ps->pattern.id = _tlod_gl_program(pattern, np, frag, 5, error, sizeof(error));
-  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, ns, frag, 5, error, sizeof(error));
+  ps->pattern.id = _tlod_gl_program(pattern, np, frag, FRAG_SOURCES, error, sizeof(error));
+  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, ns, frag, FRAG_SOURCES, error, sizeof(error));
   bool ok = ps->pattern.id && ps->strip.id;
   for (int sh = 0; sh < 2 && d->hardware && ok; sh++) {
     const char* corners = sh ? "#define TLOD_CORNERS 4\n" : "#define TLOD_CORNERS 3\n";
-    const char *vs[8], *tcs[8], *tes[8];
+    const char *vs[STAGE_SOURCES], *tcs[STAGE_SOURCES], *tes[STAGE_SOURCES];
     const int counts[4] = {stage_sources(vs, version, corners, surface, false, _tlod_shader_tess_vert),
                            stage_sources(tcs, version, corners, surface, false, _tlod_shader_tess_tesc),
-                           stage_sources(tes, version, corners, surface, true, _tlod_shader_tess_tese), 5};
+                           stage_sources(tes, version, corners, surface, true, _tlod_shader_tess_tese), FRAG_SOURCES};
     const char* const* stages[4] = {vs, tcs, tes, frag};
     ps->tess[sh].id = _tlod_gl_program_tess(stages, counts, error, sizeof(error));
     ok = ps->tess[sh].id != 0;

@@ -7,7 +7,8 @@
 #include <GL/glext.h>
 
 #include "device_internal.h"
-#include "layout.h" /* backends/shaders: binding points and buffer structs, shared with GLSL */
+#include "layout.h"         /* backends/shaders: binding points and buffer structs, shared with GLSL */
+#include "shader_sources.h" /* backends/shaders as C strings */
 #include "tesslod/gl.h"
 
 #if TLOD_GL_BINDING_PATCHES != TLOD_BINDING_PATCHES || TLOD_GL_BINDING_PATTERNS != TLOD_BINDING_PATTERN ||             \
@@ -54,21 +55,5 @@ GLuint _tlod_gl_program(const char* const* vert, int vert_count, const char* con
                         size_t error_size);
 /* The same with tessellation control and evaluation stages. */
 GLuint _tlod_gl_program_tess(const char* const* stages[4], const int counts[4], char* error, size_t error_size);
-
-/* Embedded shader sources (generated from backends/shaders at configure time). */
-extern const char* const _tlod_shader_layout;
-extern const char* const _tlod_shader_common;
-extern const char* const _tlod_shader_phong;
-extern const char* const _tlod_shader_pn;
-extern const char* const _tlod_shader_flat;
-extern const char* const _tlod_shader_pattern_vert;
-extern const char* const _tlod_shader_strip_vert;
-extern const char* const _tlod_shader_shade_frag;
-extern const char* const _tlod_shader_attributes;
-extern const char* const _tlod_shader_varyings;
-extern const char* const _tlod_shader_material;
-extern const char* const _tlod_shader_tess_vert;
-extern const char* const _tlod_shader_tess_tesc;
-extern const char* const _tlod_shader_tess_tese;
 
 #endif
