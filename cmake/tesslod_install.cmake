@@ -137,6 +137,15 @@ if(TARGET tlod_gl AND tlod_gl IN_LIST _tlod_targets)
   set(TLOD_PC_GL_LIBS "-l${_gl_name} ")
 endif()
 
+# The Vulkan backend links the loader and glslang's static libraries (C++, so the C++ runtime
+# too), by name in their static link order; Debian's glslang.pc names a library it does not ship.
+set(TLOD_PC_VULKAN_LIBS "")
+if(TARGET tlod_vulkan AND tlod_vulkan IN_LIST _tlod_targets)
+  set(TLOD_PC_VULKAN_LIBS "-lvulkan -lglslang-default-resource-limits -lSPIRV -lglslang -lMachineIndependent ")
+  string(APPEND TLOD_PC_VULKAN_LIBS "-lOGLCompiler -lOSDependent -lGenericCodeGen -lSPIRV-Tools-opt -lSPIRV-Tools ")
+  string(APPEND TLOD_PC_VULKAN_LIBS "-lSPIRV-Tools-link -lstdc++ ")
+endif()
+
 # Relocatable: the prefix is derived from the .pc file's own location, so
 # `cmake --install build --prefix /anywhere` (and DESTDIR) produce a working file.
 if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")

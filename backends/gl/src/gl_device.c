@@ -148,58 +148,33 @@ static void locate(gl_device* d, gl_program* p) {
   d->stats->gl.program_links++;
 }
 
-/* A vertex-side stage: the shared files, the surface type's evaluation,
- * the varyings when the stage feeds the fragment stage, then its main. */
-#define STAGE_SOURCES 9
-static int stage_sources(const char* out[STAGE_SOURCES], const char* version, const char* corners, const char* surface,
-                         bool last, const char* main_src) {
-  int n = 0;
-  out[n++] = version;
-  if (corners) out[n++] = corners;
-  out[n++] = _tlod_shader_layout;
-  out[n++] = _tlod_shader_uniforms;
-  out[n++] = _tlod_shader_common;
-  out[n++] = _tlod_shader_attributes;
-  if (last) out[n++] = _tlod_shader_varyings;
-  out[n++] = surface;
-  out[n++] = main_src;
-  return n;
-}
-
 static tlod_result build_programs(gl_device* d, tlod_surface_type type, int variant) {
-  const char* surface = type == TLOD_SURFACE_PN      ? _tlod_shader_pn
-                        : type == TLOD_SURFACE_PHONG ? _tlod_shader_phong
-                                                     : _tlod_shader_flat;
+  const char* surface = _tlod_shader_surface(type);
   /* All attributes reach the fragment stage only for a hook: the built-in
    * material reads none, and each varying costs per fragment. */
   bool full = variant != VARIANT_PLAIN;
-  char version[200];
-  snprintf(version, sizeof(version),
-           "#version 450 core\n#define TLOD_GLSL 1\n#define TLOD_ATTRIBUTE_VARYINGS %d\n#define TLOD_TEXCOORD %d\n"
-           "#define TLOD_MASK %d\n",
-           full && d->fragment_hook ? 8 : 0, full ? 1 : 0, variant == VARIANT_MASK ? 1 : 0);
-  const char *pattern[STAGE_SOURCES], *strip[STAGE_SOURCES];
-  int np = stage_sources(pattern, version, NULL, surface, true, _tlod_shader_pattern_vert);
-  int ns = stage_sources(strip, version, NULL, surface, true, _tlod_shader_strip_vert);
+  _tlod_shader_variant v = {.attribute_varyings = full && d->fragment_hook ? TLOD_SHADER_MAX_ATTRIBUTES : 0,
+                            .texcoord = full,
+                            .mask = variant == VARIANT_MASK};
+  char version[_TLOD_SHADER_DEFINES_BYTES];
+  _tlod_shader_defines(&v, version);
+  const char *pattern[_TLOD_SHADER_STAGE_SOURCES], *strip[_TLOD_SHADER_STAGE_SOURCES];
+  int np = _tlod_shader_vertex_side(pattern, version, NULL, surface, true, _tlod_shader_pattern_vert);
+  int ns = _tlod_shader_vertex_side(strip, version, NULL, surface, true, _tlod_shader_strip_vert);
   /* The material's lines are numbered from TLOD_GL_HOOK_LINE: the driver's log names them. */
-  const char* frag[] = {version,
-                        _tlod_shader_layout,
-                        _tlod_shader_uniforms,
-                        _tlod_shader_shade_frag,
-                        TLOD_GL_HOOK_LINE_DIRECTIVE,
-                        d->fragment_hook ? d->fragment_hook : _tlod_shader_material};
-  enum { FRAG_SOURCES = sizeof(frag) / sizeof(frag[0]) };
+  const char* frag[_TLOD_SHADER_FRAGMENT_SOURCES];
+  int nf = _tlod_shader_fragment(frag, version, TLOD_GL_HOOK_LINE_DIRECTIVE, d->fragment_hook);
   char error[1600] = "";
   gl_programs* ps = &d->programs[type][variant];
-  ps->pattern.id = _tlod_gl_program(pattern, np, frag, FRAG_SOURCES, error, sizeof(error));
-  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, ns, frag, FRAG_SOURCES, error, sizeof(error));
+  ps->pattern.id = _tlod_gl_program(pattern, np, frag, nf, error, sizeof(error));
+  if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, ns, frag, nf, error, sizeof(error));
   bool ok = ps->pattern.id && ps->strip.id;
   for (int sh = 0; sh < 2 && d->hardware && ok; sh++) {
-    const char* corners = sh ? "#define TLOD_CORNERS 4\n" : "#define TLOD_CORNERS 3\n";
-    const char *vs[STAGE_SOURCES], *tcs[STAGE_SOURCES], *tes[STAGE_SOURCES];
-    const int counts[4] = {stage_sources(vs, version, corners, surface, false, _tlod_shader_tess_vert),
-                           stage_sources(tcs, version, corners, surface, false, _tlod_shader_tess_tesc),
-                           stage_sources(tes, version, corners, surface, true, _tlod_shader_tess_tese), FRAG_SOURCES};
+    const char* corners = _tlod_shader_corners(sh ? 4 : 3);
+    const char *vs[_TLOD_SHADER_STAGE_SOURCES], *tcs[_TLOD_SHADER_STAGE_SOURCES], *tes[_TLOD_SHADER_STAGE_SOURCES];
+    const int counts[4] = {_tlod_shader_vertex_side(vs, version, corners, surface, false, _tlod_shader_tess_vert),
+                           _tlod_shader_vertex_side(tcs, version, corners, surface, false, _tlod_shader_tess_tesc),
+                           _tlod_shader_vertex_side(tes, version, corners, surface, true, _tlod_shader_tess_tese), nf};
     const char* const* stages[4] = {vs, tcs, tes, frag};
     ps->tess[sh].id = _tlod_gl_program_tess(stages, counts, error, sizeof(error));
     ok = ps->tess[sh].id != 0;
