@@ -12,10 +12,14 @@
  *     misnamed or hostile cache file is ignored and compiled again;
  *   - errors name the string and its line ("fragment_hook:3",
  *     "common.glsl:2"), and a failed compile leaves no cache file;
+ *   - the SPIR-V's std140 / push constant member offsets (read from its
+ *     OpMemberDecorate Offset) are those of the C mirrors tlod_vk_uniforms
+ *     and tlod_vk_push in layout.h;
  *   - every allocation goes through the context, and is freed.
  */
 #define _POSIX_C_SOURCE 200809L /* opendir, unlink, truncate */
 #include <dirent.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -360,10 +364,72 @@ TEST(an_unwritable_folder_is_not_an_error) {
   tlod_context_destroy(ctx);
 }
 
+/* ---- the block layouts against the C mirrors ------------------------------------------ */
+
+/* The id OpName gives name, or 0. */
+static uint32_t named_id(const uint32_t* w, size_t n, const char* name) {
+  for (size_t i = 5; i < n; i += w[i] >> 16) {
+    if ((w[i] & 0xFFFFu) == 5 && strcmp((const char*)&w[i + 2], name) == 0) return w[i + 1];
+    if (w[i] >> 16 == 0) break;
+  }
+  return 0;
+}
+
+/* The Offset decoration of the member called member of struct id, or -1. */
+static long member_offset(const uint32_t* w, size_t n, uint32_t id, const char* member) {
+  long index = -1;
+  for (size_t i = 5; i < n && w[i] >> 16; i += w[i] >> 16) {
+    if ((w[i] & 0xFFFFu) == 6 && w[i + 1] == id && strcmp((const char*)&w[i + 3], member) == 0) index = w[i + 2];
+  }
+  for (size_t i = 5; i < n && w[i] >> 16; i += w[i] >> 16) {
+    if ((w[i] & 0xFFFFu) == 72 && w[i + 1] == id && (long)w[i + 2] == index && w[i + 3] == 35) return w[i + 4];
+  }
+  return -1;
+}
+
+TEST(block_offsets_are_the_c_mirrors) {
+  static const struct {
+    const char* block;
+    const char* member;
+    size_t offset;
+  } k[] = {
+      {"TlodUniforms", "u_view_proj", offsetof(tlod_vk_uniforms, view_proj)},
+      {"TlodUniforms", "u_model", offsetof(tlod_vk_uniforms, model)},
+      {"TlodUniforms", "u_normal_matrix", offsetof(tlod_vk_uniforms, normal_matrix)},
+      {"TlodUniforms", "u_light_dir", offsetof(tlod_vk_uniforms, light_dir)},
+      {"TlodUniforms", "u_base_color", offsetof(tlod_vk_uniforms, base_color)},
+      {"TlodUniforms", "u_eye", offsetof(tlod_vk_uniforms, eye)},
+      {"TlodUniforms", "u_ortho", offsetof(tlod_vk_uniforms, ortho)},
+      {"TlodUniforms", "u_forward", offsetof(tlod_vk_uniforms, forward)},
+      {"TlodUniforms", "u_alpha_cutoff", offsetof(tlod_vk_uniforms, alpha_cutoff)},
+      {"TlodUniforms", "u_grid", offsetof(tlod_vk_uniforms, grid)},
+      {"TlodUniforms", "u_max_level", offsetof(tlod_vk_uniforms, max_level)},
+      {"TlodUniforms", "u_texcoord", offsetof(tlod_vk_uniforms, texcoord)},
+      {"TlodUniforms", "u_attribute_count", offsetof(tlod_vk_uniforms, attribute_count)},
+      {"TlodPush", "u_first_instance", offsetof(tlod_vk_push, first_instance)},
+      {"TlodPush", "u_shape_base", offsetof(tlod_vk_push, shape_base)},
+      {"TlodPush", "u_corners", offsetof(tlod_vk_push, corners)},
+      {"TlodPush", "u_debug", offsetof(tlod_vk_push, debug)},
+  };
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  vk_shader_cache c = {0};
+  uint32_t* w = NULL;
+  size_t n = 0;
+  const stage* frag = &g_stages.s[8]; /* flat, PLAIN, no hook: the fragment stage */
+  CHECK(frag->kind == GLSLANG_STAGE_FRAGMENT && compile_one(ctx, &c, frag, &w, &n) == TLOD_SUCCESS);
+  for (size_t i = 0; i < sizeof(k) / sizeof(k[0]); i++) {
+    long got = member_offset(w, n, named_id(w, n, k[i].block), k[i].member);
+    CHECK_MSG(got == (long)k[i].offset, "%s.%s at %ld, C mirror at %zu", k[i].block, k[i].member, got, k[i].offset);
+  }
+  tlod_context_free(ctx, w);
+  tlod_context_destroy(ctx);
+}
+
 int main(void) {
   glslang_initialize_process();
   RUN(every_variant_compiles_then_loads_from_the_cache);
   RUN(damaged_cache_files_are_compiled_again);
+  RUN(block_offsets_are_the_c_mirrors);
   RUN(errors_name_the_string_and_its_line);
   RUN(without_a_folder_every_call_compiles);
   RUN(an_unwritable_folder_is_not_an_error);

@@ -81,6 +81,7 @@ typedef struct cache_header {
   uint32_t word_count, reserved;
   uint64_t checksum;
 } cache_header;
+_Static_assert(sizeof(cache_header) == 40, "the cache file header (docs/shaders.md)");
 
 #define TMP_SUFFIX ".tmp.XXXXXX" /* mkstemp's template after the final name */
 
