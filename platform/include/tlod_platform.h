@@ -181,8 +181,16 @@ bool tlod_platform_begin_frame(tlod_platform* p, const float clear_rgba[4], tlod
  * with the slot's fence (window: then presents; VK_ERROR_OUT_OF_DATE_KHR or
  * VK_SUBOPTIMAL_KHR marks the swapchain for recreation at the next
  * begin_frame). *submit_ms (may be NULL): milliseconds in vkQueueSubmit
- * (lavapipe executes the commands inside it). */
+ * (lavapipe queues the work for its own thread: see tlod_platform_finish). */
 bool tlod_platform_end_frame(tlod_platform* p, double* submit_ms, char* error, size_t error_size);
+
+/* Waits until the GPU has finished every frame submitted so far (GL:
+ * glFinish; Vulkan: both slots' fences, no device idle) and returns the
+ * milliseconds it waited, < 0 on failure. For measurements: lavapipe's
+ * vkQueueSubmit returns before the work is done (docs/platform.md section
+ * 3.1), so submit_ms alone is not the frame's GPU time. Not inside a
+ * Vulkan frame. */
+double tlod_platform_finish(tlod_platform* p);
 
 /* Changes the framebuffer size (1..16384 each). GL headless: a new FBO;
  * window modes: the window is resized (Vulkan: the swapchain recreated

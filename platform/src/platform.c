@@ -165,6 +165,18 @@ bool tlod_platform_end_frame(tlod_platform* p, double* submit_ms, char* error, s
   return true;
 }
 
+double tlod_platform_finish(tlod_platform* p) {
+  if (!p) return -1;
+  double t0 = tlod_platform_time_ms();
+#if TLOD_PLATFORM_HAS_VULKAN
+  if (is_vk(p) && !_tlod_platform_vk_finish(p)) return -1;
+#endif
+#if TLOD_PLATFORM_HAS_GL
+  if (p->api == TLOD_PLATFORM_GL) _tlod_platform_gl_finish(p);
+#endif
+  return tlod_platform_time_ms() - t0;
+}
+
 bool tlod_platform_resize(tlod_platform* p, uint32_t width, uint32_t height, char* error, size_t error_size) {
   if (!p || width == 0 || height == 0 || width > 16384 || height > 16384) {
     _tlod_platform_error(error, error_size, "tlod_platform_resize: %ux%u is not 1..16384 each (or no platform)", width,

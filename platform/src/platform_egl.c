@@ -440,6 +440,11 @@ bool _tlod_platform_gl_resize(tlod_platform* p, uint32_t width, uint32_t height,
   return true;
 }
 
+void _tlod_platform_gl_finish(tlod_platform* p) {
+  make_current(p);
+  glFinish();
+}
+
 /* GL rows are bottom first: swap them in place. */
 static void flip_rows(uint8_t* rgba, GLsizei w, GLsizei h) {
   size_t stride = (size_t)w * 4;

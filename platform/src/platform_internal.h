@@ -48,6 +48,7 @@ void _tlod_platform_gl_destroy(tlod_platform* p);
 void _tlod_platform_gl_bind(tlod_platform* p);
 void _tlod_platform_gl_clear(tlod_platform* p, const float rgba[4]);
 bool _tlod_platform_gl_read_rgba(tlod_platform* p, uint8_t* rgba);
+void _tlod_platform_gl_finish(tlod_platform* p);
 bool _tlod_platform_gl_resize(tlod_platform* p, uint32_t width, uint32_t height, char* error, size_t error_size);
 
 /* Windows (platform_glfw.c): gl_context true makes a GL 4.5 core context
@@ -72,6 +73,7 @@ bool _tlod_platform_vk_begin_frame(tlod_platform* p, const float rgba[4], tlod_p
                                    size_t error_size);
 bool _tlod_platform_vk_end_frame(tlod_platform* p, double* submit_ms, char* error, size_t error_size);
 bool _tlod_platform_vk_read_rgba(tlod_platform* p, uint8_t* rgba);
+bool _tlod_platform_vk_finish(tlod_platform* p);
 bool _tlod_platform_vk_resize(tlod_platform* p, uint32_t width, uint32_t height, char* error, size_t error_size);
 bool _tlod_platform_vk_info(const tlod_platform* p, tlod_platform_vk* out);
 uint64_t _tlod_platform_vk_messages(const tlod_platform* p); /* NULL: process total */

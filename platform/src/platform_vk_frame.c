@@ -98,8 +98,7 @@ bool _tlod_platform_vk_begin_frame(tlod_platform* p, const float rgba[4], tlod_p
   if (p->window && !_tlod_vk_window_acquire(p, error, error_size)) return false;
   VkCommandBufferBeginInfo begin = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                     .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-  if (!_tlod_vk_check(vkResetFences(vk->device, 1, &f->fence), "vkResetFences", error, error_size) ||
-      !_tlod_vk_check(vkResetCommandBuffer(f->cmd, 0), "vkResetCommandBuffer", error, error_size) ||
+  if (!_tlod_vk_check(vkResetCommandBuffer(f->cmd, 0), "vkResetCommandBuffer", error, error_size) ||
       !_tlod_vk_check(vkBeginCommandBuffer(f->cmd, &begin), "vkBeginCommandBuffer", error, error_size))
     return false;
   attachments_barrier(p, f->cmd);
@@ -155,9 +154,13 @@ static bool submit(tlod_platform* p, vk_frame* f, double* submit_ms, char* error
                        .pCommandBuffers = &f->cmd,
                        .signalSemaphoreCount = p->window ? 1 : 0,
                        .pSignalSemaphores = &vk->rendered[vk->image]};
+  /* The fence is reset only here, right before the submit that signals it:
+   * a frame that fails earlier leaves it signalled, so no later wait hangs. */
+  if (!_tlod_vk_check(vkResetFences(vk->device, 1, &f->fence), "vkResetFences", error, error_size)) return false;
   double t0 = tlod_platform_time_ms();
   VkResult r = vkQueueSubmit(vk->queue, 1, &info, f->fence);
   if (submit_ms) *submit_ms = tlod_platform_time_ms() - t0;
+  if (r < 0) (void)vkQueueSubmit(vk->queue, 0, NULL, f->fence); /* signal it anyway (or the device is lost) */
   return _tlod_vk_check(r, "vkQueueSubmit", error, error_size);
 }
 
@@ -199,6 +202,14 @@ bool _tlod_platform_vk_read_rgba(tlod_platform* p, uint8_t* rgba) {
     rgba[i + 2] = b;
   }
   return true;
+}
+
+bool _tlod_platform_vk_finish(tlod_platform* p) {
+  _tlod_platform_vk* vk = p->vk;
+  VkFence fences[VK_FRAMES];
+  for (int i = 0; i < VK_FRAMES; ++i)
+    fences[i] = vk->frames[i].fence;
+  return !vk->in_frame && vkWaitForFences(vk->device, VK_FRAMES, fences, VK_TRUE, UINT64_MAX) == VK_SUCCESS;
 }
 
 bool _tlod_platform_vk_resize(tlod_platform* p, uint32_t width, uint32_t height, char* error, size_t error_size) {

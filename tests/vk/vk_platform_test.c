@@ -11,8 +11,8 @@
  *     bytes; a clear rectangle over the top rows reads back in row 0 (top
  *     row first); 10 frames of different colours, each read right after
  *     its end_frame, give that frame's colour (never the other slot's) and
- *     frame_index alternates 0, 1; begin twice / end without begin fail
- *     with a message; resize then a frame reads back at the new size;
+ *     frame_index alternates 0, 1; begin twice / end without begin /
+ *     resize or finish inside a frame fail (with a message); resize then a frame reads back at the new size;
  *     zero validation messages, also over destruction (the object tracker
  *     reports leaks in vkDestroyDevice / vkDestroyInstance), and a
  *     command the layer must reject is printed and counted (so the zero
@@ -137,7 +137,9 @@ TEST(vk_headless_misuse) {
   bool first = tlod_platform_begin_frame(p, NULL, &f, s_err, sizeof s_err);
   bool second = tlod_platform_begin_frame(p, NULL, &f, e1, sizeof e1);
   bool resized = tlod_platform_resize(p, 16, 16, e2, sizeof e2); /* inside the frame */
+  double inside = tlod_platform_finish(p);
   bool ended = tlod_platform_end_frame(p, NULL, s_err, sizeof s_err);
+  double finished = tlod_platform_finish(p);
   bool again = tlod_platform_end_frame(p, NULL, s_err, sizeof s_err);
   uint64_t messages = tlod_platform_validation_messages(p);
   tlod_platform_destroy(p);
@@ -145,6 +147,7 @@ TEST(vk_headless_misuse) {
   CHECK_MSG(!second && strstr(e1, "not ended"), "%s", e1);
   CHECK_MSG(!resized && strstr(e2, "inside a frame"), "%s", e2);
   CHECK(!again);
+  CHECK_MSG(inside < 0 && finished >= 0, "finish inside a frame %g, after %g", inside, finished);
   CHECK_MSG(messages == 0, "%llu validation messages", (unsigned long long)messages);
 }
 
@@ -216,7 +219,7 @@ TEST(gl_begin_frame_clears_and_resizes) {
   tlod_platform* p = NULL;
   bool made = tlod_platform_create(&(tlod_platform_desc){.width = 16, .height = 16}, &p, s_err, sizeof s_err);
   CHECK_MSG(made, "no GL context: %s", s_err);
-  static uint8_t px[20 * 10 * 4];
+  static uint8_t px[16 * 16 * 4]; /* the larger of 16 x 16 and 20 x 10 */
   const uint8_t a[4] = {51, 102, 204, 255}, b[4] = {255, 0, 17, 128};
   float fa[4], fb[4];
   to_float(a, fa);
@@ -231,12 +234,13 @@ TEST(gl_begin_frame_clears_and_resizes) {
   tlod_platform_size(p, &w, &h);
   bool second = resized && tlod_platform_begin_frame(p, fb, &f, s_err, sizeof s_err) &&
                 tlod_platform_read_rgba(p, px) && all_pixels(px, 20, 10, b, 0, 10);
+  bool finished = tlod_platform_finish(p) >= 0;
   bool no_vk = !tlod_platform_vk_info(p, &(tlod_platform_vk){0}) && tlod_platform_validation_messages(p) == 0;
   tlod_platform_destroy(p);
   CHECK_MSG(first, "%s", s_err);
   CHECK_MSG(resized && w == 20 && h == 10, "%s (size %ux%u)", s_err, w, h);
   CHECK_MSG(second, "%s", s_err);
-  CHECK(no_vk);
+  CHECK(no_vk && finished);
 #endif
 }
 
