@@ -97,7 +97,8 @@ static void collect(vk_frames* f) {
 }
 
 void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* stats) {
-  if (f->started && index == f->current) return;
+  /* One slot: every draw is a frame of its own (nothing else tells frames apart). */
+  if (f->started && index == f->current && f->count > 1) return;
   f->started = true;
   f->current = index;
   vk_slot* s = &f->slots[index];
