@@ -273,6 +273,9 @@ TEST(test_destroy_frees_everything) {
   CHECK(covered_pixels(rgba, W, H) > W * H / 10 && coloured_pixels(rgba) > 20);
   CHECK(st.vk.descriptor_sets == 3 && st.vk.upload_bytes > 3 * 256 && st.vk.ring_bytes >= st.vk.upload_bytes);
   CHECK(st.items == 3 && st.draw_calls > 3 && st.triangles > 0);
+  /* Pattern buffers, the white texture, the checker, 2 rings and 2 x 2 x 2
+   * surface buffers (11 objects) live in a few suballocated blocks. */
+  CHECK_MSG(st.vk.memory_blocks <= 4, "%u VkDeviceMemory blocks for 11 buffers and images", st.vk.memory_blocks);
   CHECK_MSG(st.gpu_draw > 0 && st.gpu_ms >= 0.0, "no timestamp reading after 4 frames (gpu_draw %llu)",
             (unsigned long long)st.gpu_draw);
   /* Destroyed while the last frame may be in flight: retired, freed later. */
