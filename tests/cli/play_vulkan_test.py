@@ -86,8 +86,10 @@ check("validate: summary.json says the layer was on and counted 0 messages (sess
       [r.get("validation_messages") for r in s.get("runs", [])] == [0] and s.get("backend") == "vulkan", s)
 check("validate: nothing from the layer on stderr",
       not any(k in se for k in ("VUID", "Validation", "SYNC-")), se)
+t = load_json(os.path.join(VK, "trace.json")) if rc == 0 else {}
 check("validate: every frame played, 6 objects, animation 'move'",
-      s.get("runs", [{}])[0].get("frames") == FRAMES and s.get("animation") == "move", s.get("runs"))
+      s.get("runs", [{}])[0].get("frames") == FRAMES and s.get("animation") == "move" and
+      isinstance(t, dict) and len(t.get("objects", [])) == 6, s.get("runs"))
 check("validate: the resize is in the summary",
       s.get("resize_at") == {"frame": 50, "width": RW, "height": RH}, s.get("resize_at"))
 vk_frames = frames_of(VK)
