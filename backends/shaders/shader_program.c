@@ -59,3 +59,32 @@ void _tlod_shader_names(const char* const* sources, int count, const char* hook,
     names[i] = name ? name : hook && sources[i] == hook ? "fragment_hook" : "defines";
   }
 }
+
+/* One vertex-side stage to fn, named. */
+static bool vertex_side(_tlod_shader_stage_fn fn, void* user, _tlod_shader_stage stage, const char* defines,
+                        int corners, const char* surface, bool last, const char* main_src) {
+  const char *src[_TLOD_SHADER_STAGE_SOURCES], *names[_TLOD_SHADER_STAGE_SOURCES];
+  int n =
+      _tlod_shader_vertex_side(src, defines, corners ? _tlod_shader_corners(corners) : NULL, surface, last, main_src);
+  _tlod_shader_names(src, n, NULL, names);
+  return fn(user, stage, src, names, n);
+}
+
+bool _tlod_shader_each_stage(tlod_surface_type type, const _tlod_shader_variant* v, const char* hook, bool hardware,
+                             _tlod_shader_stage_fn fn, void* user) {
+  char d[_TLOD_SHADER_DEFINES_BYTES];
+  _tlod_shader_defines(v, d);
+  const char* surface = _tlod_shader_surface(type);
+  const char *frag[_TLOD_SHADER_FRAGMENT_SOURCES], *names[_TLOD_SHADER_FRAGMENT_SOURCES];
+  int nf = _tlod_shader_fragment(frag, d, NULL, hook);
+  _tlod_shader_names(frag, nf, hook, names);
+  bool go = vertex_side(fn, user, _TLOD_SHADER_VERTEX, d, 0, surface, true, _tlod_shader_pattern_vert) &&
+            vertex_side(fn, user, _TLOD_SHADER_VERTEX, d, 0, surface, true, _tlod_shader_strip_vert) &&
+            fn(user, _TLOD_SHADER_FRAGMENT, frag, names, nf);
+  for (int c = 3; c <= 4 && go && hardware; c++) {
+    go = vertex_side(fn, user, _TLOD_SHADER_VERTEX, d, c, surface, false, _tlod_shader_tess_vert) &&
+         vertex_side(fn, user, _TLOD_SHADER_TESS_CONTROL, d, c, surface, false, _tlod_shader_tess_tesc) &&
+         vertex_side(fn, user, _TLOD_SHADER_TESS_EVALUATION, d, c, surface, true, _tlod_shader_tess_tese);
+  }
+  return go;
+}

@@ -71,6 +71,28 @@ int _tlod_shader_vertex_side(const char* out[_TLOD_SHADER_STAGE_SOURCES], const 
 int _tlod_shader_fragment(const char* out[_TLOD_SHADER_FRAGMENT_SOURCES], const char* defines, const char* before_hook,
                           const char* hook);
 
+/* The stages of a program variant, as the devices build them. */
+typedef enum _tlod_shader_stage {
+  _TLOD_SHADER_VERTEX = 0,
+  _TLOD_SHADER_TESS_CONTROL,
+  _TLOD_SHADER_TESS_EVALUATION,
+  _TLOD_SHADER_FRAGMENT
+} _tlod_shader_stage;
+
+/* Receives one stage: its kind, strings and their names (_tlod_shader_names);
+ * false stops the walk. */
+typedef bool (*_tlod_shader_stage_fn)(void* user, _tlod_shader_stage stage, const char* const* src,
+                                      const char* const* names, int count);
+
+/* Every stage of the programs of surface type type in variant v with
+ * fragment hook hook (NULL: the built-in material): the pattern and strip
+ * vertex stages, the fragment stage, and with hardware the tessellation
+ * path's vertex, control and evaluation stages for 3 then 4 corners; the
+ * strings of the Vulkan device (no #line before the hook). src[0], the
+ * defines, lives only during the call. Returns false when fn stopped. */
+bool _tlod_shader_each_stage(tlod_surface_type type, const _tlod_shader_variant* v, const char* hook, bool hardware,
+                             _tlod_shader_stage_fn fn, void* user);
+
 /* Names for error messages of the strings of a stage: the file name of an
  * embedded file, "fragment_hook" for hook (may be NULL), "defines" for any
  * other string (the defines, corners, directives). */

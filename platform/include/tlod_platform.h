@@ -102,7 +102,7 @@ typedef enum tlod_platform_api { TLOD_PLATFORM_GL = 0, TLOD_PLATFORM_VULKAN = 1 
 
 typedef struct tlod_platform_desc {
   uint32_t width, height; /* framebuffer size in pixels; 0 == 640 x 480 */
-  bool window;            /* GLFW window (needs DISPLAY) instead of headless EGL */
+  bool window;            /* GLFW window (needs DISPLAY) instead of headless (EGL / offscreen images) */
   bool visible;           /* window mode: show the window (false: hidden window) */
   const char* title;      /* window mode; NULL == "tesslod" */
   uint32_t samples;       /* GL: MSAA samples; 0 or 1 == none (headless: at most GL_MAX_SAMPLES).

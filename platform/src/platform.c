@@ -29,7 +29,7 @@ void _tlod_platform_error(char* error, size_t error_size, const char* fmt, ...) 
   va_end(ap);
 }
 
-static bool is_vk(const tlod_platform* p) { return TLOD_PLATFORM_HAS_VULKAN && p->api == TLOD_PLATFORM_VULKAN; }
+static inline bool is_vk(const tlod_platform* p) { return TLOD_PLATFORM_HAS_VULKAN && p->api == TLOD_PLATFORM_VULKAN; }
 
 /* The creation of one API, or the message saying it was not built. */
 static bool create_api(tlod_platform* p, const tlod_platform_desc* d, char* error, size_t error_size) {

@@ -7,6 +7,7 @@
 #ifndef TLOD_PLATFORM_VK_H
 #define TLOD_PLATFORM_VK_H
 
+#include <stdatomic.h>
 #include <vulkan/vulkan.h>
 
 #include "platform_internal.h"
@@ -32,7 +33,7 @@ typedef struct vk_frame {
 struct _tlod_platform_vk {
   VkInstance instance;
   VkDebugUtilsMessengerEXT messenger;
-  uint64_t messages; /* validation warnings + errors on this platform */
+  _Atomic uint64_t messages; /* validation warnings + errors on this platform */
   VkPhysicalDevice physical;
   VkPhysicalDeviceMemoryProperties memory;
   VkDevice device;

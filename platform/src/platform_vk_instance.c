@@ -7,6 +7,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,7 +21,7 @@
 #define MAX_EXTENSIONS 16
 
 /* Every platform's messages, also those of destroyed ones (platform.c). */
-static uint64_t s_messages_total;
+static _Atomic uint64_t s_messages_total; /* atomic: a driver thread may report too */
 
 const char* _tlod_vk_result_name(VkResult r) {
   switch (r) {
@@ -167,8 +168,14 @@ bool _tlod_vk_instance_create(tlod_platform* p, bool validation, char* error, si
       return false;
     }
     extensions[n_ext++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-    if (has_instance_extension(VALIDATION_LAYER, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME))
-      extensions[n_ext++] = VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME;
+    if (!has_instance_extension(VALIDATION_LAYER, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME)) {
+      _tlod_platform_error(error, error_size,
+                           "Vulkan validation: the layer " VALIDATION_LAYER
+                           " lacks " VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME
+                           " (synchronization validation); vulkan-validationlayers 1.3.239 has it");
+      return false;
+    }
+    extensions[n_ext++] = VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME;
   }
   VkApplicationInfo app = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
                            .pApplicationName = "tesslod",

@@ -71,11 +71,8 @@ static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const 
   tlod_device_stats t = tlod_device_query_stats(dev);
 
   /* B: the CPU reference through the independent renderer */
-  tlod_cpu_mesh* m = realise(fx, dl);
+  tlod_cpu_mesh* m = ref_draw_list(&env->ref, fx, dl, v, W, H, false);
   CHECK_MSG(m, "%s: CPU realisation failed", what);
-  clear_frame(W, H);
-  ref_upload(&env->ref, m);
-  ref_draw(&env->ref, v);
   gl_read_rgba(W, H, env->img_b);
   uint64_t draw_list_triangles = dl->pattern_triangles + dl->strip_triangles;
   uint64_t cpu_triangles = (uint64_t)m->triangle_count + m->folds_skipped;

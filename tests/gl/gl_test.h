@@ -122,13 +122,7 @@ static inline void gl_stencil_facing_end(void) { glDisable(GL_STENCIL_TEST); }
 /* A "gl" device on the current context, or NULL with the reason printed. */
 static inline tlod_device* new_gl_device(tlod_context* ctx, const tlod_patterns* patterns, const char* label,
                                          tlod_device_gl_desc gl) {
-  tlod_device* dev = NULL;
-  tlod_result r = tlod_device_create(
-      ctx, &(tlod_device_desc){.backend = "gl", .patterns = patterns, .gl = gl, .label = label}, &dev);
-  if (r != TLOD_SUCCESS)
-    fprintf(stderr, "tlod_device_create(\"gl\"): %s: %s (this build has: %s)\n", tlod_result_string(r),
-            tlod_context_last_error(ctx), tlod_backend_names());
-  return dev;
+  return new_device(ctx, &(tlod_device_desc){.backend = "gl", .patterns = patterns, .gl = gl, .label = label});
 }
 
 /* What a device test starts with: a headless platform (its context
@@ -338,6 +332,23 @@ static inline void clear_frame(uint32_t w, uint32_t h) {
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
+}
+
+/* Realises dl (tlod_cpu_tessellate) and draws the mesh with the reference
+ * renderer into the bound framebuffer, cleared first (clear_frame); with
+ * facing, the stencil records the facing of the visible fragment
+ * (gl_stencil_facing_begin). Returns the mesh, for the caller to read and
+ * destroy (tlod_cpu_mesh_destroy), or NULL (reported). */
+static inline tlod_cpu_mesh* ref_draw_list(ref_renderer* r, const fixture* fx, const tlod_draw_list* dl,
+                                           const tlod_view_desc* v, uint32_t w, uint32_t h, bool facing) {
+  tlod_cpu_mesh* m = realise(fx, dl);
+  if (!m) return NULL;
+  clear_frame(w, h);
+  if (facing) gl_stencil_facing_begin();
+  ref_upload(r, m);
+  ref_draw(r, v);
+  if (facing) gl_stencil_facing_end();
+  return m;
 }
 
 #endif

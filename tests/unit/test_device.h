@@ -63,6 +63,26 @@ static inline void camera_print(const camera* c, char* buf, size_t size) {
            c->fovy * 180.0 / SHAPES_PI);
 }
 
+/* A random camera: 40% near (1.3-2.2 x the bounding radius), 30% far
+ * (4-12), 30% grazing (near, aimed past the object so its silhouette
+ * crosses the image at a steep angle). Always outside the object. */
+static inline camera random_camera(shape_rng* rng, uint32_t w, uint32_t h) {
+  double dir[3], off[3];
+  shape_rng_direction(rng, dir);
+  shape_rng_direction(rng, off);
+  double u = shape_rng_unit(rng), dist, aim = 0.0;
+  if (u < 0.4) {
+    dist = shape_rng_range(rng, 1.9, 3.0);
+  } else if (u < 0.7) {
+    dist = shape_rng_range(rng, 4.0, 12.0);
+  } else {
+    dist = shape_rng_range(rng, 1.9, 2.6);
+    aim = shape_rng_range(rng, 0.6, 1.1);
+  }
+  double fov = shape_rng_range(rng, 30.0, 75.0);
+  return camera_look(dist * dir[0], dist * dir[1], dist * dir[2], aim * off[0], aim * off[1], aim * off[2], fov, w, h);
+}
+
 /* ------------------------------------------------------------------------ */
 /* tesslod fixtures                                                         */
 /* ------------------------------------------------------------------------ */
@@ -182,6 +202,17 @@ static inline tlod_cpu_mesh* realise(const fixture* fx, const tlod_draw_list* dl
   return out;
 }
 
+/* A device of desc, or NULL with the reason printed (the GL and Vulkan
+ * tests then FAIL, never skip). */
+static inline tlod_device* new_device(tlod_context* ctx, const tlod_device_desc* desc) {
+  tlod_device* dev = NULL;
+  tlod_result r = tlod_device_create(ctx, desc, &dev);
+  if (r != TLOD_SUCCESS)
+    fprintf(stderr, "tlod_device_create(\"%s\"): %s: %s (this build has: %s)\n", desc->backend, tlod_result_string(r),
+            tlod_context_last_error(ctx), tlod_backend_names());
+  return dev;
+}
+
 static inline tlod_patterns* new_patterns(tlod_context* ctx, uint32_t max_level) {
   tlod_patterns* p = NULL;
   tlod_result r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = max_level}, &p);
@@ -222,6 +253,58 @@ static inline void one_draw_make(one_draw* o, const tlod_device_surface* ds, con
 #define BG_B 255
 
 static inline bool is_background(const uint8_t* px) { return px[0] == BG_R && px[1] == BG_G && px[2] == BG_B; }
+
+/* ------------------------------------------------------------------------ */
+/* Crack detection (tests/gl/gl_cracks_test.c, tests/vk/vk_cracks_test.c)   */
+/* ------------------------------------------------------------------------ */
+
+/* Background pixels of rgba (w x h) 4-connected to the border: reached[i]
+ * = 1, else 0. queue: w * h entries of scratch. */
+static inline void flood_background(const uint8_t* rgba, uint32_t w, uint32_t h, uint8_t* reached, uint32_t* queue) {
+  memset(reached, 0, (size_t)w * h);
+  uint32_t head = 0, tail = 0;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      if (x != 0 && y != 0 && x != w - 1 && y != h - 1) continue;
+      uint32_t i = y * w + x;
+      if (is_background(rgba + 4 * i) && !reached[i]) {
+        reached[i] = 1;
+        queue[tail++] = i;
+      }
+    }
+  while (head < tail) {
+    uint32_t i = queue[head++], x = i % w, y = i / w;
+    uint32_t next[4] = {x > 0 ? i - 1 : i, x + 1 < w ? i + 1 : i, y > 0 ? i - w : i, y + 1 < h ? i + w : i};
+    for (int k = 0; k < 4; ++k) {
+      uint32_t j = next[k];
+      if (!reached[j] && is_background(rgba + 4 * j)) {
+        reached[j] = 1;
+        queue[tail++] = j;
+      }
+    }
+  }
+}
+
+/* The reference (ref_rgba, ref_stencil: 1 = front face) shows a front face
+ * at (x, y) and its 8 neighbours. */
+static inline bool reference_solid(const uint8_t* ref_rgba, const uint8_t* ref_stencil, uint32_t w, uint32_t h,
+                                   uint32_t x, uint32_t y) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      int nx = (int)x + dx, ny = (int)y + dy;
+      if (nx < 0 || ny < 0 || nx >= (int)w || ny >= (int)h) return false;
+      size_t j = (size_t)ny * w + (size_t)nx;
+      if (ref_stencil[j] != 1 || is_background(ref_rgba + 4 * j)) return false;
+    }
+  return true;
+}
+
+/* Eye-space distance of a window depth d (GL's [0, 1]) for the camera's
+ * near / far. */
+static inline double linear_depth(const camera* c, float d) {
+  double z = 2.0 * (double)d - 1.0;
+  return 2.0 * c->zfar * c->znear / (c->zfar + c->znear - z * (c->zfar - c->znear));
+}
 
 /* Coverage and colour differences of two images of one scene, where image b
  * is the reference: a pixel covered in only one image is "on the band" when

@@ -55,48 +55,32 @@ typedef struct stage_list {
   int n;
 } stage_list;
 
-static stage* add(stage_list* l, glslang_stage_t kind, const char* defines) {
+/* Keeps one stage of the walk (the defines copied: they live only during it). */
+static bool keep_stage(void* user, _tlod_shader_stage kind, const char* const* src, const char* const* names,
+                       int count) {
+  stage_list* l = user;
+  if (l->n == MAX_STAGES) return false;
   stage* s = &l->s[l->n++];
-  s->kind = kind;
-  snprintf(s->defines, sizeof(s->defines), "%s", defines);
-  return s;
-}
-
-static void add_vertex_side(stage_list* l, glslang_stage_t kind, const char* defines, int corners,
-                            tlod_surface_type type, bool last, const char* main_src) {
-  stage* s = add(l, kind, defines);
-  s->count = _tlod_shader_vertex_side(s->src, s->defines, corners ? _tlod_shader_corners(corners) : NULL,
-                                      _tlod_shader_surface(type), last, main_src);
-  _tlod_shader_names(s->src, s->count, NULL, s->names);
-}
-
-static void add_fragment(stage_list* l, const char* defines, const char* hook) {
-  stage* s = add(l, GLSLANG_STAGE_FRAGMENT, defines);
-  s->count = _tlod_shader_fragment(s->src, s->defines, NULL, hook);
-  _tlod_shader_names(s->src, s->count, hook, s->names);
+  s->kind = _tlod_vk_stage(kind);
+  s->count = count;
+  snprintf(s->defines, sizeof(s->defines), "%s", src[0]);
+  for (int i = 0; i < count; i++)
+    s->src[i] = i == 0 ? s->defines : src[i], s->names[i] = names[i];
+  return true;
 }
 
 /* The devices' variants: surface x PLAIN/FULL/MASK x hook, every stage. */
-static void all_stages(stage_list* l) {
+static void all_stages(stage_list* l, bool hooks) {
   l->n = 0;
   const tlod_surface_type types[3] = {TLOD_SURFACE_FLAT, TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   for (int t = 0; t < 3; t++)
     for (int variant = 0; variant < 3; variant++)
-      for (int hook = 0; hook < 2; hook++) {
+      for (int hook = 0; hook < (hooks ? 2 : 1); hook++) {
         _tlod_shader_variant v = {.vulkan = true,
                                   .attribute_varyings = variant && hook ? TLOD_SHADER_MAX_ATTRIBUTES : 0,
                                   .texcoord = variant != 0,
                                   .mask = variant == 2};
-        char d[_TLOD_SHADER_DEFINES_BYTES];
-        _tlod_shader_defines(&v, d);
-        add_vertex_side(l, GLSLANG_STAGE_VERTEX, d, 0, types[t], true, _tlod_shader_pattern_vert);
-        add_vertex_side(l, GLSLANG_STAGE_VERTEX, d, 0, types[t], true, _tlod_shader_strip_vert);
-        for (int c = 3; c <= 4; c++) {
-          add_vertex_side(l, GLSLANG_STAGE_VERTEX, d, c, types[t], false, _tlod_shader_tess_vert);
-          add_vertex_side(l, GLSLANG_STAGE_TESSCONTROL, d, c, types[t], false, _tlod_shader_tess_tesc);
-          add_vertex_side(l, GLSLANG_STAGE_TESSEVALUATION, d, c, types[t], true, _tlod_shader_tess_tese);
-        }
-        add_fragment(l, d, hook ? k_hook : NULL);
+        CHECK(_tlod_shader_each_stage(types[t], &v, hook ? k_hook : NULL, true, keep_stage, l));
       }
 }
 
@@ -154,8 +138,11 @@ typedef struct spirv {
   size_t count[MAX_STAGES];
 } spirv;
 
+/* Through the folder only: the built-in table (TLOD_VK_PRECOMPILE builds)
+ * has its own test. */
 static tlod_result compile_one(tlod_context* ctx, vk_shader_cache* cache, const stage* s, uint32_t** words,
                                size_t* count) {
+  cache->skip_builtins = true;
   return _tlod_vk_spirv(ctx, cache, s->kind, s->src, s->names, s->count, words, count);
 }
 
@@ -182,7 +169,7 @@ TEST(every_variant_compiles_then_loads_from_the_cache) {
   counting_allocator counter = {.fail_at = -1};
   tlod_context* ctx = new_context(1, &counter, NULL);
   remove_files(CACHE_DIR);
-  all_stages(&g_stages);
+  CALL(all_stages(&g_stages, true));
   int distinct = distinct_stages(&g_stages);
   vk_shader_cache cold = {.dir = CACHE_DIR};
   CALL(run_all(ctx, &cold, &g_stages, &g_first));
@@ -412,10 +399,10 @@ TEST(block_offsets_are_the_c_mirrors) {
       {"TlodPush", "u_debug", offsetof(tlod_vk_push, debug)},
   };
   tlod_context* ctx = new_context(1, NULL, NULL);
-  vk_shader_cache c = {0};
+  vk_shader_cache c = {.skip_builtins = true};
   uint32_t* w = NULL;
   size_t n = 0;
-  const stage* frag = &g_stages.s[8]; /* flat, PLAIN, no hook: the fragment stage */
+  const stage* frag = &g_stages.s[2]; /* flat, PLAIN, no hook: the fragment stage */
   CHECK(frag->kind == GLSLANG_STAGE_FRAGMENT && compile_one(ctx, &c, frag, &w, &n) == TLOD_SUCCESS);
   for (size_t i = 0; i < sizeof(k) / sizeof(k[0]); i++) {
     long got = member_offset(w, n, named_id(w, n, k[i].block), k[i].member);
@@ -425,11 +412,42 @@ TEST(block_offsets_are_the_c_mirrors) {
   tlod_context_destroy(ctx);
 }
 
+/* TLOD_VK_PRECOMPILE: every default stage (no hook) comes from the table,
+ * bitwise what the run-time compile gives. */
+TEST(built_in_stages_equal_a_fresh_compile) {
+  if (!_tlod_vk_spirv_builtin_available()) {
+    printf("  this build has no built-in SPIR-V (TLOD_VK_PRECOMPILE OFF): checked that none is used\n");
+  }
+  static stage_list defaults;
+  CALL(all_stages(&defaults, false));
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  vk_shader_cache table = {0}, fresh = {.skip_builtins = true};
+  for (int i = 0; i < defaults.n; i++) {
+    const stage* s = &defaults.s[i];
+    uint32_t *a = NULL, *b = NULL;
+    size_t na = 0, nb = 0;
+    CHECK(_tlod_vk_spirv(ctx, &table, s->kind, s->src, s->names, s->count, &a, &na) == TLOD_SUCCESS);
+    CHECK(_tlod_vk_spirv(ctx, &fresh, s->kind, s->src, s->names, s->count, &b, &nb) == TLOD_SUCCESS);
+    bool same = na == nb && memcmp(a, b, sizeof(uint32_t) * na) == 0;
+    tlod_context_free(ctx, a);
+    tlod_context_free(ctx, b);
+    CHECK_MSG(same, "stage %d: the built-in words differ from a compile", i);
+  }
+  bool builtin = _tlod_vk_spirv_builtin_available();
+  printf("  %d default stages: %u built in, %u compiled\n", defaults.n, table.builtins, table.compiles);
+  CHECK_MSG(builtin ? table.builtins == (uint32_t)defaults.n && table.compiles == 0
+                    : table.builtins == 0 && table.compiles == (uint32_t)defaults.n,
+            "%u built in, %u compiled", table.builtins, table.compiles);
+  CHECK(fresh.builtins == 0 && fresh.compiles == (uint32_t)defaults.n);
+  tlod_context_destroy(ctx);
+}
+
 int main(void) {
   glslang_initialize_process();
   RUN(every_variant_compiles_then_loads_from_the_cache);
   RUN(damaged_cache_files_are_compiled_again);
   RUN(block_offsets_are_the_c_mirrors);
+  RUN(built_in_stages_equal_a_fresh_compile);
   RUN(errors_name_the_string_and_its_line);
   RUN(without_a_folder_every_call_compiles);
   RUN(an_unwritable_folder_is_not_an_error);

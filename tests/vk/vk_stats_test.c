@@ -83,6 +83,7 @@ static void count_frames(bool hardware, count_check* cc) {
     cc->last = then;
     cc->readings++;
   }
+  tlod_platform_finish(s.platform); /* the engine's duty before destroying what frames used */
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
   shape_free(&torus);

@@ -71,13 +71,7 @@ static inline tlod_device_vk_desc vk_desc_of(const tlod_platform* p) {
 /* A "vulkan" device, or NULL with the reason printed. */
 static inline tlod_device* new_vk_device(tlod_context* ctx, const tlod_patterns* patterns, const char* label,
                                          tlod_device_vk_desc vk) {
-  tlod_device* dev = NULL;
-  tlod_result r = tlod_device_create(
-      ctx, &(tlod_device_desc){.backend = "vulkan", .patterns = patterns, .vk = vk, .label = label}, &dev);
-  if (r != TLOD_SUCCESS)
-    fprintf(stderr, "tlod_device_create(\"vulkan\"): %s: %s (this build has: %s)\n", tlod_result_string(r),
-            tlod_context_last_error(ctx), tlod_backend_names());
-  return dev;
+  return new_device(ctx, &(tlod_device_desc){.backend = "vulkan", .patterns = patterns, .vk = vk, .label = label});
 }
 
 /* What a Vulkan device test starts with: a headless platform, a tesslod
@@ -90,7 +84,10 @@ typedef struct vk_session {
   uint32_t w, h;
 } vk_session;
 
+/* The engine's duty before destroying tesslod objects: the GPU is done with
+ * every frame that used them (tesslod never waits). */
 static inline void vk_session_close(vk_session* s) {
+  if (s->platform) tlod_platform_finish(s->platform);
   tlod_device_destroy(s->dev);
   tlod_patterns_destroy(s->pat);
   tlod_context_destroy(s->ctx);

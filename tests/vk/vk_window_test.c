@@ -9,11 +9,15 @@
  *     end_frame) as the exact clear colour in R, G, B, A order (the
  *     swapchain is B8G8R8A8 on lavapipe: the swizzle is checked);
  *   - resize gives a swapchain of the new size and exact pixels there;
+ *   - the window resized behind the platform's back (Xlib, as a window
+ *     manager or the user would): the next begin_frame recreates the
+ *     swapchain at the new size (out of date / size changed), exact pixels;
  *   - 20 frames presented, the frame index alternating; zero validation
  *     messages, also over destruction.
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <X11/Xlib.h>
 #include <stdint.h>
 #include <string.h>
 #include <vulkan/vulkan.h>
@@ -46,6 +50,34 @@ static bool frame_reads(tlod_platform* p, const uint8_t rgba[4], uint32_t* index
   return ok;
 }
 
+/* The X window titled name under w (depth first), or 0. */
+static Window find_window(Display* d, Window w, const char* name) {
+  char* title = NULL;
+  if (XFetchName(d, w, &title) && title) {
+    bool match = strcmp(title, name) == 0;
+    XFree(title);
+    if (match) return w;
+  }
+  Window root, parent, *kids = NULL, found = 0;
+  unsigned n = 0;
+  if (!XQueryTree(d, w, &root, &parent, &kids, &n)) return 0;
+  for (unsigned i = 0; i < n && !found; ++i)
+    found = find_window(d, kids[i], name);
+  if (kids) XFree(kids);
+  return found;
+}
+
+/* Resizes the window titled name through a connection of our own. */
+static bool resize_from_outside(const char* name, unsigned w, unsigned h) {
+  Display* d = XOpenDisplay(NULL);
+  if (!d) return false;
+  Window win = find_window(d, DefaultRootWindow(d), name);
+  if (win) XResizeWindow(d, win, w, h);
+  XSync(d, False);
+  XCloseDisplay(d);
+  return win != 0;
+}
+
 TEST(vk_window_frames_resize) {
   tlod_platform* p = NULL;
   tlod_platform_desc d = {
@@ -70,6 +102,11 @@ TEST(vk_window_frames_resize) {
     frames = frame_reads(p, c, &index);
     alternate = alternate && index == i % 2;
   }
+  bool outside = frames && resize_from_outside("vk test", 140, 90);
+  const uint8_t c[4] = {9, 99, 199, 255};
+  bool recreated = outside && frame_reads(p, c, NULL);
+  uint32_t w2 = 0, h2 = 0;
+  tlod_platform_size(p, &w2, &h2);
   bool closed = tlod_platform_should_close(p);
   uint64_t messages = tlod_platform_validation_messages(p);
   tlod_platform_destroy(p);
@@ -82,6 +119,8 @@ TEST(vk_window_frames_resize) {
   CHECK_MSG(resized && w == 120 && h == 80, "%s (size %ux%u)", s_err, w, h);
   CHECK_MSG(second && frames, "%s", s_err);
   CHECK(alternate && !closed);
+  CHECK_MSG(outside, "no X window titled \"vk test\"");
+  CHECK_MSG(recreated && w2 == 140 && h2 == 90, "%s (size %ux%u after the outside resize)", s_err, w2, h2);
   CHECK_MSG(messages == 0 && total == 0, "%llu validation messages (%llu in the process)", (unsigned long long)messages,
             (unsigned long long)total);
 }

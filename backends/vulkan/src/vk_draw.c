@@ -39,9 +39,7 @@ static tlod_result check_vk(vk_device* d, const tlod_draw_desc* fr) {
  * fragment hook) its mesh's attributes; MASK items their own. */
 static int variant_of(const vk_device* d, const _tlod_draw_ref* it) {
   const vk_surface* vs = it->surface_state;
-  if (it->item->blend == TLOD_BLEND_MASK) return VK_VARIANT_MASK;
-  bool attributes = d->pipelines.hook && vs->attribute_count > 0;
-  return it->item->base_color_texture || attributes ? VK_VARIANT_FULL : VK_VARIANT_PLAIN;
+  return _tlod_stage_variant(d->pipelines.hook != NULL, vs->attribute_count, it->item);
 }
 
 /* Every pipeline the items need, before anything is recorded (a failure
@@ -88,6 +86,19 @@ static void item_uniforms(const vk_device* d, const tlod_draw_desc* fr, const _t
   u->attribute_count = vs->attribute_count;
 }
 
+/* The strip references, each triangle rotated by one vertex (a b c -> c a
+ * b: the same triangle and winding). Flat varyings come from a triangle's
+ * first vertex in Vulkan and from its last in GL; a strip triangle spans
+ * two levels (v_level), so without the rotation the levels view and a
+ * hook reading f.level would colour strips differently from GL. */
+static void write_refs(uint32_t (*out)[2], const uint32_t (*refs)[2], uint32_t count) {
+  for (uint32_t t = 0; t + 2 < count; t += 3) {
+    memcpy(out[t], refs[t + 2], sizeof(uint32_t[2]));
+    memcpy(out[t + 1], refs[t], sizeof(uint32_t[2]));
+    memcpy(out[t + 2], refs[t + 1], sizeof(uint32_t[2]));
+  }
+}
+
 /* The ring block of this draw: uniforms, instances, strips, references. */
 static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items, ring_view* rv) {
   VkDeviceSize a = d->ring_align, n = fr->item_count;
@@ -113,7 +124,7 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
                   (tlod_vk_uniforms*)(rv->mapped + base + k * d->uniform_stride));
   memcpy(rv->mapped + rv->instances, d->st.instances, (size_t)ib);
   memcpy(rv->mapped + rv->strips, d->st.strips, (size_t)sb);
-  memcpy(rv->mapped + rv->refs, d->st.refs, (size_t)rb);
+  write_refs((uint32_t(*)[2])(rv->mapped + rv->refs), d->st.refs, d->st.ref_count);
   d->stats->vk.upload_bytes = n * sizeof(tlod_vk_uniforms) + ib + sb + rb;
   return TLOD_SUCCESS;
 }

@@ -111,14 +111,8 @@ void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* sta
 }
 
 static bool push_retired(vk_frames* f, vk_retired r) {
-  if (f->retired_count == f->retired_cap) {
-    uint32_t cap = f->retired_cap ? f->retired_cap * 2 : 16;
-    vk_retired* n = tlod_context_alloc(f->ctx, sizeof(vk_retired) * cap);
-    if (!n) return false;
-    if (f->retired_count) memcpy(n, f->retired, sizeof(vk_retired) * f->retired_count);
-    tlod_context_free(f->ctx, f->retired);
-    f->retired = n, f->retired_cap = cap;
-  }
+  if (!_tlod_vkb_room(f->ctx, (void**)&f->retired, &f->retired_cap, f->retired_count, 16, sizeof(vk_retired)))
+    return false;
   r.serial = f->serial;
   f->retired[f->retired_count++] = r;
   return true;
@@ -161,14 +155,8 @@ VkResult _tlod_vkb_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize alig
 }
 
 static VkResult add_pool(vk_frames* f, vk_slot* s) {
-  if (s->pool_count == s->pool_cap) {
-    uint32_t cap = s->pool_cap ? s->pool_cap * 2 : 4;
-    VkDescriptorPool* n = tlod_context_alloc(f->ctx, sizeof(VkDescriptorPool) * cap);
-    if (!n) return VK_ERROR_OUT_OF_HOST_MEMORY;
-    if (s->pool_count) memcpy(n, s->pools, sizeof(VkDescriptorPool) * s->pool_count);
-    tlod_context_free(f->ctx, s->pools);
-    s->pools = n, s->pool_cap = cap;
-  }
+  if (!_tlod_vkb_room(f->ctx, (void**)&s->pools, &s->pool_cap, s->pool_count, 4, sizeof(VkDescriptorPool)))
+    return VK_ERROR_OUT_OF_HOST_MEMORY;
   const VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 * POOL_SETS},
                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, 2 * POOL_SETS},
                                          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, POOL_SETS},

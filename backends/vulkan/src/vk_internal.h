@@ -253,6 +253,20 @@ tlod_result _tlod_vkb_draw(void* state, const tlod_draw_desc* desc, const _tlod_
 
 /* ---- helpers ---------------------------------------------------------------- */
 
+/* Room for one more element in *arr (count used, *cap allocated; doubled
+ * from first, contents kept), through ctx. */
+static inline bool _tlod_vkb_room(const tlod_context* ctx, void** arr, uint32_t* cap, uint32_t count, uint32_t first,
+                                  size_t elem) {
+  if (count < *cap) return true;
+  uint32_t n = *cap ? *cap * 2 : first;
+  void* p = tlod_context_alloc(ctx, elem * n);
+  if (!p) return false;
+  if (count) memcpy(p, *arr, elem * count);
+  tlod_context_free(ctx, *arr);
+  *arr = p, *cap = n;
+  return true;
+}
+
 static inline VkDeviceSize _tlod_vkb_align(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
 
 const char* _tlod_vkb_result_name(VkResult r);

@@ -40,8 +40,7 @@ static int memory_type(const vk_memory* m, uint32_t bits, int kind) {
 
 static VkResult block_create(vk_memory* m, VkDeviceSize size, uint32_t type, int kind, bool dedicated, vk_block** out) {
   vk_block* b = tlod_context_calloc(m->ctx, 1, sizeof(*b));
-  if (b) b->free = tlod_context_alloc(m->ctx, sizeof(vk_range) * 8);
-  if (!b || !b->free) {
+  if (!b || !_tlod_vkb_room(m->ctx, (void**)&b->free, &b->free_cap, 0, 8, sizeof(vk_range))) {
     tlod_context_free(m->ctx, b);
     return VK_ERROR_OUT_OF_HOST_MEMORY;
   }
@@ -57,7 +56,7 @@ static VkResult block_create(vk_memory* m, VkDeviceSize size, uint32_t type, int
   }
   b->size = size, b->type = type, b->kind = kind, b->dedicated = dedicated;
   b->free[0] = (vk_range){0, size};
-  b->free_count = 1, b->free_cap = 8;
+  b->free_count = 1;
   b->next = m->blocks;
   m->blocks = b;
   (*m->live_blocks)++;
@@ -89,13 +88,7 @@ static bool block_take(vk_memory* m, vk_block* b, VkDeviceSize size, VkDeviceSiz
     if (end > f.offset + f.size) continue;
     bool before = start > f.offset, after = end < f.offset + f.size;
     if (before && after) { /* one range becomes two */
-      if (b->free_count == b->free_cap) {
-        vk_range* n = tlod_context_alloc(m->ctx, sizeof(vk_range) * b->free_cap * 2);
-        if (!n) return false;
-        memcpy(n, b->free, sizeof(vk_range) * b->free_count);
-        tlod_context_free(m->ctx, b->free);
-        b->free = n, b->free_cap *= 2;
-      }
+      if (!_tlod_vkb_room(m->ctx, (void**)&b->free, &b->free_cap, b->free_count, 8, sizeof(vk_range))) return false;
       memmove(&b->free[i + 2], &b->free[i + 1], sizeof(vk_range) * (b->free_count - i - 1));
       b->free_count++;
       b->free[i + 1] = (vk_range){end, f.offset + f.size - end};
@@ -132,13 +125,8 @@ static bool block_give(vk_memory* m, vk_block* b, VkDeviceSize offset, VkDeviceS
   } else if (right) {
     b->free[i].offset = offset, b->free[i].size += size;
   } else {
-    if (b->free_count == b->free_cap) {
-      vk_range* n = tlod_context_alloc(m->ctx, sizeof(vk_range) * b->free_cap * 2);
-      if (!n) return false; /* the range is lost until the block goes: never a double use */
-      memcpy(n, b->free, sizeof(vk_range) * b->free_count);
-      tlod_context_free(m->ctx, b->free);
-      b->free = n, b->free_cap *= 2;
-    }
+    /* Out of memory: the range is lost until the block goes, never used twice. */
+    if (!_tlod_vkb_room(m->ctx, (void**)&b->free, &b->free_cap, b->free_count, 8, sizeof(vk_range))) return false;
     memmove(&b->free[i + 1], &b->free[i], sizeof(vk_range) * (b->free_count - i));
     b->free[i] = (vk_range){offset, size};
     b->free_count++;

@@ -152,6 +152,7 @@ typedef struct fixed_state {
   VkVertexInputBindingDescription vb;
   VkVertexInputAttributeDescription va;
   VkPipelineInputAssemblyStateCreateInfo assembly;
+  VkPipelineTessellationDomainOriginStateCreateInfo origin;
   VkPipelineTessellationStateCreateInfo tess;
   VkPipelineViewportStateCreateInfo viewport;
   VkPipelineRasterizationStateCreateInfo raster;
@@ -180,7 +181,14 @@ static void vertex_input(fixed_state* f, int kind) {
   f->assembly = (VkPipelineInputAssemblyStateCreateInfo){
       .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
       .topology = tess ? VK_PRIMITIVE_TOPOLOGY_PATCH_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+  /* GL's tessellation domain origin (Vulkan's default is the upper left):
+   * the same (u, v) per tessellated point, so tess.tesc's outer levels and
+   * tess.tese's ccw winding mean what they mean in GL. */
+  f->origin = (VkPipelineTessellationDomainOriginStateCreateInfo){
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_DOMAIN_ORIGIN_STATE_CREATE_INFO,
+      .domainOrigin = VK_TESSELLATION_DOMAIN_ORIGIN_LOWER_LEFT};
   f->tess = (VkPipelineTessellationStateCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO,
+                                                    .pNext = &f->origin,
                                                     .patchControlPoints = kind == VK_KIND_TESS4 ? 4u : 3u};
 }
 

@@ -67,10 +67,39 @@ static hash128 stage_key(glslang_stage_t stage, const char* const* sources, int 
   return hash_end(h);
 }
 
+void _tlod_vk_spirv_key(glslang_stage_t stage, const char* const* sources, int count, uint64_t key[2]) {
+  hash128 h = stage_key(stage, sources, count);
+  key[0] = h.a, key[1] = h.b;
+}
+
 static uint64_t words_checksum(const uint32_t* words, size_t count) {
   hash128 h = hash_begin();
   hash_bytes(&h, words, count * sizeof(uint32_t));
   return hash_end(h).a;
+}
+
+/* ---- the built-in table (TLOD_VK_PRECOMPILE) -------------------------------------- */
+
+#if TLOD_VK_PRECOMPILED
+extern const vk_spirv_builtin _tlod_vk_spirv_builtins[];
+extern const int _tlod_vk_spirv_builtin_count;
+#else
+static const vk_spirv_builtin* const _tlod_vk_spirv_builtins = NULL;
+static const int _tlod_vk_spirv_builtin_count = 0;
+#endif
+
+bool _tlod_vk_spirv_builtin_available(void) { return _tlod_vk_spirv_builtin_count > 0; }
+
+/* A copy of the built-in words of key (the caller frees them), or NULL. */
+static uint32_t* builtin_words(tlod_context* ctx, hash128 key, size_t* count) {
+  for (int i = 0; i < _tlod_vk_spirv_builtin_count; i++) {
+    const vk_spirv_builtin* b = &_tlod_vk_spirv_builtins[i];
+    if (b->key[0] != key.a || b->key[1] != key.b) continue;
+    uint32_t* words = tlod_context_alloc(ctx, sizeof(uint32_t) * b->word_count);
+    if (words) memcpy(words, b->words, sizeof(uint32_t) * b->word_count), *count = b->word_count;
+    return words;
+  }
+  return NULL;
 }
 
 /* ---- the disk cache ------------------------------------------------------------ */
@@ -263,6 +292,13 @@ static const char* stage_name(glslang_stage_t stage) {
   }
 }
 
+glslang_stage_t _tlod_vk_stage(_tlod_shader_stage stage) {
+  return stage == _TLOD_SHADER_FRAGMENT          ? GLSLANG_STAGE_FRAGMENT
+         : stage == _TLOD_SHADER_TESS_CONTROL    ? GLSLANG_STAGE_TESSCONTROL
+         : stage == _TLOD_SHADER_TESS_EVALUATION ? GLSLANG_STAGE_TESSEVALUATION
+                                                 : GLSLANG_STAGE_VERTEX;
+}
+
 static glslang_input_t stage_input(glslang_stage_t stage, const char* code) {
   return (glslang_input_t){.language = GLSLANG_SOURCE_GLSL,
                            .stage = stage,
@@ -340,7 +376,9 @@ tlod_result _tlod_vk_spirv(tlod_context* ctx, vk_shader_cache* cache, glslang_st
   hash128 key = stage_key(stage, sources, count);
   char* path = cache->dir && cache->dir[0] ? cache_path(ctx, cache->dir, key) : NULL;
   tlod_result r = TLOD_SUCCESS;
-  if (path && (*words = cache_load(ctx, path, key, word_count))) {
+  if (!cache->skip_builtins && (*words = builtin_words(ctx, key, word_count))) {
+    cache->builtins++;
+  } else if (path && (*words = cache_load(ctx, path, key, word_count))) {
     cache->hits++;
   } else {
     r = compile_stage(ctx, cache, stage, sources, names, count, words, word_count);
