@@ -4,7 +4,8 @@ lavapipe: a generated multi-object animated glTF scene played 100 frames under t
 the middle (exit 0, no validation message, every frame's drawn triangles equal to its draw lists' and to the gl run's
 on the same scene and camera path); image parity of gl and vulkan screenshots of the same frames within the tolerance
 of docs/vulkan.md "parity"; the SPIR-V cache (a second start compiles nothing, counted in summary.json); a
---shader-cache folder that cannot be made is an error, a default one a warning; --window under Xvfb; usage errors;
+--shader-cache folder that cannot be made is an error, a default one a warning; a Vulkan that cannot start (no
+driver, no validation layer) is an error, never a fallback; --window under Xvfb; usage errors;
 bench --suite objects / vkstart on vulkan. Usage: play_vulkan_test.py TLOD DATA_DIR WORK_DIR [vk|novk]"""
 import math, os, subprocess, sys
 
@@ -86,8 +87,10 @@ check("validate: summary.json says the layer was on and counted 0 messages (sess
       [r.get("validation_messages") for r in s.get("runs", [])] == [0] and s.get("backend") == "vulkan", s)
 check("validate: nothing from the layer on stderr",
       not any(k in se for k in ("VUID", "Validation", "SYNC-")), se)
+t = load_json(os.path.join(VK, "trace.json")) if rc == 0 else {}
 check("validate: every frame played, 6 objects, animation 'move'",
-      s.get("runs", [{}])[0].get("frames") == FRAMES and s.get("animation") == "move", s.get("runs"))
+      s.get("runs", [{}])[0].get("frames") == FRAMES and s.get("animation") == "move" and
+      isinstance(t, dict) and len(t.get("objects", [])) == 6, s.get("runs"))
 check("validate: the resize is in the summary",
       s.get("resize_at") == {"frame": 50, "width": RW, "height": RH}, s.get("resize_at"))
 vk_frames = frames_of(VK)
@@ -205,6 +208,22 @@ j = load_json(os.path.join(out, "summary.json")) if rc == 0 else {}
 check("bad cache: an unusable default folder is a warning naming it, and the run plays without a disk cache",
       rc == 0 and "tlod: warning: no shader cache: cannot create folder '%s/.cache/tesslod'" % A_FILE in se and
       isinstance(j, dict) and j.get("shader_cache") == "", (rc, se))
+
+# ---- a Vulkan that cannot start: an error, never a fallback ----------------------------------
+
+EMPTY = os.path.join(WORK, "no_layers")
+os.makedirs(EMPTY)
+out = os.path.join(WORK, "no_layer")
+rc, so, se = run("play", SCENE, "--backend", "vulkan", "--validate", "--frames", "1", "--out", out,
+                 env={"VK_LAYER_PATH": EMPTY})
+check("no layer: --validate without the validation layer fails naming it (exit 1, one line, nothing played)",
+      rc == 1 and one_error_line(se) and "VK_LAYER_KHRONOS_validation" in se and not os.path.exists(out), (rc, se))
+out = os.path.join(WORK, "no_driver")
+rc, so, se = run("play", SCENE, "--backend", "vulkan", "--frames", "1", "--out", out,
+                 env={"VK_DRIVER_FILES": os.path.join(WORK, "no_such_icd.json")})
+check("no driver: --backend vulkan without a Vulkan driver fails with the reason, no fallback (exit 1, one line)",
+      rc == 1 and one_error_line(se) and "--backend vulkan: vkCreateInstance" in se and "cpu" not in se and
+      not os.path.exists(out), (rc, se))
 
 # ---- usage errors ----------------------------------------------------------------------------
 

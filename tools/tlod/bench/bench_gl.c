@@ -177,7 +177,7 @@ int bench_gl(const bench_gpu* gpu, const char* const* models, uint32_t model_cou
   char desc[256];
   printf("%s bench: %s, %ux%u, %s, %u frames per case\n", g.backend,
          tlod_platform_describe(g.platform, desc, sizeof(desc)), w, h,
-         strcmp(g.backend, "vulkan") ? "wall clock around glFinish" : "recording + submit (lavapipe draws at submit)",
+         strcmp(g.backend, "vulkan") ? "wall clock around glFinish" : "recording + submit + wait for its fences",
          frames);
   for (uint32_t m = 0; m < model_count && rc == CLI_OK; m++)
     rc = scene_cases(models[m], &g, w, h, frames, csv);

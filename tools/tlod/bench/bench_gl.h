@@ -16,9 +16,10 @@ typedef struct bench_gpu {
 
 /* Headless platform of w x h for gpu->backend; CLI_FAILED with the error printed. */
 int bench_gpu_open(const bench_gpu* gpu, uint32_t w, uint32_t h, tlod_platform** out);
-/* One frame: begin (cleared), the draw, end (vulkan: submit). *wall_ms: the
- * device's wall time plus the submit's (gl: around its finish). A platform
- * NULL draws without one (the cpu backend). */
+/* One frame: begin (cleared), the draw, end (vulkan: submit) and wait for
+ * the GPU. *wall_ms: the device's wall time plus the submit and the wait
+ * (gl: around its finish), so both APIs' frames include their GPU work. A
+ * platform NULL draws without one (the cpu backend). */
 int bench_frame(tlod_platform* p, tlod_context* ctx, tlod_device* dev, tlod_draw_desc* d, double* wall_ms);
 
 /* Frame times of the GPU backend for each model, and Phong against flat on the first. */

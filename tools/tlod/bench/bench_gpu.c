@@ -18,10 +18,10 @@ int bench_frame(tlod_platform* p, tlod_context* ctx, tlod_device* dev, tlod_draw
   *wall_ms = 0.0;
   if (p && !gpu_frame_begin(p, clear, d, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
   if (tlod_device_draw(dev, d) != TLOD_SUCCESS) {
-    if (p) gpu_frame_end(p, &submit_ms, err, sizeof(err)); /* the frame begun is ended either way */
+    if (p) gpu_frame_end(p, false, &submit_ms, err, sizeof(err)); /* the frame begun is ended either way */
     return cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx));
   }
-  if (p && !gpu_frame_end(p, &submit_ms, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
+  if (p && !gpu_frame_end(p, true, &submit_ms, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
   *wall_ms = tlod_device_query_stats(dev).wall_ms + submit_ms;
   return CLI_OK;
 }

@@ -41,7 +41,7 @@ void bench_usage(FILE* f) {
           "                     objects: 50 instances of one mesh (a scheduler and draw item each) against\n"
           "                     the same triangles merged into one object, cpu and --backend, --frames frames\n"
           "                     draw: backend CPU time per frame (recording / GL calls, no GPU wait) for about\n"
-          "                     100k visible patches, cpu draw lists drawn by --backend, min/median of --frames\n"
+          "                     100k visible patches on --backend, uniform:1 and adaptive, min/median of --frames\n"
           "                     vkstart: vulkan device start (create + first frame): shader stages compiled,\n"
           "                     loaded from the cache and their ms, without a cache, with an empty one and\n"
           "                     with the one the empty start filled; --repeat rounds (not in all)\n"

@@ -59,9 +59,16 @@ bool gpu_frame_begin(tlod_platform* p, const float clear_rgba[4], tlod_draw_desc
   return true;
 }
 
-bool gpu_frame_end(tlod_platform* p, double* submit_ms, char* err, size_t err_size) {
-  *submit_ms = 0.0;
-  return tlod_platform_end_frame(p, submit_ms, err, err_size);
+bool gpu_frame_end(tlod_platform* p, bool finish, double* gpu_ms, char* err, size_t err_size) {
+  *gpu_ms = 0.0;
+  if (!tlod_platform_end_frame(p, gpu_ms, err, err_size)) return false;
+  double waited = finish ? tlod_platform_finish(p) : 0.0;
+  if (waited < 0.0) {
+    snprintf(err, err_size, "waiting for the GPU to finish the frame failed");
+    return false;
+  }
+  *gpu_ms += waited;
+  return true;
 }
 
 uint64_t gpu_target_validation_messages(const tlod_platform* p) { return tlod_platform_validation_messages(p); }
@@ -85,9 +92,9 @@ bool gpu_frame_begin(tlod_platform* p, const float clear_rgba[4], tlod_draw_desc
   return false;
 }
 
-bool gpu_frame_end(tlod_platform* p, double* submit_ms, char* err, size_t err_size) {
-  (void)p;
-  *submit_ms = 0.0;
+bool gpu_frame_end(tlod_platform* p, bool finish, double* gpu_ms, char* err, size_t err_size) {
+  (void)p, (void)finish;
+  *gpu_ms = 0.0;
   snprintf(err, err_size, "no GPU platform in this build");
   return false;
 }

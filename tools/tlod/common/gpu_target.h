@@ -37,8 +37,12 @@ void gpu_target_close(tlod_platform* p);
 void gpu_target_device_desc(const tlod_platform* p, const char* shader_cache_dir, bool hardware, tlod_device_desc* d);
 /* Begins a frame cleared to clear_rgba and fills d->vk from it. */
 bool gpu_frame_begin(tlod_platform* p, const float clear_rgba[4], tlod_draw_desc* d, char* err, size_t err_size);
-/* Ends it (Vulkan: submits); *submit_ms the time in the submit (GL: 0). */
-bool gpu_frame_end(tlod_platform* p, double* submit_ms, char* err, size_t err_size);
+/* Ends it (Vulkan: submits). *gpu_ms: the time in the submit and, with
+ * finish, the wait until the GPU has done the frame (tlod_platform_finish:
+ * lavapipe's vkQueueSubmit returns before the work is done, so without it a
+ * frame's wall time would miss its GPU work; GL: the draw's own finish has
+ * waited, this adds about 0). */
+bool gpu_frame_end(tlod_platform* p, bool finish, double* gpu_ms, char* err, size_t err_size);
 /* Validation messages (errors + warnings) counted so far on p; 0 without
  * validation. NULL: every platform of the process, destroyed ones too (what
  * vkDestroyDevice reported at shutdown included). */

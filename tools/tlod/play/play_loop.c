@@ -162,28 +162,29 @@ static tlod_draw_item draw_item(const play_scene* s, const play_object* ob) {
 static const float play_clear_rgba[4] = {0.11f, 0.12f, 0.14f, 1.0f};
 
 /* The device draw inside a platform frame (begun: GL bound and cleared,
- * Vulkan recording; ended: Vulkan submitted, its time in *submit_ms). */
-static int framed_draw(play_run* r, tlod_draw_desc* d, uint32_t n, double* submit_ms) {
+ * Vulkan recording; ended: Vulkan submitted and, as gl's finish does,
+ * waited for: the submit and the wait in *gpu_ms). */
+static int framed_draw(play_run* r, tlod_draw_desc* d, uint32_t n, double* gpu_ms) {
   play_scene* s = r->scene;
   char err[512];
-  *submit_ms = 0.0;
+  *gpu_ms = 0.0;
   if (r->platform && !gpu_frame_begin(r->platform, play_clear_rgba, d, err, sizeof(err)))
     return cli_error(CLI_FAILED, "frame %u: %s", n, err);
   if (tlod_device_draw(s->device, d) != TLOD_SUCCESS) {
     int rc = cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
-    if (r->platform) gpu_frame_end(r->platform, submit_ms, err, sizeof(err)); /* a begun frame is ended */
+    if (r->platform) gpu_frame_end(r->platform, false, gpu_ms, err, sizeof(err)); /* a begun frame is ended */
     return rc;
   }
-  if (r->platform && !gpu_frame_end(r->platform, submit_ms, err, sizeof(err)))
+  if (r->platform && !gpu_frame_end(r->platform, d->finish, gpu_ms, err, sizeof(err)))
     return cli_error(CLI_FAILED, "frame %u: %s", n, err);
   return CLI_OK;
 }
 
 /* One draw of every object. Per object: its item's CPU time, triangles and
  * draw calls; the draw's wall time past the items' CPU times (GL: the
- * finish; Vulkan: the submit, where lavapipe does the GPU work) and its GPU
- * time are shared out by drawn triangles, so the objects add up to the
- * draw. Laid out back to back from the draw's start. */
+ * finish; Vulkan: the submit and the wait for the frame's fence, the GPU
+ * work) and its GPU time are shared out by drawn triangles, so the objects
+ * add up to the draw. Laid out back to back from the draw's start. */
 static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start, play_object_stats* os) {
   play_scene* s = r->scene;
   tlod_draw_item* items = r->items;
@@ -192,12 +193,12 @@ static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, dou
   tlod_draw_desc d = {.items = items, .item_count = s->count, .viewport = {0, 0, r->width, r->height}, .finish = true};
   memcpy(d.view, view->view, sizeof(d.view));
   memcpy(d.proj, view->proj, sizeof(d.proj));
-  double t0 = cli_now_ms(), submit_ms = 0.0;
-  int rc = framed_draw(r, &d, n, &submit_ms);
+  double t0 = cli_now_ms(), gpu_ms = 0.0;
+  int rc = framed_draw(r, &d, n, &gpu_ms);
   if (rc != CLI_OK) return rc;
   double t1 = cli_now_ms();
   tlod_device_stats st = tlod_device_query_stats(s->device);
-  st.wall_ms += submit_ms;
+  st.wall_ms += gpu_ms; /* vulkan; gl's finish is in its wall_ms */
   bool gpu = st.gpu_ms >= 0.0 && st.gpu_draw >= r->first_draw;
   double items_cpu = 0.0;
   for (uint32_t i = 0; i < s->count; i++)

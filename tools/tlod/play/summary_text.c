@@ -51,7 +51,8 @@ void play_print_summary(FILE* f, const play_trace* const* runs, uint32_t run_cou
       fprintf(f, " %s %.3f", tool_stage_name(s), r.stage_mean[s]);
     fprintf(f, "\n    backend (mean ms): cpu %.3f, wall %.3f, gpu ", r.backend_cpu_ms.mean, r.backend_wall_ms.mean);
     if (r.gpu_frames) {
-      fprintf(f, "%.3f (timer query; misses most llvmpipe work)", r.gpu_mean);
+      fprintf(f, "%.3f (%s)", r.gpu_mean,
+              strcmp(t->backend, "vulkan") ? "timer query; misses most llvmpipe work" : "timestamp queries, read late");
     } else {
       fputs("n/a", f);
     }
