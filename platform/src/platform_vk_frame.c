@@ -16,6 +16,11 @@
 
 #include "platform_vk.h"
 
+/* Fence waits are bounded: a lost device or a driver that never signals
+ * fails the frame with VK_TIMEOUT instead of hanging the tool (lavapipe's
+ * heaviest measured frame took under a second). */
+#define FENCE_TIMEOUT_NS 60000000000ull
+
 static VkImage color_image(const _tlod_platform_vk* vk, const tlod_platform* p) {
   return p->window ? vk->images[vk->image] : vk->color.image;
 }
@@ -90,7 +95,7 @@ bool _tlod_platform_vk_begin_frame(tlod_platform* p, const float rgba[4], tlod_p
   }
   uint32_t slot = (uint32_t)(vk->frame % VK_FRAMES);
   vk_frame* f = &vk->frames[slot];
-  if (!_tlod_vk_check(vkWaitForFences(vk->device, 1, &f->fence, VK_TRUE, UINT64_MAX), "vkWaitForFences", error,
+  if (!_tlod_vk_check(vkWaitForFences(vk->device, 1, &f->fence, VK_TRUE, FENCE_TIMEOUT_NS), "vkWaitForFences", error,
                       error_size))
     return false;
   vk->slot = slot;
@@ -187,7 +192,7 @@ bool _tlod_platform_vk_read_rgba(tlod_platform* p, uint8_t* rgba) {
   _tlod_platform_vk* vk = p->vk;
   if (!vk->has_frame || vk->in_frame) return false;
   vk_frame* f = &vk->frames[vk->slot];
-  if (vkWaitForFences(vk->device, 1, &f->fence, VK_TRUE, UINT64_MAX) != VK_SUCCESS) return false;
+  if (vkWaitForFences(vk->device, 1, &f->fence, VK_TRUE, FENCE_TIMEOUT_NS) != VK_SUCCESS) return false;
   if (!vk->readback_coherent) {
     VkMappedMemoryRange range = {
         .sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, .memory = f->readback_memory, .size = VK_WHOLE_SIZE};
@@ -209,7 +214,7 @@ bool _tlod_platform_vk_finish(tlod_platform* p) {
   VkFence fences[VK_FRAMES];
   for (int i = 0; i < VK_FRAMES; ++i)
     fences[i] = vk->frames[i].fence;
-  return !vk->in_frame && vkWaitForFences(vk->device, VK_FRAMES, fences, VK_TRUE, UINT64_MAX) == VK_SUCCESS;
+  return !vk->in_frame && vkWaitForFences(vk->device, VK_FRAMES, fences, VK_TRUE, FENCE_TIMEOUT_NS) == VK_SUCCESS;
 }
 
 bool _tlod_platform_vk_resize(tlod_platform* p, uint32_t width, uint32_t height, char* error, size_t error_size) {

@@ -63,6 +63,8 @@ const char* _tlod_vkb_result_name(VkResult r) {
     return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
   case VK_ERROR_DEVICE_LOST:
     return "VK_ERROR_DEVICE_LOST";
+  case VK_TIMEOUT:
+    return "VK_TIMEOUT (the device did not finish an upload within 60 s)";
   case VK_ERROR_INITIALIZATION_FAILED:
     return "VK_ERROR_INITIALIZATION_FAILED";
   case VK_ERROR_FEATURE_NOT_PRESENT:

@@ -75,7 +75,10 @@ VkResult _tlod_vkb_upload_init(vk_upload* u, VkDevice device, VkQueue queue, uin
                                const VkAllocationCallbacks* cb);
 void _tlod_vkb_upload_destroy(vk_upload* u);
 VkResult _tlod_vkb_upload_begin(vk_upload* u);
-VkResult _tlod_vkb_upload_submit(vk_upload* u); /* ends, submits, waits for its fence */
+/* Ends, submits, waits for its fence at most TLOD_VK_UPLOAD_TIMEOUT_NS
+ * (VK_TIMEOUT past that: the caller's error names it). */
+#define TLOD_VK_UPLOAD_TIMEOUT_NS 60000000000ull
+VkResult _tlod_vkb_upload_submit(vk_upload* u);
 /* Device-local buffer filled with data through a staging buffer. */
 VkResult _tlod_vkb_buffer_upload(vk_memory* m, vk_upload* u, const void* data, VkDeviceSize size,
                                  VkBufferUsageFlags usage, vk_buffer* out);

@@ -43,7 +43,9 @@ VkResult _tlod_vkb_upload_submit(vk_upload* u) {
   VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &u->cmd};
   if (r == VK_SUCCESS) r = vkResetFences(u->device, 1, &u->fence);
   if (r == VK_SUCCESS) r = vkQueueSubmit(u->queue, 1, &si, u->fence);
-  if (r == VK_SUCCESS) r = vkWaitForFences(u->device, 1, &u->fence, VK_TRUE, UINT64_MAX);
+  /* Bounded: a lost device or a driver that never signals becomes an error
+   * naming VK_TIMEOUT, never a hang (an upload takes milliseconds). */
+  if (r == VK_SUCCESS) r = vkWaitForFences(u->device, 1, &u->fence, VK_TRUE, TLOD_VK_UPLOAD_TIMEOUT_NS);
   return r;
 }
 
