@@ -6,8 +6,7 @@
  * histogram and camera), each frame's screenshot path, and, from
  * DIR/objects.csv when present, every object's counts every frame.
  * A `--compare` parent folder (no trace.json, one sub-folder per mode with
- * one) expands into its mode runs, in the order of its summary.json's modes
- * (else by name).
+ * one) expands into its mode runs, sorted by folder name.
  *
  * TOLERANT: a trace cut short (a run killed mid-write, a disk that filled)
  * loads every complete frame; run.truncated is set and run.truncated_reason
