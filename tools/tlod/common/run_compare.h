@@ -21,6 +21,7 @@
 #include <stdio.h>
 
 #include "json_writer.h"
+#include "run_read.h"
 
 /* One run as the comparison sees it: views into the caller's per-frame
  * arrays (frames entries each, milliseconds and triangles as in
@@ -39,6 +40,9 @@ typedef struct run_compare_side {
   const double* triangles; /* planned: pattern + strip triangles */
 } run_compare_side;
 
+/* The side of a loaded run (views into r, valid while r is). */
+run_compare_side run_compare_side_of(const run* r);
+
 /* Percentages the new run may be worse by; negative: not checked. */
 typedef struct run_compare_limits {
   double max_p95_regression_pct;      /* frame_ms p95 */
@@ -56,7 +60,7 @@ typedef struct run_compare_row {
   const char* metric; /* "frame_ms p95", "triangles mean", ... */
   const char* unit;   /* "ms" or "" */
   double base, value; /* baseline, new */
-  double ratio;       /* value / base; 0 when base is 0 and value is 0, INFINITY when only base is 0 */
+  double ratio;       /* value / base; 1 when both are 0, INFINITY when only base is 0 */
   double change_pct;  /* (ratio - 1) * 100 */
   double limit_pct;   /* the limit checked on this row, negative: none */
   bool regressed;     /* limit_pct >= 0 and change_pct > limit_pct */
