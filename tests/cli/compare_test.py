@@ -216,6 +216,10 @@ def debug_view_tests():
     dark = lambda px: sum(1 for p in px if max(p) <= 20)
     check("wireframe: dark edge pixels (%d) where the shaded view has few (%d)" % (dark(wire), dark(shaded)),
           dark(wire) > 500 and dark(shaded) * 10 < dark(wire))
+    rc, out, err = compare(os.path.join(WORK, "view_none"), os.path.join(WORK, "view_wireframe"),
+                           "--max-p95-regression", "1000000")
+    check("compare shaded vs wireframe: exit 0 with a note that the debug views differ",
+          rc == 0 and "note: debug views differ (baseline none, new wireframe)" in out, out + err)
 
 
 compare_tests()

@@ -17,6 +17,7 @@ run_compare_side run_compare_side_of(const run* r) {
                             .path = r->meta.path,
                             .mode = r->meta.mode,
                             .backend = r->meta.backend,
+                            .debug_view = r->meta.debug_view,
                             .frames = (uint32_t)r->frame_count,
                             .frame_ms = r->column[RUN_COL_FRAME_MS],
                             .scheduler_ms = r->column[RUN_COL_SCHEDULER_MS],
@@ -83,12 +84,21 @@ static bool mismatch(const run_compare_side* a, const run_compare_side* b, run_c
   return out->error[0] != 0;
 }
 
-static void note_prefix(const run_compare_side* a, const run_compare_side* b, run_compare_result* out) {
+static const char* view_name(const char* v) { return v && v[0] ? v : "none"; }
+
+/* A prefix compared; a debug view drawn in one run only (wireframe adds a
+ * line pass: its frame times are not the shaded run's). */
+static void notes(const run_compare_side* a, const run_compare_side* b, run_compare_result* out) {
   out->prefix = a->frames != b->frames;
+  size_t at = 0;
   if (out->prefix)
-    snprintf(out->note, sizeof(out->note),
-             "note: the baseline holds %u frames and the new run %u: compared frames 0..%u", a->frames, b->frames,
-             out->frames - 1);
+    at = (size_t)snprintf(out->note, sizeof(out->note),
+                          "note: the baseline holds %u frames and the new run %u: compared frames 0..%u\n", a->frames,
+                          b->frames, out->frames - 1);
+  if (strcmp(view_name(a->debug_view), view_name(b->debug_view)))
+    snprintf(out->note + at, sizeof(out->note) - at,
+             "note: debug views differ (baseline %s, new %s): frame times include the view's cost\n",
+             view_name(a->debug_view), view_name(b->debug_view));
 }
 
 bool run_compare(const run_compare_side* base, const run_compare_side* next, const run_compare_limits* limits,
@@ -97,7 +107,7 @@ bool run_compare(const run_compare_side* base, const run_compare_side* next, con
   if (mismatch(base, next, out)) return false;
   uint32_t n = base->frames < next->frames ? base->frames : next->frames;
   out->frames = n;
-  note_prefix(base, next, out);
+  notes(base, next, out);
   double a[5], b[5];
   if (!frame_stats(base->frame_ms, n, a) || !frame_stats(next->frame_ms, n, b)) {
     snprintf(out->error, sizeof(out->error), "out of memory sorting %u frame times", n);

@@ -27,11 +27,12 @@
  * arrays (frames entries each, milliseconds and triangles as in
  * trace.csv). Strings are NUL-terminated; none may be NULL. */
 typedef struct run_compare_side {
-  const char* dir;     /* the run folder, for messages */
-  const char* scene;   /* trace.json "scene" */
-  const char* path;    /* trace.json "path" */
-  const char* mode;    /* trace.json "mode" (may differ: adaptive vs uniform is a fair question) */
-  const char* backend; /* trace.json "backend" (may differ: gl vs vulkan) */
+  const char* dir;        /* the run folder, for messages */
+  const char* scene;      /* trace.json "scene" */
+  const char* path;       /* trace.json "path" */
+  const char* mode;       /* trace.json "mode" (may differ: adaptive vs uniform is a fair question) */
+  const char* backend;    /* trace.json "backend" (may differ: gl vs vulkan) */
+  const char* debug_view; /* trace.json "debug_view" (NULL or "" read as "none"); may differ, with a note */
   uint32_t frames;
   const double* frame_ms;
   const double* scheduler_ms;
@@ -71,7 +72,7 @@ typedef struct run_compare_result {
   bool prefix;     /* the runs hold different counts: only the first `frames` were compared */
   run_compare_row rows[RUN_COMPARE_ROWS];
   uint32_t regressions; /* rows regressed */
-  char note[256];       /* "" or why only a prefix was compared */
+  char note[512];       /* "" or notes, one a line: only a prefix compared; the debug views differ */
   char error[512];      /* "" or why the runs cannot be compared ("B: scene 'x' differs from A's 'y'") */
 } run_compare_result;
 
