@@ -81,7 +81,9 @@ def check_regression(name, rc, out, metric, base, new):
 
 def compare_tests():
     base = play(os.path.join(WORK, "base"), "--backend", "cpu")
-    frames = load_json(os.path.join(base, "trace.json"))["frames"]
+    trace = load_json(os.path.join(base, "trace.json"))
+    check("no --debug-view: trace.json says debug_view none", trace.get("debug_view") == "none", trace.get("debug_view"))
+    frames = trace["frames"]
     ms = [f["frame_ms"] for f in frames]
     tris = [f["triangles"] for f in frames]
 
