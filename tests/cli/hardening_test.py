@@ -94,7 +94,8 @@ check("--stats FIFO: exit 1 'not a regular file', the FIFO still a FIFO",
       rc == 1 and "not a regular file" in se and os.path.exists(fifo) and not os.path.isfile(fifo), (rc, se))
 if BUILT_WITH_GL:
     d = out("shots")
-    rc, so, se = run_limited(3000, "play", "--backend", "gl", "--size", "256x256", "--frames", "3",
+    # 8000 bytes: summary.json (about 3.5 kB) fits, a 256x256 screenshot of the demo scene (about 25 kB) does not.
+    rc, so, se = run_limited(8000, "play", "--backend", "gl", "--size", "256x256", "--frames", "3",
                              "--screenshot-every", "1", "-q", "--out", d)
     s = load_json(os.path.join(d, "summary.json"))
     check("screenshot write error: exit 1, summary.json failed naming the screenshot and the write's errno "

@@ -61,50 +61,6 @@ typedef struct hole_count {
   bool reference_drawn;
 } hole_count;
 
-/* Background pixels 4-connected to the border: reached[i] = 1. */
-static void flood_background(gl_env* env) {
-  memset(env->reached, 0, W * H);
-  uint32_t head = 0, tail = 0;
-  for (uint32_t y = 0; y < H; ++y)
-    for (uint32_t x = 0; x < W; ++x) {
-      if (x != 0 && y != 0 && x != W - 1 && y != H - 1) continue;
-      uint32_t i = y * W + x;
-      if (is_background(env->rgba + 4 * i) && !env->reached[i]) {
-        env->reached[i] = 1;
-        env->queue[tail++] = i;
-      }
-    }
-  while (head < tail) {
-    uint32_t i = env->queue[head++], x = i % W, y = i / W;
-    uint32_t next[4] = {x > 0 ? i - 1 : i, x + 1 < W ? i + 1 : i, y > 0 ? i - W : i, y + 1 < H ? i + W : i};
-    for (int k = 0; k < 4; ++k) {
-      uint32_t j = next[k];
-      if (!env->reached[j] && is_background(env->rgba + 4 * j)) {
-        env->reached[j] = 1;
-        env->queue[tail++] = j;
-      }
-    }
-  }
-}
-
-/* Reference shows a front face at (x, y) and its 8 neighbours. */
-static bool reference_solid(const gl_env* env, uint32_t x, uint32_t y) {
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      int nx = (int)x + dx, ny = (int)y + dy;
-      if (nx < 0 || ny < 0 || nx >= W || ny >= H) return false;
-      size_t j = (size_t)ny * W + (size_t)nx;
-      if (env->ref_stencil[j] != 1 || is_background(env->ref_rgba + 4 * j)) return false;
-    }
-  return true;
-}
-
-/* Eye-space distance of a window depth d for the camera's near / far. */
-static double linear_depth(const camera* c, float d) {
-  double z = 2.0 * (double)d - 1.0;
-  return 2.0 * c->zfar * c->znear / (c->zfar + c->znear - z * (c->zfar - c->znear));
-}
-
 /* Draws dl with the backend (stencil records facing) and counts holes;
  * reference_dl is the complete draw list for the reference. */
 static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, const tlod_draw_list* dl,
@@ -129,20 +85,15 @@ static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, c
   gl_read_rgba(W, H, env->rgba);
   gl_read_stencil(W, H, env->stencil);
   gl_read_depth(W, H, env->depth);
-  flood_background(env);
+  flood_background(env->rgba, W, H, env->reached, env->queue);
   for (uint32_t i = 0; i < W * H; ++i) {
     bool bg = is_background(env->rgba + 4 * i);
     hc.enclosed_candidates += bg && !env->reached[i];
     hc.back_candidates += !bg && env->stencil[i] == 2;
   }
   if (hc.enclosed_candidates + hc.back_candidates > 0) {
-    tlod_cpu_mesh* m = realise(fx, reference_dl);
+    tlod_cpu_mesh* m = ref_draw_list(&env->ref, fx, reference_dl, v, W, H, true);
     if (!m) return hc;
-    clear_frame(W, H);
-    gl_stencil_facing_begin();
-    ref_upload(&env->ref, m);
-    ref_draw(&env->ref, v);
-    gl_stencil_facing_end();
     tlod_cpu_mesh_destroy(fx->ctx, m);
     gl_read_rgba(W, H, env->ref_rgba);
     gl_read_stencil(W, H, env->ref_stencil);
@@ -153,7 +104,7 @@ static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, c
         uint32_t i = y * W + x;
         bool bg = is_background(env->rgba + 4 * i);
         bool enclosed = bg && !env->reached[i], back = !bg && env->stencil[i] == 2;
-        if (!(enclosed || back) || !reference_solid(env, x, y)) continue;
+        if (!(enclosed || back) || !reference_solid(env->ref_rgba, env->ref_stencil, W, H, x, y)) continue;
         /* Seen through: what the backend shows lies behind the reference's
          * surface (background is at the far plane). A back-facing strip
          * wall seen edge-on can own a pixel next to its shared edge with a
@@ -173,26 +124,6 @@ static hole_count find_holes(gl_env* env, tlod_device* dev, const fixture* fx, c
   }
   *ok = true;
   return hc;
-}
-
-/* A random camera: 40% near (1.3-2.2 x the bounding radius), 30% far
- * (4-12), 30% grazing (near, aimed past the object so its silhouette
- * crosses the image at a steep angle). Always outside the object. */
-static camera random_camera(shape_rng* rng) {
-  double dir[3], off[3];
-  shape_rng_direction(rng, dir);
-  shape_rng_direction(rng, off);
-  double u = shape_rng_unit(rng), dist, aim = 0.0;
-  if (u < 0.4) {
-    dist = shape_rng_range(rng, 1.9, 3.0);
-  } else if (u < 0.7) {
-    dist = shape_rng_range(rng, 4.0, 12.0);
-  } else {
-    dist = shape_rng_range(rng, 1.9, 2.6);
-    aim = shape_rng_range(rng, 0.6, 1.1);
-  }
-  double fov = shape_rng_range(rng, 30.0, 75.0);
-  return camera_look(dist * dir[0], dist * dir[1], dist * dir[2], aim * off[0], aim * off[1], aim * off[2], fov, W, H);
 }
 
 static bool env_init(gl_env* env, char* err, size_t err_size) {
@@ -270,7 +201,7 @@ TEST(test_no_holes) {
       shape_rng rng = {0x5EED0000u + 10u * (uint64_t)si + (uint64_t)ti};
       uint32_t case_failures = 0;
       for (int k = 0; k < CAMERAS; ++k) {
-        camera cam = random_camera(&rng);
+        camera cam = random_camera(&rng, W, H);
         tlod_view_desc v = make_view(&cam);
         const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
         CHECK(dl);
@@ -390,7 +321,7 @@ TEST(test_hardware_path_no_holes) {
       CHECK(sch);
       shape_rng rng = {0xA4D00000u + 10u * (uint64_t)si + (uint64_t)ti};
       for (int k = 0; k < 20; ++k) {
-        camera cam = random_camera(&rng);
+        camera cam = random_camera(&rng, W, H);
         tlod_view_desc v = make_view(&cam);
         const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
         CHECK(dl);
@@ -479,7 +410,7 @@ TEST(test_uv_seam_no_holes) {
     shape_rng rng = {0x5EA40000u + (uint64_t)ti};
     uint32_t case_failures = 0;
     for (int k = 0; k < SEAM_CAMERAS; ++k) {
-      camera cam = random_camera(&rng);
+      camera cam = random_camera(&rng, W, H);
       tlod_view_desc v = make_view(&cam);
       const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
       CHECK(dl);

@@ -38,55 +38,6 @@
 #define H 256
 #define MAX_LEVEL 5
 
-typedef struct compare_result {
-  uint32_t covered_a, covered_b, covered_either, covered_both;
-  uint32_t coverage_diff; /* covered in exactly one image */
-  uint32_t off_band;      /* ... of which not on the reference's boundary band */
-  int off_band_x, off_band_y;
-  uint32_t colour_ok; /* both covered, max channel diff <= 8 */
-  uint32_t max_colour_diff;
-  double mean_colour_diff;
-} compare_result;
-
-/* a, b: RGBA, same layout (rows in any order, the same for both). */
-static compare_result compare_images(const uint8_t* a, const uint8_t* b, uint32_t w, uint32_t h) {
-  compare_result r;
-  memset(&r, 0, sizeof r);
-  r.off_band_x = r.off_band_y = -1;
-  double colour_sum = 0;
-  for (uint32_t y = 0; y < h; ++y)
-    for (uint32_t x = 0; x < w; ++x) {
-      size_t i = (size_t)y * w + x;
-      bool ca = !is_background(a + 4 * i), cb = !is_background(b + 4 * i);
-      r.covered_a += ca;
-      r.covered_b += cb;
-      r.covered_either += ca || cb;
-      if (ca && cb) {
-        r.covered_both++;
-        uint32_t d = 0;
-        for (int c = 0; c < 3; ++c) {
-          int dc = abs((int)a[4 * i + c] - (int)b[4 * i + c]);
-          if ((uint32_t)dc > d) d = (uint32_t)dc;
-        }
-        r.colour_ok += d <= 8;
-        if (d > r.max_colour_diff) r.max_colour_diff = d;
-        colour_sum += d;
-      }
-      if (ca == cb) continue;
-      r.coverage_diff++;
-      bool band = false;
-      for (int dy = -1; dy <= 1 && !band; ++dy)
-        for (int dx = -1; dx <= 1 && !band; ++dx) {
-          int nx = (int)x + dx, ny = (int)y + dy;
-          if (nx < 0 || ny < 0 || nx >= (int)w || ny >= (int)h) continue;
-          band = !is_background(b + 4 * ((size_t)ny * w + (size_t)nx)) != cb;
-        }
-      if (!band && r.off_band++ == 0) r.off_band_x = (int)x, r.off_band_y = (int)y;
-    }
-  r.mean_colour_diff = r.covered_both ? colour_sum / r.covered_both : 0;
-  return r;
-}
-
 /* Totals over the whole test, for the summary line. */
 static struct {
   uint32_t comparisons;
@@ -120,11 +71,8 @@ static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const 
   tlod_device_stats t = tlod_device_query_stats(dev);
 
   /* B: the CPU reference through the independent renderer */
-  tlod_cpu_mesh* m = realise(fx, dl);
+  tlod_cpu_mesh* m = ref_draw_list(&env->ref, fx, dl, v, W, H, false);
   CHECK_MSG(m, "%s: CPU realisation failed", what);
-  clear_frame(W, H);
-  ref_upload(&env->ref, m);
-  ref_draw(&env->ref, v);
   gl_read_rgba(W, H, env->img_b);
   uint64_t draw_list_triangles = dl->pattern_triangles + dl->strip_triangles;
   uint64_t cpu_triangles = (uint64_t)m->triangle_count + m->folds_skipped;
@@ -136,7 +84,7 @@ static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const 
   }
   tlod_cpu_mesh_destroy(fx->ctx, m);
 
-  compare_result c = compare_images(env->img_a, env->img_b, W, H);
+  compare_result c = compare_images(env->img_a, env->img_b, W, H, 8);
   double colour_fraction = c.covered_both ? (double)c.colour_ok / c.covered_both : 1.0;
   printf("  %-30s tris %6llu strips %3u morphing %3u | covered %5u/%5u, differ %3u (%.3f%%), off band %u | colour "
          "max %3u mean %.2f, %.2f%% <= 8\n",

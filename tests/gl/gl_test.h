@@ -1,7 +1,9 @@
 /*
  * gl_test.h -- shared fixtures of the GL tests (tests/gl/<name>_test.c): a
- * headless context from platform/, cameras, tesslod fixtures, and a
- * small independent GL mesh renderer for CPU-tessellated reference meshes.
+ * headless context from platform/, "gl" devices and sessions, and a small
+ * independent GL mesh renderer for CPU-tessellated reference meshes (also
+ * the reference of the Vulkan tests). The API-independent fixtures
+ * (cameras, tesslod fixtures, one-item draws) are tests/unit/test_device.h.
  * Owned by the GL tests; header-only (every function static).
  *
  * The reference renderer draws exactly the shading documented for the GL
@@ -27,22 +29,11 @@
 #include "tesslod/lod.h"
 #include "test.h"
 #include "test_camera.h"
+#include "test_device.h"
 #include "test_lod.h"
 #include "tlod_platform.h"
 
-/* Like TEST_END, but a failed run exits with _Exit: the early returns of a
- * failed check leave objects behind, and LeakSanitizer's report of them
- * would only bury the message that matters. */
-#define GL_TEST_END()                                                                                                  \
-  do {                                                                                                                 \
-    if (_test_failed) {                                                                                                \
-      printf("%d passed, %d failed\n", _test_passed, _test_failed);                                                    \
-      fflush(stdout);                                                                                                  \
-      fflush(stderr);                                                                                                  \
-      _Exit(1);                                                                                                        \
-    }                                                                                                                  \
-    TEST_END();                                                                                                        \
-  } while (0)
+#define GL_TEST_END() DEVICE_TEST_END()
 
 /* ------------------------------------------------------------------------ */
 /* Context                                                                  */
@@ -128,169 +119,10 @@ static inline void gl_stencil_facing_begin(void) {
 
 static inline void gl_stencil_facing_end(void) { glDisable(GL_STENCIL_TEST); }
 
-/* ------------------------------------------------------------------------ */
-/* Cameras (test_camera.h: double precision, stored as float)               */
-/* ------------------------------------------------------------------------ */
-
-/* Camera at eye looking at target; near / far hug a unit-radius-ish object
- * (24-bit depth keeps plenty of precision). */
-static inline camera camera_look(double ex, double ey, double ez, double tx, double ty, double tz, double fovy_deg,
-                                 uint32_t w, uint32_t h) {
-  camera c = {.eye = {ex, ey, ez}, .target = {tx, ty, tz}, .up = {0, 0, 1}, .fovy = fovy_deg * SHAPES_PI / 180.0};
-  double d[3] = {tx - ex, ty - ey, tz - ez};
-  double dist = len3(d);
-  shape_normalize3(d);
-  if (fabs(d[2]) > 0.95) c.up[0] = 0, c.up[1] = 1, c.up[2] = 0;
-  c.znear = dist > 3.0 ? dist - 2.5 : 0.05;
-  c.zfar = dist + 3.0;
-  c.width = w, c.height = h;
-  c.aspect = (double)w / h;
-  return c;
-}
-
-static inline void camera_print(const camera* c, char* buf, size_t size) {
-  snprintf(buf, size, "eye (%.4f, %.4f, %.4f) target (%.4f, %.4f, %.4f) up (%.0f, %.0f, %.0f) fovy %.1f deg", c->eye[0],
-           c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2], c->up[0], c->up[1], c->up[2],
-           c->fovy * 180.0 / SHAPES_PI);
-}
-
-/* ------------------------------------------------------------------------ */
-/* tesslod fixtures                                                         */
-/* ------------------------------------------------------------------------ */
-
-/* A shape's mesh and surface on patterns of the test's (a device is made
- * for one pattern set, so the fixtures of a test share it), and, with a
- * device, the surface's device surface. */
-typedef struct fixture {
-  tlod_context* ctx;
-  tlod_mesh* mesh;
-  tlod_surface* surf;
-  const tlod_patterns* pat; /* borrowed */
-  tlod_device* dev;
-  tlod_device_surface* ds;
-} fixture;
-
-static inline void fixture_free(fixture* fx) {
-  tlod_device_destroy_surface(fx->dev, fx->ds);
-  tlod_surface_destroy(fx->surf);
-  tlod_mesh_destroy(fx->mesh);
-  fx->surf = NULL, fx->mesh = NULL, fx->pat = NULL, fx->ds = NULL, fx->dev = NULL;
-}
-
-/* A fixture of any mesh desc (attributes, say); dev may be NULL (no device surface). */
-static inline bool fixture_make_desc(fixture* fx, tlod_context* ctx, const tlod_mesh_desc* md, tlod_surface_type type,
-                                     const tlod_patterns* patterns, tlod_device* dev) {
-  memset(fx, 0, sizeof *fx);
-  fx->ctx = ctx;
-  fx->pat = patterns;
-  fx->dev = dev;
-  tlod_result r = tlod_mesh_create(ctx, md, &fx->mesh);
-  if (r == TLOD_SUCCESS)
-    r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type, .label = md->label}, &fx->surf);
-  if (r == TLOD_SUCCESS && dev) r = tlod_device_create_surface(dev, fx->surf, &fx->ds);
-  if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "fixture %s: %s: %s\n", md->label, tlod_result_string(r), tlod_context_last_error(ctx));
-    fixture_free(fx);
-    return false;
-  }
-  return true;
-}
-
-/* A shape's fixture; dev may be NULL (no device surface). */
-static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type,
-                                const tlod_patterns* patterns, tlod_device* dev) {
-  tlod_mesh_desc md = shape_mesh_desc(s);
-  return fixture_make_desc(fx, ctx, &md, type, patterns, dev);
-}
-
-/* shape_seam_sphere(nlat, nlon) with TEXCOORD_0 = lat-long UVs: vertex
- * (i, j) has (j / nlon, i / nlat) (v = 0 at the +z pole, glTF's top), so
- * the copied column and the pole copies are UV seams. desc points into the
- * struct: keep it where it is (do not copy it). */
-typedef struct uv_sphere {
-  shape sph;
-  float* uv;
-  tlod_attribute_desc attr;
-  tlod_mesh_desc desc;
-} uv_sphere;
-
-static inline void uv_sphere_free(uv_sphere* u) {
-  free(u->uv);
-  shape_free(&u->sph);
-  memset(u, 0, sizeof *u);
-}
-
-static inline bool uv_sphere_make(uv_sphere* u, uint32_t nlat, uint32_t nlon) {
-  memset(u, 0, sizeof *u);
-  u->sph = shape_seam_sphere(nlat, nlon);
-  u->uv = malloc(sizeof(float) * 2 * (nlat + 1) * (nlon + 1));
-  for (uint32_t i = 0; u->uv && i <= nlat; ++i)
-    for (uint32_t j = 0; j <= nlon; ++j) {
-      u->uv[2 * (i * (nlon + 1) + j)] = (float)j / (float)nlon;
-      u->uv[2 * (i * (nlon + 1) + j) + 1] = (float)i / (float)nlat;
-    }
-  u->attr = (tlod_attribute_desc){.data = u->uv, .components = 2, .name = "TEXCOORD_0"};
-  u->desc = shape_mesh_desc(&u->sph);
-  u->desc.attributes = &u->attr;
-  u->desc.attribute_count = 1;
-  return u->uv != NULL;
-}
-
-/* The scheduler plans in an object's own space: its view is view * model
- * (column-major). */
-static inline tlod_view_desc object_view(const tlod_view_desc* v, const float model[16]) {
-  tlod_view_desc o = *v;
-  for (int c = 0; c < 4; c++)
-    for (int r = 0; r < 4; r++) {
-      float s = 0.0f;
-      for (int k = 0; k < 4; k++)
-        s += v->view[k * 4 + r] * model[c * 4 + k];
-      o.view[c * 4 + r] = s;
-    }
-  return o;
-}
-
-static inline tlod_scheduler* new_scheduler(const fixture* fx, tlod_scheduler_desc d) {
-  return scheduler_create(fx->ctx, fx->surf, fx->pat, d);
-}
-
-/* One frame for one view; NULL on failure (reported). */
-static inline const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* v, float dt_ms) {
-  tlod_frame_desc f = {.views = v, .view_count = 1, .dt_ms = dt_ms};
-  return scheduler_plan(fx->ctx, s, &f);
-}
-
-/* The CPU reference realisation of a draw list (welded, with normals). */
-static inline tlod_cpu_mesh* realise(const fixture* fx, const tlod_draw_list* dl) {
-  tlod_cpu_tessellate_desc d = {.draw_list = dl};
-  tlod_cpu_mesh* out = NULL;
-  tlod_result r = tlod_cpu_tessellate(fx->ctx, fx->surf, fx->pat, &d, &out);
-  if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "tlod_cpu_tessellate(draw_list): %s: %s\n", tlod_result_string(r),
-            tlod_context_last_error(fx->ctx));
-    return NULL;
-  }
-  return out;
-}
-
-static inline tlod_patterns* new_patterns(tlod_context* ctx, uint32_t max_level) {
-  tlod_patterns* p = NULL;
-  tlod_result r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = max_level}, &p);
-  if (r != TLOD_SUCCESS)
-    fprintf(stderr, "tlod_patterns_create: %s: %s\n", tlod_result_string(r), tlod_context_last_error(ctx));
-  return p;
-}
-
 /* A "gl" device on the current context, or NULL with the reason printed. */
 static inline tlod_device* new_gl_device(tlod_context* ctx, const tlod_patterns* patterns, const char* label,
                                          tlod_device_gl_desc gl) {
-  tlod_device* dev = NULL;
-  tlod_result r = tlod_device_create(
-      ctx, &(tlod_device_desc){.backend = "gl", .patterns = patterns, .gl = gl, .label = label}, &dev);
-  if (r != TLOD_SUCCESS)
-    fprintf(stderr, "tlod_device_create(\"gl\"): %s: %s (this build has: %s)\n", tlod_result_string(r),
-            tlod_context_last_error(ctx), tlod_backend_names());
-  return dev;
+  return new_device(ctx, &(tlod_device_desc){.backend = "gl", .patterns = patterns, .gl = gl, .label = label});
 }
 
 /* What a device test starts with: a headless platform (its context
@@ -347,27 +179,6 @@ static inline void sphere_scene_close(gl_session* gs, shape* sph, fixture* fx, t
   fixture_free(fx);
   shape_free(sph);
   gl_session_close(gs);
-}
-
-/* One item (identity model, default colour) for one view: desc.items points
- * at item, so keep the struct where it is (do not copy it). */
-typedef struct one_draw {
-  tlod_draw_item item;
-  tlod_draw_desc desc;
-} one_draw;
-
-static inline void one_draw_make(one_draw* o, const tlod_device_surface* ds, const tlod_draw_list* dl,
-                                 const tlod_view_desc* v) {
-  memset(o, 0, sizeof *o);
-  o->item.surface = ds;
-  o->item.draw_list = dl;
-  o->desc.items = &o->item;
-  o->desc.item_count = 1;
-  memcpy(o->desc.view, v->view, sizeof o->desc.view);
-  memcpy(o->desc.proj, v->proj, sizeof o->desc.proj);
-  o->desc.viewport[2] = v->viewport_width;
-  o->desc.viewport[3] = v->viewport_height;
-  o->desc.debug = TLOD_DEBUG_NONE;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -507,12 +318,6 @@ static inline void ref_draw(const ref_renderer* r, const tlod_view_desc* v) {
 /* Images                                                                   */
 /* ------------------------------------------------------------------------ */
 
-/* The clear colour of the GL tests: pure blue. Shaded pixels are grey
- * (r == g == b), so coverage is exact: not-background == covered. */
-#define BG_R 0
-#define BG_G 0
-#define BG_B 255
-
 static inline void clear_frame(uint32_t w, uint32_t h) {
   glViewport(0, 0, (GLsizei)w, (GLsizei)h);
   glDisable(GL_SCISSOR_TEST);
@@ -529,6 +334,21 @@ static inline void clear_frame(uint32_t w, uint32_t h) {
   glDisable(GL_BLEND);
 }
 
-static inline bool is_background(const uint8_t* px) { return px[0] == BG_R && px[1] == BG_G && px[2] == BG_B; }
+/* Realises dl (tlod_cpu_tessellate) and draws the mesh with the reference
+ * renderer into the bound framebuffer, cleared first (clear_frame); with
+ * facing, the stencil records the facing of the visible fragment
+ * (gl_stencil_facing_begin). Returns the mesh, for the caller to read and
+ * destroy (tlod_cpu_mesh_destroy), or NULL (reported). */
+static inline tlod_cpu_mesh* ref_draw_list(ref_renderer* r, const fixture* fx, const tlod_draw_list* dl,
+                                           const tlod_view_desc* v, uint32_t w, uint32_t h, bool facing) {
+  tlod_cpu_mesh* m = realise(fx, dl);
+  if (!m) return NULL;
+  clear_frame(w, h);
+  if (facing) gl_stencil_facing_begin();
+  ref_upload(r, m);
+  ref_draw(r, v);
+  if (facing) gl_stencil_facing_end();
+  return m;
+}
 
 #endif

@@ -459,9 +459,11 @@ tlod_result tlod_device_read_image(tlod_device* dev, uint32_t width, uint32_t he
     return tlod_context_fail(dev->ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_device_read_image: %s (%u x %u, rgba %s)",
                              !rgba ? "rgba is NULL" : "empty image", width, height, rgba ? "set" : "NULL");
   if (!dev->vtbl->read_image)
-    return tlod_context_fail(dev->ctx, TLOD_ERROR_UNSUPPORTED, "tlod_device_read_image: the %s device has no image%s",
-                             dev->backend,
-                             dev->vtbl == &_tlod_cpu_device_vtbl ? " (it realises meshes: tlod_cpu_device_mesh)" : "");
+    return tlod_context_fail(
+        dev->ctx, TLOD_ERROR_UNSUPPORTED, "tlod_device_read_image: the %s device has no image%s", dev->backend,
+        dev->vtbl == &_tlod_cpu_device_vtbl
+            ? " (it realises meshes: tlod_cpu_device_mesh)"
+            : (!strcmp(dev->backend, "vulkan") ? " (the image is the engine's: read it there)" : ""));
   return dev->vtbl->read_image(dev->state, width, height, rgba);
 }
 

@@ -222,6 +222,15 @@ static inline uint32_t _tlod_tess_batch(const tlod_gl_instance* ins, uint32_t st
   return i;
 }
 
+/* The program variant an item draws with (gl's VARIANT_*, vulkan's
+ * VK_VARIANT_*: 0 PLAIN, 1 FULL, 2 MASK): PLAIN unless its fragments read a
+ * texture or (with a fragment hook) its mesh's attributes; MASK items
+ * their own (discard loses the early depth test). */
+static inline int _tlod_stage_variant(bool hook, uint32_t attribute_count, const tlod_draw_item* item) {
+  if (item->blend == TLOD_BLEND_MASK) return 2;
+  return item->base_color_texture || (hook && attribute_count > 0) ? 1 : 0;
+}
+
 /* The view's shading vectors: the unit light direction (the default when
  * the desc's is zero), the eye's world position, the view's world forward. */
 static inline void _tlod_view_vectors(const tlod_draw_desc* fr, float light[3], float eye[3], float fwd[3]) {

@@ -504,9 +504,7 @@ static const float* gl_surface_center(const void* surface_state) { return ((cons
  * texture, or (a fragment hook) its mesh's attributes. */
 static int variant_of(const gl_device* d, const _tlod_draw_ref* it) {
   const gl_surface* gs = it->surface_state;
-  if (it->item->blend == TLOD_BLEND_MASK) return VARIANT_MASK;
-  bool attributes = d->fragment_hook && gs->attribute_count > 0;
-  return it->item->base_color_texture || attributes ? VARIANT_FULL : VARIANT_PLAIN;
+  return _tlod_stage_variant(d->fragment_hook != NULL, gs->attribute_count, it->item);
 }
 
 /* Item k: its patterns and strips, then (wireframe) its edges over them. */

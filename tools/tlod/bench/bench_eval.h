@@ -18,7 +18,8 @@ int bench_build(const bench_options* o, FILE* csv);
 /* Skinning, mesh update and surface refresh per frame on the generated
  * skinned cylinder (bench_skin.c); csv one row per size, threads, stage. */
 int bench_skin(const bench_options* o, FILE* csv);
-/* 50 instances against the same triangles in one object, per backend (bench_objects.c). */
-int bench_objects(const bench_options* o, FILE* csv);
+/* 50 instances against the same triangles in one object, on cpu and gpu->backend (bench_objects.c). */
+struct bench_gpu;
+int bench_objects(const bench_options* o, const struct bench_gpu* gpu, FILE* csv);
 
 #endif

@@ -1,8 +1,11 @@
-/* tlod bench --suite gl -- GPU frame times on llvmpipe (wall clock around a
- * finish: its timer queries miss most of the work, docs/platform.md section 1.1): adaptive
- * against uniform against flat for the Table 1 scenes, Phong against flat
- * at equal triangle counts, and the pattern path against hardware
- * tessellation. Ratios within one run are the figures to read. */
+/* tlod bench --suite gl -- GPU frame times on llvmpipe / lavapipe of the
+ * --backend (gl, or vulkan: the same cases through the Vulkan device): wall
+ * clock around a finish (gl: its timer queries miss most of the work,
+ * docs/platform.md section 1.1) or the recording plus the submit (vulkan:
+ * lavapipe runs the commands at submit): adaptive against uniform against
+ * flat for the Table 1 scenes, Phong against flat at equal triangle counts,
+ * and the pattern path against hardware tessellation. Ratios within one run
+ * are the figures to read. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,11 +14,10 @@
 #include "bench_lod.h"
 #include "common/camera.h"
 
-#if TLOD_HAS_GL
+#if TLOD_HAS_GL || TLOD_HAS_VULKAN
+#include "common/gpu_target.h"
 #include "tesslod/backend.h"
 #include "tlod_platform.h"
-
-#include <GL/gl.h>
 
 typedef struct gl_case {
   const char* label;
@@ -27,14 +29,18 @@ typedef struct gl_case {
  * and shared by its cases: the pattern path and, when a case asks for it,
  * the hardware-tessellation path; the scene's surface on each. */
 typedef struct gl_devices {
+  tlod_platform* platform;
+  const char* backend; /* "gl" or "vulkan" */
+  const char* shader_cache;
   tlod_device* dev[2];
   tlod_device_surface* surface[2];
 } gl_devices;
 
 static void gl_devices_free(gl_devices* g) {
-  for (int k = 0; k < 2; k++)
+  for (int k = 0; k < 2; k++) {
     tlod_device_destroy(g->dev[k]); /* and its surface */
-  memset(g, 0, sizeof(*g));
+    g->dev[k] = NULL, g->surface[k] = NULL;
+  }
 }
 
 static int gl_device_for(bench_scene* s, gl_devices* g, bool hardware, tlod_device** dev,
@@ -42,10 +48,11 @@ static int gl_device_for(bench_scene* s, gl_devices* g, bool hardware, tlod_devi
   int k = hardware ? 1 : 0;
   if (!g->dev[k]) {
     tlod_surface_type type = tlod_surface_query_view(s->setup.surface).type;
-    tlod_device_desc d = {.backend = "gl",
+    tlod_device_desc d = {.backend = g->backend,
                           .patterns = s->setup.patterns,
                           .gl = {.hardware_tessellation = hardware, .surface_types = 1u << type},
-                          .label = hardware ? "bench gl (hardware tessellation)" : "bench gl"};
+                          .label = hardware ? "bench gpu (hardware tessellation)" : "bench gpu"};
+    gpu_target_device_desc(g->platform, g->shader_cache, hardware, &d);
     if (tlod_device_create(s->ctx, &d, &g->dev[k]) != TLOD_SUCCESS ||
         tlod_device_create_surface(g->dev[k], s->setup.surface, &g->surface[k]) != TLOD_SUCCESS)
       return cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
@@ -75,24 +82,22 @@ static int run_case(bench_scene* s, gl_devices* g, const gl_case* c, uint32_t w,
     tlod_draw_desc fr = {.items = &item, .item_count = 1, .viewport = {0, 0, w, h}, .finish = true};
     memcpy(fr.view, v.view, sizeof(fr.view));
     memcpy(fr.proj, v.proj, sizeof(fr.proj));
-    glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (tlod_device_draw(dev, &fr) != TLOD_SUCCESS) rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
-    tlod_device_stats t = tlod_device_query_stats(dev);
+    double wall = 0.0;
+    rc = bench_frame(g->platform, s->ctx, dev, &fr, &wall);
     if (k == 0) continue; /* warm-up: the first draw's buffer set-up */
-    *best = t.wall_ms < *best ? t.wall_ms : *best;
-    *mean += t.wall_ms / frames;
-    *tris = t.triangles;
+    *best = wall < *best ? wall : *best;
+    *mean += wall / frames;
+    *tris = tlod_device_query_stats(dev).triangles;
   }
   tlod_scheduler_destroy(sch);
   return rc;
 }
 
-static void report(FILE* csv, const char* scene, const char* what, double best, double mean, uint64_t tris,
-                   double ref_best) {
-  printf("gl         %-28s %-34s best %8.2f ms mean %8.2f  %9llu tris  %6.2f Mtri/s  x%.2f\n", scene, what, best, mean,
-         (unsigned long long)tris, (double)tris / (best * 1e3), best / ref_best);
-  if (csv) fprintf(csv, "gl,%s,%s,%.4f,%.4f,%llu\n", scene, what, best, mean, (unsigned long long)tris);
+static void report(FILE* csv, const char* backend, const char* scene, const char* what, double best, double mean,
+                   uint64_t tris, double ref_best) {
+  printf("%-10s %-28s %-34s best %8.2f ms mean %8.2f  %9llu tris  %6.2f Mtri/s  x%.2f\n", backend, scene, what, best,
+         mean, (unsigned long long)tris, (double)tris / (best * 1e3), best / ref_best);
+  if (csv) fprintf(csv, "%s,%s,%s,%.4f,%.4f,%llu\n", backend, scene, what, best, mean, (unsigned long long)tris);
 }
 
 /* Uniform level of the worst visible patch under the error rule. */
@@ -112,7 +117,7 @@ static uint32_t worst_level(bench_scene* s, uint32_t w, uint32_t h) {
   return worst;
 }
 
-static int scene_cases(const char* in, uint32_t w, uint32_t h, uint32_t frames, FILE* csv) {
+static int scene_cases(const char* in, const gl_devices* target, uint32_t w, uint32_t h, uint32_t frames, FILE* csv) {
   bench_scene s;
   int rc = bench_scene_load(in, 0, TLOD_SURFACE_PN, 6, &s);
   if (rc != CLI_OK) return rc;
@@ -127,22 +132,22 @@ static int scene_cases(const char* in, uint32_t w, uint32_t h, uint32_t frames, 
       {"adaptive error, hardware tess.", {.policy = TLOD_POLICY_ERROR, .morph = TLOD_MORPH_NONE}, true},
   };
   double ref = 0.0;
-  gl_devices g = {0};
+  gl_devices g = *target;
   for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]) && rc == CLI_OK; k++) {
     double best, mean;
     uint64_t tris = 0;
     rc = run_case(&s, &g, &cases[k], w, h, frames, &best, &mean, &tris);
     if (k == 0) ref = best;
-    if (rc == CLI_OK) report(csv, in, cases[k].label, best, mean, tris, ref);
+    if (rc == CLI_OK) report(csv, g.backend, in, cases[k].label, best, mean, tris, ref);
   }
-  printf("gl         %-28s (uniform level %u; x = frame time / flat's)\n", in, worst);
+  printf("%-10s %-28s (uniform level %u; x = frame time / flat's)\n", g.backend, in, worst);
   gl_devices_free(&g);
   bench_scene_free(&s);
   return rc;
 }
 
 /* Phong against flat tessellation at one uniform level: equal triangles. */
-static int phong_vs_flat(const char* in, uint32_t w, uint32_t h, uint32_t frames, FILE* csv) {
+static int phong_vs_flat(const char* in, const gl_devices* target, uint32_t w, uint32_t h, uint32_t frames, FILE* csv) {
   int rc = CLI_OK;
   double flat_best = 0.0;
   for (int k = 0; k < 2 && rc == CLI_OK; k++) {
@@ -154,36 +159,35 @@ static int phong_vs_flat(const char* in, uint32_t w, uint32_t h, uint32_t frames
                  false};
     double best, mean;
     uint64_t tris = 0;
-    gl_devices g = {0};
+    gl_devices g = *target;
     rc = run_case(&s, &g, &c, w, h, frames, &best, &mean, &tris);
     if (k == 0) flat_best = best;
-    if (rc == CLI_OK) report(csv, in, c.label, best, mean, tris, flat_best);
+    if (rc == CLI_OK) report(csv, g.backend, in, c.label, best, mean, tris, flat_best);
     gl_devices_free(&g);
     bench_scene_free(&s);
   }
   return rc;
 }
 
-int bench_gl(const char* const* models, uint32_t model_count, uint32_t frames, FILE* csv) {
-  tlod_platform* p = NULL;
-  char err[256];
+int bench_gl(const bench_gpu* gpu, const char* const* models, uint32_t model_count, uint32_t frames, FILE* csv) {
   const uint32_t w = 1024, h = 732; /* the paper's 1600x1144 aspect, smaller for a software rasterizer */
-  if (!tlod_platform_create(&(tlod_platform_desc){.width = w, .height = h}, &p, err, sizeof(err)))
-    return cli_error(CLI_FAILED, "bench gl: %s", err);
+  gl_devices g = {.backend = gpu->backend, .shader_cache = gpu->shader_cache};
+  int rc = bench_gpu_open(gpu, w, h, &g.platform);
+  if (rc != CLI_OK) return rc;
   char desc[256];
-  printf("gl bench: %s, %ux%u, wall clock around glFinish, %u frames per case\n",
-         tlod_platform_describe(p, desc, sizeof(desc)), w, h, frames);
-  tlod_platform_bind(p);
-  int rc = CLI_OK;
+  printf("%s bench: %s, %ux%u, %s, %u frames per case\n", g.backend,
+         tlod_platform_describe(g.platform, desc, sizeof(desc)), w, h,
+         strcmp(g.backend, "vulkan") ? "wall clock around glFinish" : "recording + submit + wait for its fences",
+         frames);
   for (uint32_t m = 0; m < model_count && rc == CLI_OK; m++)
-    rc = scene_cases(models[m], w, h, frames, csv);
-  if (rc == CLI_OK) rc = phong_vs_flat(models[0], w, h, frames, csv);
-  tlod_platform_destroy(p);
+    rc = scene_cases(models[m], &g, w, h, frames, csv);
+  if (rc == CLI_OK) rc = phong_vs_flat(models[0], &g, w, h, frames, csv);
+  gpu_target_close(g.platform);
   return rc;
 }
 #else
-int bench_gl(const char* const* models, uint32_t model_count, uint32_t frames, FILE* csv) {
+int bench_gl(const bench_gpu* gpu, const char* const* models, uint32_t model_count, uint32_t frames, FILE* csv) {
   (void)models, (void)model_count, (void)frames, (void)csv;
-  return cli_error(CLI_FAILED, "bench gl: this build has no GL backend (TLOD_BACKEND_GL=OFF)");
+  return cli_error(CLI_FAILED, "bench gl: this build has no %s backend", gpu->backend);
 }
 #endif

@@ -4,24 +4,21 @@
  * draws a glTF scene) against the same 50 copies merged into one object
  * (the same triangles, one scheduler, one item). Frame = every scheduler
  * update + one device draw (finish); wall clock, min and median over the
- * frames, per backend (cpu, and gl when built) and mode. */
+ * frames, per backend (cpu, and --backend gl or vulkan when built) and
+ * mode; vulkan's draw time includes its submit (lavapipe draws there). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench_eval.h"
+#include "bench_gl.h"
 #include "bench_stats.h"
 #include "cli.h"
 #include "common/anim_sample.h"
 #include "common/camera.h"
+#include "common/gpu_target.h"
 #include "common/mesh_load.h"
 #include "tesslod/backend.h"
-
-#if TLOD_HAS_GL
-#include "tlod_platform.h"
-
-#include <GL/gl.h>
-#endif
 
 #define OBJ_COLS 10
 #define OBJ_ROWS 5
@@ -110,7 +107,7 @@ typedef struct obj_figures {
 } obj_figures;
 
 /* One frame: every instance's scheduler, then one draw of every item. */
-static int run_frame(obj_scene* s, tlod_device* dev, tlod_device_surface* ds, tlod_scheduler** sch,
+static int run_frame(obj_scene* s, tlod_platform* p, tlod_device* dev, tlod_device_surface* ds, tlod_scheduler** sch,
                      tlod_draw_item* items, uint32_t k, double t[3]) {
   tlod_view_desc v, ov;
   frame_view(k, &v);
@@ -127,17 +124,15 @@ static int run_frame(obj_scene* s, tlod_device* dev, tlod_device_surface* ds, tl
   tlod_draw_desc d = {.items = items, .item_count = s->count, .viewport = {0, 0, OBJ_W, OBJ_H}, .finish = true};
   memcpy(d.view, v.view, sizeof(d.view));
   memcpy(d.proj, v.proj, sizeof(d.proj));
-#if TLOD_HAS_GL
-  if (!strcmp(tlod_device_backend(dev), "gl")) glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-#endif
-  tlod_result r = tlod_device_draw(dev, &d);
+  double wall;
+  int rc = bench_frame(p, s->ctx, dev, &d, &wall);
   double t2 = cli_now_ms();
   t[0] = t2 - t0, t[1] = t1 - t0, t[2] = t2 - t1;
-  return r == TLOD_SUCCESS ? CLI_OK : cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
+  return rc;
 }
 
-static int run_case(obj_scene* s, tlod_device* dev, tlod_patterns* pat, const tlod_scheduler_desc* sd, uint32_t frames,
-                    obj_figures* f) {
+static int run_case(obj_scene* s, tlod_platform* p, tlod_device* dev, tlod_patterns* pat, const tlod_scheduler_desc* sd,
+                    uint32_t frames, obj_figures* f) {
   tlod_scheduler* sch[OBJ_COUNT] = {0};
   tlod_draw_item items[OBJ_COUNT];
   tlod_device_surface* ds = NULL;
@@ -149,7 +144,7 @@ static int run_case(obj_scene* s, tlod_device* dev, tlod_patterns* pat, const tl
       rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
   for (uint32_t k = 0; rc == CLI_OK && k < frames + 2; k++) {
     double ft[3];
-    rc = run_frame(s, dev, ds, sch, items, k, ft);
+    rc = run_frame(s, p, dev, ds, sch, items, k, ft);
     for (int j = 0; j < 3 && k >= 2; j++)
       t[j * frames + (k - 2)] = ft[j]; /* two warm-up frames */
   }
@@ -168,7 +163,7 @@ static int run_case(obj_scene* s, tlod_device* dev, tlod_patterns* pat, const tl
 
 static void report(const char* backend, const char* mode, const obj_figures f[2], FILE* csv) {
   for (int m = 0; m < 2; m++) {
-    printf("objects    %-3s %-10s %2u object%s frame min %8.3f median %8.3f ms  (schedulers %7.3f, draw %8.3f)  "
+    printf("objects    %-6s %-10s %2u object%s frame min %8.3f median %8.3f ms  (schedulers %7.3f, draw %8.3f)  "
            "%8llu tris",
            backend, mode, m ? 1u : (unsigned)OBJ_COUNT, m ? " " : "s", f[m].frame[0], f[m].frame[1], f[m].sched[1],
            f[m].draw[1], (unsigned long long)f[m].triangles);
@@ -180,7 +175,10 @@ static void report(const char* backend, const char* mode, const obj_figures f[2]
   }
 }
 
-static int run_backend(tlod_context* ctx, const cli_mesh* m, const char* backend, uint32_t frames, FILE* csv) {
+/* One backend's cases; p: its platform (NULL: cpu). */
+static int run_backend(tlod_context* ctx, const cli_mesh* m, tlod_platform* p, const bench_gpu* gpu, uint32_t frames,
+                       FILE* csv) {
+  const char* backend = p ? gpu->backend : "cpu";
   static const struct {
     const char* name;
     tlod_scheduler_desc d;
@@ -188,17 +186,19 @@ static int run_backend(tlod_context* ctx, const cli_mesh* m, const char* backend
                {"adaptive", {.morph = TLOD_MORPH_NONE}}};
   tlod_patterns* pat = NULL;
   tlod_device* dev = NULL;
-  int rc =
-      tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = 6}, &pat) == TLOD_SUCCESS &&
-              tlod_device_create(ctx, &(tlod_device_desc){.backend = backend, .patterns = pat}, &dev) == TLOD_SUCCESS
-          ? CLI_OK
-          : cli_error(CLI_FAILED, "%s: %s", backend, tlod_context_last_error(ctx));
+  int rc = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = 6}, &pat) == TLOD_SUCCESS
+               ? CLI_OK
+               : cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx));
+  tlod_device_desc dd = {.backend = backend, .patterns = pat};
+  gpu_target_device_desc(p, gpu->shader_cache, false, &dd);
+  if (rc == CLI_OK && tlod_device_create(ctx, &dd, &dev) != TLOD_SUCCESS)
+    rc = cli_error(CLI_FAILED, "%s: %s", backend, tlod_context_last_error(ctx));
   for (size_t k = 0; rc == CLI_OK && k < sizeof modes / sizeof modes[0]; k++) {
     obj_figures f[2];
     for (int merged = 0; merged < 2 && rc == CLI_OK; merged++) {
       obj_scene s;
       rc = scene_make(ctx, m, merged, &s);
-      if (rc == CLI_OK) rc = run_case(&s, dev, pat, &modes[k].d, frames, &f[merged]);
+      if (rc == CLI_OK) rc = run_case(&s, p, dev, pat, &modes[k].d, frames, &f[merged]);
       scene_free(&s);
     }
     if (rc == CLI_OK) report(backend, modes[k].name, f, csv);
@@ -208,7 +208,7 @@ static int run_backend(tlod_context* ctx, const cli_mesh* m, const char* backend
   return rc;
 }
 
-int bench_objects(const bench_options* o, FILE* csv) {
+int bench_objects(const bench_options* o, const bench_gpu* gpu, FILE* csv) {
   cli_mesh m;
   int rc = cli_load("demo:torus-24x12", &m);
   if (rc != CLI_OK) return rc;
@@ -219,15 +219,12 @@ int bench_objects(const bench_options* o, FILE* csv) {
          "%ux%u, %u frames, wall clock (ms)\n",
          m.face_sizes ? m.face_count : m.index_count / 3, OBJ_COUNT, OBJ_COUNT, OBJ_W, OBJ_H, o->frames);
   if (csv) fprintf(csv, "suite,backend,mode,objects,frame_min,frame_median,schedulers_median,draw_median,triangles\n");
-  if (rc == CLI_OK) rc = run_backend(ctx, &m, "cpu", o->frames, csv);
-#if TLOD_HAS_GL
+  if (rc == CLI_OK) rc = run_backend(ctx, &m, NULL, gpu, o->frames, csv);
+#if TLOD_HAS_GL || TLOD_HAS_VULKAN
   tlod_platform* p = NULL;
-  char err[256];
-  if (rc == CLI_OK &&
-      !tlod_platform_create(&(tlod_platform_desc){.width = OBJ_W, .height = OBJ_H}, &p, err, sizeof(err)))
-    rc = cli_error(CLI_FAILED, "bench objects: gl: %s", err);
-  if (rc == CLI_OK) tlod_platform_bind(p), rc = run_backend(ctx, &m, "gl", o->frames, csv);
-  tlod_platform_destroy(p);
+  if (rc == CLI_OK) rc = bench_gpu_open(gpu, OBJ_W, OBJ_H, &p);
+  if (rc == CLI_OK) rc = run_backend(ctx, &m, p, gpu, o->frames, csv);
+  gpu_target_close(p);
 #endif
   tlod_context_destroy(ctx);
   cli_mesh_free(&m);

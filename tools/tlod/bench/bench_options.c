@@ -7,36 +7,51 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "common/gpu_target.h"
+#include "tesslod/backend.h"
 #include "tesslod/lod.h"
+#include "tool_names.h"
 
 void bench_usage(FILE* f) {
-  fprintf(f, "usage: tlod bench [IN] [options]\n"
-             "Measures, on IN (default demo:torus-320x160, 102,400 triangles; quads are split):\n"
-             "  preprocessing: mesh validation + adjacency + normals, and patch setup per surface (patches/s);\n"
-             "  CPU evaluation: tlod_cpu_tessellate per surface, level and thread count (output vertices/s),\n"
-             "  the Phong/flat and PN/flat time ratios, and output bytes/s against memcpy bandwidth.\n"
-             "  --levels L,L       levels to evaluate (default 3,5)\n"
-             "  --threads N,N      thread counts (default 1,2)\n"
-             "  --repeat N         timed runs per case (default 3)\n"
-             "  --warmup N         untimed runs first (default 1)\n"
-             "  --csv FILE         also write one CSV row per case\n"
-             "  --suite S          eval (default) | build | scheduler | table1 | gl | skin | objects | all\n"
-             "                     build: tlod_surface_create on one thread, CPU time per 100k patches of IN\n"
-             "                     with measured error tables against closed-form ones, per surface type\n"
-             "                     (flat, Phong one alpha, Phong per-vertex alpha, PN), --repeat interleaved\n"
-             "                     rounds (min, median), and the bytes per patch of the tables\n"
-             "                     scheduler: time per frame on 10k, 100k, 1M patches (torus), orbiting camera\n"
-             "                     table1: Schwarz et al.'s Table 1 (PN, 1600x1144, 0.5 px): base, adaptive per\n"
-             "                     policy, uniform at the worst patch's level, strip overhead\n"
-             "                     gl: frame times (llvmpipe, wall clock): flat, adaptive, uniform, hardware\n"
-             "                     tessellation per model; Phong against flat at equal triangles\n"
-             "                     skin: skinning, tlod_mesh_update, tlod_surface_refresh per frame on a generated\n"
-             "                     two-joint cylinder (10k, 40k, 160k vertices), per 10k vertices, min/median of\n"
-             "                     --repeat frames, at --threads and the machine's thread count (not in all)\n"
-             "                     objects: 50 instances of one mesh (a scheduler and draw item each) against\n"
-             "                     the same triangles merged into one object, cpu and gl, --frames frames\n"
-             "  --frames N         scheduler / gl frames per case (default 20)\n"
-             "  --model IN         a table1 model (repeatable; default demo:cow)\n");
+  fprintf(f,
+          "usage: tlod bench [IN] [options]\n"
+          "Measures, on IN (default demo:torus-320x160, 102,400 triangles; quads are split):\n"
+          "  preprocessing: mesh validation + adjacency + normals, and patch setup per surface (patches/s);\n"
+          "  CPU evaluation: tlod_cpu_tessellate per surface, level and thread count (output vertices/s),\n"
+          "  the Phong/flat and PN/flat time ratios, and output bytes/s against memcpy bandwidth.\n"
+          "  --levels L,L       levels to evaluate (default 3,5)\n"
+          "  --threads N,N      thread counts (default 1,2)\n"
+          "  --repeat N         timed runs per case (default 3)\n"
+          "  --warmup N         untimed runs first (default 1)\n"
+          "  --csv FILE         also write one CSV row per case\n"
+          "  --suite S          eval (default) | build | scheduler | table1 | gl | skin | objects | draw |\n"
+          "                     vkstart | all\n"
+          "                     build: tlod_surface_create on one thread, CPU time per 100k patches of IN\n"
+          "                     with measured error tables against closed-form ones, per surface type\n"
+          "                     (flat, Phong one alpha, Phong per-vertex alpha, PN), --repeat interleaved\n"
+          "                     rounds (min, median), and the bytes per patch of the tables\n"
+          "                     scheduler: time per frame on 10k, 100k, 1M patches (torus), orbiting camera\n"
+          "                     table1: Schwarz et al.'s Table 1 (PN, 1600x1144, 0.5 px): base, adaptive per\n"
+          "                     policy, uniform at the worst patch's level, strip overhead\n"
+          "                     gl: frame times of --backend (llvmpipe / lavapipe, wall clock): flat, adaptive,\n"
+          "                     uniform, hardware tessellation per model; Phong against flat at equal triangles\n"
+          "                     skin: skinning, tlod_mesh_update, tlod_surface_refresh per frame on a generated\n"
+          "                     two-joint cylinder (10k, 40k, 160k vertices), per 10k vertices, min/median of\n"
+          "                     --repeat frames, at --threads and the machine's thread count (not in all)\n"
+          "                     objects: 50 instances of one mesh (a scheduler and draw item each) against\n"
+          "                     the same triangles merged into one object, cpu and --backend, --frames frames\n"
+          "                     draw: backend CPU time per frame (recording / GL calls, no GPU wait) for about\n"
+          "                     100k visible patches on --backend, uniform:1 and adaptive, min/median of --frames\n"
+          "                     vkstart: vulkan device start (create + first frame): shader stages compiled,\n"
+          "                     loaded from the cache and their ms, without a cache, with an empty one and\n"
+          "                     with the one the empty start filled; --repeat rounds (not in all)\n"
+          "  --frames N         scheduler / gl frames per case (default 20)\n"
+          "  --model IN         a table1 model (repeatable; default demo:cow)\n"
+          "  --backend B        gl (default) | vulkan: the GPU backend of gl, objects and draw (this build\n"
+          "                     has: %s)\n"
+          "  --shader-cache D   vulkan: SPIR-V cache folder or off (default $XDG_CACHE_HOME/tesslod, else\n"
+          "                     $HOME/.cache/tesslod); vkstart uses folders of its own\n",
+          tlod_backend_names());
 }
 
 static bool parse_list(const char* option, const char* text, uint32_t lo, uint32_t hi, uint32_t* out, uint32_t* count) {
@@ -59,7 +74,8 @@ int bench_parse(int argc, char** argv, bench_options* o) {
                        .repeat = 3,
                        .warmup = 1,
                        .frames = 20,
-                       .suite = "eval"};
+                       .suite = "eval",
+                       .backend = "gl"};
   for (int i = 0; i < argc; i++) {
     const char* a = argv[i];
     const char* v = NULL;
@@ -76,8 +92,8 @@ int bench_parse(int argc, char** argv, bench_options* o) {
     } else if (!strcmp(a, "--warmup")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 0, 1000, &o->warmup)) return CLI_USAGE;
     } else if (!strcmp(a, "--suite")) {
-      static const char* const suites[] = {"eval", "build",   "scheduler", "table1", "gl",
-                                           "skin", "objects", "all",       NULL};
+      static const char* const suites[] = {"eval",    "build", "scheduler", "table1", "gl", "skin",
+                                           "objects", "draw",  "vkstart",   "all",    NULL};
       if (!(v = cli_value(argc, argv, &i)) || cli_parse_enum(a, v, suites) < 0) return CLI_USAGE;
       o->suite = v;
     } else if (!strcmp(a, "--frames")) {
@@ -86,6 +102,14 @@ int bench_parse(int argc, char** argv, bench_options* o) {
       if (!(v = cli_value(argc, argv, &i))) return CLI_USAGE;
       if (o->table1_count == 16) return cli_error(CLI_USAGE, "--model: at most 16 models");
       o->table1[o->table1_count++] = v;
+    } else if (!strcmp(a, "--backend")) {
+      int e;
+      if (!(v = cli_value(argc, argv, &i)) || (e = cli_parse_enum(a, v, tool_backend_options())) < 0) return CLI_USAGE;
+      o->backend = tool_backend_options()[e];
+      if (!gpu_backend(o->backend))
+        return cli_error(CLI_USAGE, "--backend: %s: the suites that draw need a GPU backend, gl or vulkan", v);
+    } else if (!strcmp(a, "--shader-cache")) {
+      if (!(o->shader_cache = cli_value(argc, argv, &i))) return CLI_USAGE;
     } else if (!strcmp(a, "--csv")) {
       if (!(o->csv = cli_value(argc, argv, &i))) return CLI_USAGE;
     } else if (a[0] == '-' && a[1]) {

@@ -13,6 +13,8 @@ typedef struct bench_options {
   const char* suite;
   const char* table1[16];
   uint32_t table1_count;
+  const char* backend;      /* the suites that draw: "gl" (default) or "vulkan" */
+  const char* shader_cache; /* vulkan: --shader-cache DIR or "off"; NULL: the default folder */
 } bench_options;
 
 /* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */

@@ -11,6 +11,8 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "common/folder.h"
+#include "common/gpu_target.h"
 #include "common/strict_number.h"
 #include "play_run.h"
 #include "play_run_folder.h"
@@ -26,6 +28,8 @@ typedef struct play_session {
   uint8_t* pixels;
   char out_dir[PLAY_PATH_MAX];
   char renderer[512];
+  char shader_cache[4096]; /* the default folder's name */
+  const char* shader_dir;  /* vulkan: the SPIR-V cache folder in use; NULL none */
   char version[32];
   play_trace traces[PLAY_MAX_MODES];
   const play_trace* done[PLAY_MAX_MODES];
@@ -104,6 +108,26 @@ static int frame_count(play_session* p) {
                    o->path, camera_path_duration(&p->path), (double)o->fps, n, PLAY_MAX_FRAMES);
 }
 
+/* vulkan: the --shader-cache folder (made and writable, or an error) or the
+ * default one (a warning and no disk cache when it cannot be had). */
+static int shader_cache(play_session* p) {
+  char warning[4200], err[4200];
+  if (!tool_shader_cache_dir(p->o.shader_cache, p->shader_cache, sizeof(p->shader_cache), &p->shader_dir, warning,
+                             sizeof(warning), err, sizeof(err)))
+    return cli_error(CLI_FAILED, "--shader-cache: %s", err);
+  if (warning[0] && !p->o.quiet) fprintf(stderr, "tlod: warning: %s\n", warning);
+  return CLI_OK;
+}
+
+/* Screenshots: the larger of the sizes the run has (--resize-at). */
+static int alloc_pixels(play_session* p) {
+  const play_options* o = &p->o;
+  size_t n = (size_t)o->width * o->height, m = o->resize ? (size_t)o->resize_w * o->resize_h : 0;
+  if (!(p->pixels = malloc((n > m ? n : m) * 4)))
+    return cli_error(CLI_FAILED, "out of memory for %ux%u screenshots", o->width, o->height);
+  return CLI_OK;
+}
+
 /* Everything that can fail on bad input happens before the run folder exists. */
 static int set_up(play_session* p) {
   const play_options* o = &p->o;
@@ -117,10 +141,10 @@ static int set_up(play_session* p) {
     rc = cli_error(CLI_FAILED, "cannot build the %s path", o->path);
   if (rc == CLI_OK) rc = frame_count(p);
   p->backend = o->backend ? o->backend : "gl";
-  if (rc == CLI_OK && !strcmp(p->backend, "gl")) p->platform = play_platform_open(o, &rc, &p->backend);
-  if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, o->surface);
-  if (rc == CLI_OK && o->screenshot_every && !(p->pixels = malloc((size_t)o->width * o->height * 4)))
-    rc = cli_error(CLI_FAILED, "out of memory for %ux%u screenshots", o->width, o->height);
+  if (rc == CLI_OK && gpu_backend(p->backend)) p->platform = play_platform_open(o, &rc, &p->backend);
+  if (rc == CLI_OK && !strcmp(p->backend, "vulkan")) rc = shader_cache(p);
+  if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, o->surface, p->platform, p->shader_dir);
+  if (rc == CLI_OK && o->screenshot_every) rc = alloc_pixels(p);
   if (rc == CLI_OK) rc = play_make_run_folder(o, p->out_dir, sizeof(p->out_dir), &p->lock_fd);
   return rc;
 }
@@ -141,6 +165,11 @@ static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t f
                       .height = o->height,
                       .frames_requested = frames,
                       .screenshot_every = o->screenshot_every,
+                      .resize_frame = o->resize ? o->resize_frame : 0,
+                      .resize_width = o->resize ? o->resize_w : 0,
+                      .resize_height = o->resize ? o->resize_h : 0,
+                      .validate = o->validate,
+                      .shader_cache = p->shader_dir ? p->shader_dir : "",
                       .objects = p->scene.infos,
                       .object_count = p->scene.count,
                       .animation = p->scene.animation.channel_count ? p->scene.animation.name : "",
@@ -162,7 +191,7 @@ static int make_mode_folder(play_session* p, uint32_t k) {
   }
   char shots[PLAY_PATH_MAX + 64];
   play_path_join(shots, sizeof(shots), dir, "screenshots");
-  if (!play_mkdir_p(dir) || (o->screenshot_every && !play_mkdir_p(shots)))
+  if (!tool_mkdir_p(dir) || (o->screenshot_every && !tool_mkdir_p(shots)))
     return cli_error(CLI_FAILED, "cannot create folder '%s': %s", o->screenshot_every ? shots : dir, strerror(errno));
   return CLI_OK;
 }
@@ -180,6 +209,13 @@ static void note_failure(play_session* p, int rc) {
   if (rc != CLI_OK && !p->failure[0]) snprintf(p->failure, sizeof(p->failure), "%s", cli_last_error());
 }
 
+/* --validate: any message of the validation layer fails the run. */
+static int check_validation(const play_session* p, const play_trace* t) {
+  if (!p->o.validate || !t->validation_messages) return CLI_OK;
+  return cli_error(CLI_FAILED, "--validate: the Vulkan validation layer reported %llu message%s (printed above)",
+                   (unsigned long long)t->validation_messages, t->validation_messages == 1 ? "" : "s");
+}
+
 /* Mode k into its trace and files. */
 static int play_one_mode(play_session* p, play_run* run, uint32_t k) {
   const play_mode* m = &p->o.modes[k];
@@ -190,6 +226,7 @@ static int play_one_mode(play_session* p, play_run* run, uint32_t k) {
   run->run_dir = p->run_dirs[k];
   run->index = k;
   rc = play_mode_run(run, m, t);
+  if (rc == CLI_OK) rc = check_validation(p, t);
   note_failure(p, rc);
   p->done[p->run_count++] = t;
   int wrc = close_traces(t);
@@ -208,6 +245,8 @@ static int play_modes(play_session* p) {
                   .path = &p->path,
                   .platform = p->platform,
                   .backend = p->backend,
+                  .width = o->width,
+                  .height = o->height,
                   .frames = p->frames,
                   .pixels = p->pixels,
                   .count = o->mode_count,
@@ -250,7 +289,23 @@ static void session_free(play_session* p) {
   free(p);
 }
 
+/* The device and the platform go before the summary, so what the
+ * validation layer says about their shutdown (vkDestroyDevice's object
+ * tracker included) is counted in it. */
+static int shut_gpu(play_session* p, int rc) {
+  play_scene_destroy_device(&p->scene);
+  bool counted = p->run_count && p->platform;
+  play_platform_close(p->platform);
+  p->platform = NULL;
+  if (!counted) return rc;
+  play_trace* last = &p->traces[p->run_count - 1];
+  uint64_t before = last->validation_messages;
+  last->validation_messages = gpu_target_validation_messages(NULL);
+  return rc == CLI_OK && last->validation_messages > before ? check_validation(p, last) : rc;
+}
+
 static int finish(play_session* p, int rc) {
+  rc = shut_gpu(p, rc);
   note_failure(p, rc);
   if (play_interrupted && !p->o.quiet)
     fprintf(stderr, "tlod: interrupted: wrote the %u frames played so far\n",

@@ -8,14 +8,13 @@
 
 #include "cli.h"
 #include "common/camera.h"
+#include "common/gpu_target.h"
 #include "play_run.h"
 #include "play_run_folder.h"
 #include "tool_names.h"
 
-#if TLOD_HAS_GL
+#if TLOD_HAS_GL || TLOD_HAS_VULKAN
 #include "tlod_platform.h"
-
-#include <GL/gl.h>
 #endif
 
 volatile sig_atomic_t play_interrupted = 0;
@@ -55,9 +54,9 @@ static tlod_view_desc frame_view(const play_run* r, uint32_t n, play_frame* fr) 
   fr->fovy = cam.fovy_deg;
   fr->near_z = cam.near_z;
   fr->far_z = cam.far_z;
-  tlod_view_desc v = {.viewport_width = o->width, .viewport_height = o->height};
+  tlod_view_desc v = {.viewport_width = r->width, .viewport_height = r->height};
   camera_look_at(cam.eye, cam.target, cam.up, v.view);
-  camera_perspective(cam.fovy_deg, (float)o->width / (float)o->height, cam.near_z, cam.far_z, v.proj);
+  camera_perspective(cam.fovy_deg, (float)r->width / (float)r->height, cam.near_z, cam.far_z, v.proj);
   return v;
 }
 
@@ -160,19 +159,30 @@ static tlod_draw_item draw_item(const play_scene* s, const play_object* ob) {
   return it;
 }
 
-static void clear_frame(const play_run* r) {
-#if TLOD_HAS_GL
-  if (r->platform) {
-    glClearColor(0.11f, 0.12f, 0.14f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+static const float play_clear_rgba[4] = {0.11f, 0.12f, 0.14f, 1.0f};
+
+/* The device draw inside a platform frame (begun: GL bound and cleared,
+ * Vulkan recording; ended: Vulkan submitted and, as gl's finish does,
+ * waited for: the submit and the wait in *gpu_ms). */
+static int framed_draw(play_run* r, tlod_draw_desc* d, uint32_t n, double* gpu_ms) {
+  play_scene* s = r->scene;
+  char err[512];
+  *gpu_ms = 0.0;
+  if (r->platform && !gpu_frame_begin(r->platform, play_clear_rgba, d, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "frame %u: %s", n, err);
+  if (tlod_device_draw(s->device, d) != TLOD_SUCCESS) {
+    int rc = cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
+    if (r->platform) gpu_frame_end(r->platform, false, gpu_ms, err, sizeof(err)); /* a begun frame is ended */
+    return rc;
   }
-#else
-  (void)r;
-#endif
+  if (r->platform && !gpu_frame_end(r->platform, d->finish, gpu_ms, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "frame %u: %s", n, err);
+  return CLI_OK;
 }
 
 /* One draw of every object. Per object: its item's CPU time, triangles and
- * draw calls; the draw's wall time past the items' CPU times (the finish: GPU
+ * draw calls; the draw's wall time past the items' CPU times (GL: the
+ * finish; Vulkan: the submit and the wait for the frame's fence, the GPU
  * work) and its GPU time are shared out by drawn triangles, so the objects
  * add up to the draw. Laid out back to back from the draw's start. */
 static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, double run_start, play_object_stats* os) {
@@ -180,16 +190,15 @@ static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, dou
   tlod_draw_item* items = r->items;
   for (uint32_t i = 0; i < s->count; i++)
     items[i] = draw_item(s, &s->objects[i]);
-  tlod_draw_desc d = {
-      .items = items, .item_count = s->count, .viewport = {0, 0, r->o->width, r->o->height}, .finish = true};
+  tlod_draw_desc d = {.items = items, .item_count = s->count, .viewport = {0, 0, r->width, r->height}, .finish = true};
   memcpy(d.view, view->view, sizeof(d.view));
   memcpy(d.proj, view->proj, sizeof(d.proj));
-  clear_frame(r);
-  double t0 = cli_now_ms();
-  if (tlod_device_draw(s->device, &d) != TLOD_SUCCESS)
-    return cli_error(CLI_FAILED, "frame %u: %s", n, tlod_context_last_error(s->ctx));
+  double t0 = cli_now_ms(), gpu_ms = 0.0;
+  int rc = framed_draw(r, &d, n, &gpu_ms);
+  if (rc != CLI_OK) return rc;
   double t1 = cli_now_ms();
   tlod_device_stats st = tlod_device_query_stats(s->device);
+  st.wall_ms += gpu_ms; /* vulkan; gl's finish is in its wall_ms */
   bool gpu = st.gpu_ms >= 0.0 && st.gpu_draw >= r->first_draw;
   double items_cpu = 0.0;
   for (uint32_t i = 0; i < s->count; i++)
@@ -212,7 +221,7 @@ static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, dou
 
 /* Window mode: shows the frame; true when the window was closed. */
 static bool present(const play_run* r) {
-#if TLOD_HAS_GL
+#if TLOD_HAS_GL || TLOD_HAS_VULKAN
   if (!r->o->window || !r->platform) return false;
   tlod_platform_swap(r->platform);
   return tlod_platform_should_close(r->platform);
@@ -236,7 +245,20 @@ static void sample_resources(const play_run* r, play_trace* t) {
   uint32_t n = t->frame_count;
   while (n % 10 == 0)
     n /= 10;
-  if (n == 1) play_resources_sample(t, r->platform != NULL);
+  if (n == 1) play_resources_sample(t, !strcmp(r->backend, "gl"));
+}
+
+/* The framebuffer (with a platform) and the viewport become w x h. */
+static int resize(play_run* r, uint32_t w, uint32_t h) {
+  char err[512];
+#if TLOD_HAS_GL || TLOD_HAS_VULKAN
+  if (r->platform && !tlod_platform_resize(r->platform, w, h, err, sizeof(err)))
+    return cli_error(CLI_FAILED, "--resize-at %u:%ux%u: %s", r->o->resize_frame, w, h, err);
+#else
+  (void)err;
+#endif
+  r->width = w, r->height = h;
+  return CLI_OK;
 }
 
 /* Frame n: CLI_OK, or CLI_FAILED with t->stopped set ("window closed" stops with CLI_OK). */
@@ -246,6 +268,8 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
   if (rc != CLI_OK) return rc;
   play_frame* fr = play_trace_add_frame(t, &os);
   if (!fr) return cli_error(CLI_FAILED, "out of memory after %u frames", t->frame_count);
+  if (r->o->resize && n == r->o->resize_frame && (rc = resize(r, r->o->resize_w, r->o->resize_h)) != CLI_OK)
+    return rc; /* between frames: no frame's time includes it */
   tlod_view_desc view = frame_view(r, n, fr);
   const double f0 = cli_now_ms();
   fr->at_ms = f0 - run_start;
@@ -292,9 +316,9 @@ int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
       !play_trace_files_open(t, r->run_dir, err, sizeof(err)))
     return cli_error(CLI_FAILED, "%s", err);
   r->first_draw = tlod_device_query_stats(r->scene->device).draws + 1;
-#if TLOD_HAS_GL
-  if (r->platform) tlod_platform_bind(r->platform);
-#endif
+  /* Every mode starts at the given size (an earlier one may have resized). */
+  if ((r->width != r->o->width || r->height != r->o->height) && (rc = resize(r, r->o->width, r->o->height)) != CLI_OK)
+    return rc;
   const double run_start = cli_now_ms();
   double last_progress = -1e30;
   bool stop = false;
@@ -316,7 +340,9 @@ int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
   }
   t->wall_s = (cli_now_ms() - run_start) * 1e-3;
   if (!t->sample_count || t->samples[t->sample_count - 1].frame != t->frame_count)
-    play_resources_sample(t, r->platform != NULL);
+    play_resources_sample(t, !strcmp(r->backend, "gl"));
   if (!r->o->quiet) play_progress(r, m, t->frame_count, 0.0, true);
+  t->vk = tlod_device_query_stats(r->scene->device).vk;
+  t->validation_messages = gpu_target_validation_messages(r->platform);
   return rc;
 }

@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "common/gpu_target.h"
 #include "common/mesh_load.h"
 #include "play_options.h"
 #include "tesslod/backend.h"
@@ -19,6 +20,7 @@ void play_usage(FILE* f) {
       "  SCENE               .gltf .glb .obj .ply file, a built-in mesh (%s), or nothing /\n"
       "                      demo:scene for the built-in demo scene (the VTK cow beside a creased cylinder)\n"
       "  --backend B         gl (default when a GL context can be made, else cpu) | cpu | null (draws nothing)\n"
+      "                      | vulkan (headless or --window; an error when it cannot start, never a fallback)\n"
       "                      (this build has: %s)\n"
       "  --mode M            adaptive (default) | uniform:L (every visible patch at level L, 0..%d) | flat (level 0)\n"
       "  --compare M,M[,..]  play the same path once per mode (output per mode in subfolders)\n"
@@ -37,8 +39,13 @@ void play_usage(FILE* f) {
       "  --duration S        seconds of path time to play (frames = S * fps); not with --frames\n"
       "  --fps F             fixed time step 1/F s per frame (default 60): runs are repeatable\n"
       "  --loop              start the path over at its end (default: hold the last keyframe)\n"
-      "  --screenshot-every N  gl: write screenshots/frame_NNNNN.png every N frames (from frame 0)\n"
-      "  --window            draw into a GLFW window (needs DISPLAY) instead of headless EGL\n"
+      "  --screenshot-every N  gl, vulkan: write screenshots/frame_NNNNN.png every N frames (from frame 0)\n"
+      "  --window            gl, vulkan: draw into a GLFW window (needs DISPLAY) instead of headless\n"
+      "  --resize-at N:WxH   resize the framebuffer and viewport to WxH before frame N (every mode)\n"
+      "  --validate          vulkan: Vulkan validation layer (with synchronization validation) on; any\n"
+      "                      message fails the run, their count is in the summary\n"
+      "  --shader-cache D    vulkan: SPIR-V cache folder, or off (default $XDG_CACHE_HOME/tesslod, else\n"
+      "                      $HOME/.cache/tesslod; a given folder that cannot be made or written is an error)\n"
       "  --out DIR           run folder (default runs/YYYYmmdd-HHMMSS)\n"
       "  -q, --quiet         no progress bar and no summary\n"
       "Writes trace.json, trace.csv, chrome_trace.json, summary.json and summary.txt into the run folder.\n"
@@ -73,6 +80,8 @@ static int parse_flag(const char* a, play_options* o) {
     o->loop = true;
   } else if (!strcmp(a, "--window")) {
     o->window = true;
+  } else if (!strcmp(a, "--validate")) {
+    o->validate = true;
   } else if (!strcmp(a, "-q") || !strcmp(a, "--quiet")) {
     o->quiet = true;
   } else {
@@ -129,6 +138,20 @@ static int parse_timing(int argc, char** argv, int* i, play_options* o) {
   return CLI_NOT_MINE;
 }
 
+/* --resize-at N:WxH. */
+static bool parse_resize(const char* option, const char* text, play_options* o) {
+  const char* colon = strchr(text, ':');
+  char frame[32];
+  if (!colon || colon == text || (size_t)(colon - text) >= sizeof(frame)) {
+    cli_error(CLI_USAGE, "%s: %s: expected FRAME:WxH (e.g. 50:640x360)", option, text);
+    return false;
+  }
+  snprintf(frame, sizeof(frame), "%.*s", (int)(colon - text), text);
+  o->resize = true;
+  return cli_parse_uint(option, frame, 0, PLAY_MAX_FRAMES, &o->resize_frame) &&
+         cli_parse_size(option, colon + 1, 16384, &o->resize_w, &o->resize_h);
+}
+
 static int parse_output(int argc, char** argv, int* i, play_options* o) {
   const char* a = argv[*i];
   const char* v = NULL;
@@ -143,6 +166,12 @@ static int parse_output(int argc, char** argv, int* i, play_options* o) {
   if (!strcmp(a, "--screenshot-every"))
     return cli_usage_unless((v = cli_value(argc, argv, i)) &&
                             cli_parse_uint(a, v, 1, PLAY_MAX_FRAMES, &o->screenshot_every));
+  if (!strcmp(a, "--resize-at")) return cli_usage_unless((v = cli_value(argc, argv, i)) && parse_resize(a, v, o));
+  if (!strcmp(a, "--shader-cache")) {
+    if (!(o->shader_cache = cli_value(argc, argv, i))) return CLI_USAGE;
+    if (!*o->shader_cache) return cli_error(CLI_USAGE, "--shader-cache: expected a folder or off");
+    return CLI_OK;
+  }
   if (!strcmp(a, "--out")) {
     if (!(o->out = cli_value(argc, argv, i))) return CLI_USAGE;
     if (!*o->out || strlen(o->out) > PLAY_PATH_MAX - 64)
@@ -173,11 +202,15 @@ static int parse_argument(int argc, char** argv, int* i, play_options* o) {
 static int check(const play_options* o) {
   if (o->compare && o->mode_given) return cli_error(CLI_USAGE, "play: give --mode or --compare, not both");
   if (o->frames && o->duration > 0.0f) return cli_error(CLI_USAGE, "play: give --frames or --duration, not both");
-  if (o->backend && strcmp(o->backend, "gl") && o->screenshot_every)
-    return cli_error(CLI_USAGE, "--screenshot-every: the %s backend draws no image (screenshots need --backend gl)",
+  bool image = !o->backend || gpu_backend(o->backend);
+  if (!image && o->screenshot_every)
+    return cli_error(CLI_USAGE,
+                     "--screenshot-every: the %s backend draws no image (screenshots need --backend gl or vulkan)",
                      o->backend);
-  if (o->backend && strcmp(o->backend, "gl") && o->window)
-    return cli_error(CLI_USAGE, "--window: the %s backend draws no image (needs --backend gl)", o->backend);
+  if (!image && o->window)
+    return cli_error(CLI_USAGE, "--window: the %s backend draws no image (needs --backend gl or vulkan)", o->backend);
+  if (o->validate && (!o->backend || strcmp(o->backend, "vulkan")))
+    return cli_error(CLI_USAGE, "--validate: the Vulkan validation layer needs --backend vulkan");
   return CLI_OK;
 }
 

@@ -22,7 +22,7 @@ typedef struct play_mode {
 
 typedef struct play_options {
   const char* scene;   /* NULL: the built-in demo scene */
-  const char* backend; /* NULL: gl when a context can be made, else cpu */
+  const char* backend; /* NULL: gl when a context can be made, else cpu; "vulkan" never falls back */
   play_mode modes[PLAY_MAX_MODES];
   uint32_t mode_count;
   bool compare, mode_given;
@@ -40,6 +40,10 @@ typedef struct play_options {
   bool loop;
   uint32_t screenshot_every;
   bool window;
+  bool validate;            /* vulkan: the validation layer on; any message fails the run */
+  const char* shader_cache; /* vulkan: --shader-cache DIR or "off"; NULL: the default folder */
+  bool resize;              /* --resize-at: before frame resize_frame the framebuffer becomes resize_w x resize_h */
+  uint32_t resize_frame, resize_w, resize_h;
   const char* out;
   bool quiet;
 } play_options;

@@ -1,34 +1,42 @@
-/* tlod play -- the GL context, or the fallback to the cpu backend. */
+/* tlod play -- the GPU platform (a GL context or a Vulkan device), or the
+ * default's fallback to the cpu backend when no GL context can be made.
+ * Vulkan never falls back: asked for, it starts or the run fails. */
 #include <string.h>
 
 #include "cli.h"
+#include "common/gpu_target.h"
 #include "play_run.h"
 
-#if TLOD_HAS_GL
+#if TLOD_HAS_GL || TLOD_HAS_VULKAN
 #include "tlod_platform.h"
 #endif
 
+/* What could not be had, for the error line. */
+static const char* failed_what(const play_options* o, bool vulkan) {
+  if (vulkan) return o->validate ? "--backend vulkan --validate" : "--backend vulkan";
+  if (o->window) return "--window: cannot open a GL window";
+  if (o->backend) return "--backend gl: no GL context";
+  return "--screenshot-every: screenshots need a GL context, and there is none";
+}
+
 tlod_platform* play_platform_open(const play_options* o, int* rc, const char** backend) {
-  bool required = (o->backend && !strcmp(o->backend, "gl")) || o->window || o->screenshot_every;
+  bool vulkan = o->backend && !strcmp(o->backend, "vulkan");
+  bool required = vulkan || (o->backend && !strcmp(o->backend, "gl")) || o->window || o->screenshot_every;
   char err[512] = "";
-#if TLOD_HAS_GL
   tlod_platform* p = NULL;
-  tlod_platform_desc d = {
-      .width = o->width, .height = o->height, .window = o->window, .visible = o->window, .title = "tlod play"};
-  if (tlod_platform_create(&d, &p, err, sizeof(err))) {
+  gpu_target_desc d = {.backend = vulkan ? "vulkan" : "gl",
+                       .width = o->width,
+                       .height = o->height,
+                       .window = o->window,
+                       .validation = o->validate,
+                       .title = "tlod play"};
+  if (gpu_target_open(&d, &p, err, sizeof(err))) {
     *rc = CLI_OK;
-    *backend = "gl";
+    *backend = d.backend;
     return p;
   }
-#else
-  snprintf(err, sizeof(err), "this build has no GL backend (TLOD_BACKEND_GL=OFF)");
-#endif
   if (required) {
-    const char* what = o->window
-                           ? "--window: cannot open a GL window"
-                           : (o->backend ? "--backend gl: no GL context"
-                                         : "--screenshot-every: screenshots need a GL context, and there is none");
-    *rc = cli_error(CLI_FAILED, "%s: %s", what, err);
+    *rc = cli_error(CLI_FAILED, "%s: %s", failed_what(o, vulkan), err);
     return NULL;
   }
   if (!o->quiet) fprintf(stderr, "tlod: note: no GL context (%s); playing on the cpu backend\n", err);
@@ -37,20 +45,14 @@ tlod_platform* play_platform_open(const play_options* o, int* rc, const char** b
   return NULL;
 }
 
-void play_platform_close(tlod_platform* p) {
-#if TLOD_HAS_GL
-  tlod_platform_destroy(p);
-#else
-  (void)p;
-#endif
-}
+void play_platform_close(tlod_platform* p) { gpu_target_close(p); }
 
 void play_platform_describe(tlod_platform* p, const char* backend, char* out, size_t size) {
   if (!strcmp(backend, "null"))
     snprintf(out, size, "null device (validates and counts every call; draws nothing, no image)");
   else
     snprintf(out, size, "cpu reference tessellator (realises each draw list as a mesh; no image)");
-#if TLOD_HAS_GL
+#if TLOD_HAS_GL || TLOD_HAS_VULKAN
   if (p) tlod_platform_describe(p, out, size);
 #else
   (void)p;

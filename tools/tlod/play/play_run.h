@@ -14,8 +14,9 @@ typedef struct play_run {
   const play_options* o;
   play_scene* scene;
   const camera_path* path;
-  tlod_platform* platform; /* NULL: cpu */
+  tlod_platform* platform; /* NULL: cpu, null */
   const char* backend;
+  uint32_t width, height; /* the framebuffer now (--resize-at changes it mid-run) */
   uint32_t frames;
   const char* run_dir;
   uint8_t* pixels;       /* screenshots */
@@ -40,12 +41,13 @@ int play_mode_run(play_run* r, const play_mode* m, play_trace* t);
 
 /* The progress bar on a terminal: done of r->frames; final clears it. */
 void play_progress(const play_run* r, const play_mode* m, uint32_t done, double elapsed_ms, bool final);
-/* Reads frame fr back and writes screenshots/frame_NNNNN.png (gl only). */
+/* Reads frame fr back and writes screenshots/frame_NNNNN.png (gl, vulkan). */
 int play_screenshot(play_run* r, play_frame* fr, double run_start);
 
-/* The GL context (headless or window) when o asks for gl or the default can
- * use it: NULL with *rc set when GL was required and cannot be had; NULL with
- * CLI_OK and *backend "cpu" when the default falls back. */
+/* The GL context or Vulkan device (headless or window) when o asks for gl
+ * or vulkan, or the default can use GL: NULL with *rc set when it was
+ * required and cannot be had (vulkan always is); NULL with CLI_OK and
+ * *backend "cpu" when the default falls back. */
 tlod_platform* play_platform_open(const play_options* o, int* rc, const char** backend);
 void play_platform_close(tlod_platform* p);
 /* The renderer's description (without GL: the cpu or null device's). */

@@ -26,27 +26,13 @@ bool play_path_join(char* buf, size_t size, const char* a, const char* b) {
   return true;
 }
 
-bool play_mkdir_p(const char* path) {
-  char buf[4096];
-  snprintf(buf, sizeof(buf), "%s", path);
-  for (char* p = buf + 1; *p; p++) {
-    if (*p != '/') continue;
-    *p = '\0';
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return false;
-    *p = '/';
-  }
-  if (mkdir(buf, 0777) != 0 && errno != EEXIST) return false;
-  struct stat st;
-  return stat(buf, &st) == 0 && S_ISDIR(st.st_mode);
-}
-
 int play_make_run_folder(const play_options* o, char* out, size_t size, int* lock_fd) {
   if (o->out) {
     snprintf(out, size, "%s", o->out);
     size_t n = strlen(out);
     while (n > 1 && out[n - 1] == '/')
       out[--n] = '\0';
-    if (!play_mkdir_p(out)) return cli_error(CLI_FAILED, "--out: cannot create folder '%s': %s", out, strerror(errno));
+    if (!tool_mkdir_p(out)) return cli_error(CLI_FAILED, "--out: cannot create folder '%s': %s", out, strerror(errno));
     return *lock_fd >= 0 ? CLI_OK : play_lock_run_folder(out, lock_fd);
   }
   char stamp[32];
@@ -54,7 +40,7 @@ int play_make_run_folder(const play_options* o, char* out, size_t size, int* loc
   struct tm tm;
   localtime_r(&now, &tm);
   strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", &tm);
-  if (!play_mkdir_p("runs")) return cli_error(CLI_FAILED, "cannot create folder 'runs': %s", strerror(errno));
+  if (!tool_mkdir_p("runs")) return cli_error(CLI_FAILED, "cannot create folder 'runs': %s", strerror(errno));
   for (int k = 1; k < 100; k++) {
     if (k == 1) {
       snprintf(out, size, "runs/%s", stamp);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "common/gpu_target.h"
 
 static const float k_identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
@@ -161,13 +162,15 @@ int play_scene_load(const play_options* o, play_scene* s) {
   return CLI_OK;
 }
 
-int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_type type) {
+int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_type type, tlod_platform* platform,
+                             const char* shader_cache_dir) {
   play_scene_destroy_device(s);
   /* One surface type per run: the gl device links its two programs only. */
   tlod_device_desc d = {.backend = backend,
                         .patterns = s->patterns,
                         .gl = {.surface_types = 1u << (type == TLOD_SURFACE_DEFAULT ? TLOD_SURFACE_PHONG : type)},
                         .label = "tlod play"};
+  gpu_target_device_desc(platform, shader_cache_dir, false, &d);
   if (tlod_device_create(s->ctx, &d, &s->device) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "backend %s: %s", backend, tlod_context_last_error(s->ctx));
   for (uint32_t i = 0; i < s->surface_count; i++) {

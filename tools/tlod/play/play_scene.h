@@ -92,9 +92,13 @@ typedef struct play_scene {
 int play_scene_load(const play_options* o, play_scene* s);
 void play_scene_free(play_scene* s);
 
+typedef struct tlod_platform tlod_platform;
+
 /* The run's device (programs and patterns made once), one device surface
- * per surface and one device texture per image. */
-int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_type type);
+ * per surface and one device texture per image. vulkan: on the platform's
+ * device (NULL otherwise), SPIR-V cached in shader_cache_dir (NULL: none). */
+int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_type type, tlod_platform* platform,
+                             const char* shader_cache_dir);
 /* The device draws with the platform's context: destroy it while it exists. */
 void play_scene_destroy_device(play_scene* s);
 

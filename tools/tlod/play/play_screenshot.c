@@ -1,12 +1,13 @@
-/* tlod play -- screenshots: the frame read back from GL and written by the
- * platform's PNG writer (an atomic file: complete or not at all). */
+/* tlod play -- screenshots: the last ended frame read back from the
+ * platform (GL or Vulkan) and written by the platform's PNG writer (an
+ * atomic file: complete or not at all). */
 #include <stdio.h>
 
 #include "cli.h"
 #include "play_run.h"
 #include "play_run_folder.h"
 
-#if TLOD_HAS_GL
+#if TLOD_HAS_GL || TLOD_HAS_VULKAN
 #include "tlod_platform.h"
 
 int play_screenshot(play_run* r, play_frame* fr, double run_start) {
@@ -15,7 +16,7 @@ int play_screenshot(play_run* r, play_frame* fr, double run_start) {
   char path[PLAY_PATH_MAX + 64], err[PLAY_PATH_MAX + 512] = "cannot read the frame back";
   play_path_join(path, sizeof(path), r->run_dir, fr->screenshot);
   if (!tlod_platform_read_rgba(r->platform, r->pixels) ||
-      !tlod_png_write(path, r->o->width, r->o->height, r->pixels, err, sizeof(err))) {
+      !tlod_png_write(path, r->width, r->height, r->pixels, err, sizeof(err))) {
     fr->screenshot[0] = '\0';
     return cli_error(CLI_FAILED, "screenshot of frame %u: %s", fr->frame, err);
   }
@@ -26,6 +27,6 @@ int play_screenshot(play_run* r, play_frame* fr, double run_start) {
 #else
 int play_screenshot(play_run* r, play_frame* fr, double run_start) {
   (void)r, (void)fr, (void)run_start;
-  return cli_error(CLI_FAILED, "screenshots need the GL backend");
+  return cli_error(CLI_FAILED, "screenshots need the GL or Vulkan backend");
 }
 #endif

@@ -11,6 +11,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "tesslod/backend.h"
 #include "tesslod/lod.h"
 
 /* Entries of every level histogram: levels 0..TLOD_MAX_LEVEL. */
@@ -105,7 +106,7 @@ typedef struct play_trace {
   const char* tool_version;
   const char* scene;
   const char* mode;    /* "adaptive", "uniform:3", "flat" */
-  const char* backend; /* "cpu" or "gl" */
+  const char* backend; /* "cpu", "gl", "null" or "vulkan" */
   const char* renderer;
   const char* surface;
   const char* policy;    /* adaptive: the policy; uniform / flat: "error" */
@@ -118,7 +119,10 @@ typedef struct play_trace {
   double fps;
   uint32_t width, height;
   uint32_t frames_requested;
-  uint32_t screenshot_every; /* 0: none */
+  uint32_t screenshot_every;                          /* 0: none */
+  uint32_t resize_frame, resize_width, resize_height; /* --resize-at; resize_width 0: none */
+  bool validate;                                      /* --validate (vulkan) */
+  const char* shader_cache;                           /* vulkan: the SPIR-V cache folder, "" none */
   const play_object_info* objects;
   uint32_t object_count;
   const char* animation; /* the animation played, "" none */
@@ -140,6 +144,11 @@ typedef struct play_trace {
   play_resources samples[PLAY_MAX_SAMPLES];
   uint32_t sample_count;
   play_trace_files* files; /* open from play_trace_files_open to _close */
+  /* vulkan: the device's stats when the mode ended (shader figures since the
+   * device was made: the session's), and the validation messages counted
+   * by then (the session's; the last mode's include the device's shutdown) */
+  tlod_device_vk_stats vk;
+  uint64_t validation_messages;
 } play_trace;
 
 /* A zeroed slot for the next frame (and object_count zeroed object

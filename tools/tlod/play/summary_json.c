@@ -43,6 +43,34 @@ static void json_resources(json_writer* w, const play_trace* t) {
   json_array_end(w);
 }
 
+/* vulkan: the device's shader, pipeline and memory figures at the mode's end (zero elsewhere). */
+static void json_vk(json_writer* w, const tlod_device_vk_stats* vk) {
+  json_object_begin(w, "vk");
+  json_uint(w, "shader_compiles", vk->shader_compiles);
+  json_uint(w, "shader_cache_hits", vk->shader_cache_hits);
+  json_number(w, "shader_ms", vk->shader_ms);
+  json_uint(w, "pipelines", vk->pipelines);
+  json_number(w, "create_ms", vk->create_ms);
+  json_uint(w, "memory_blocks", vk->memory_blocks);
+  json_uint(w, "memory_bytes", vk->memory_bytes);
+  json_uint(w, "ring_bytes", vk->ring_bytes);
+  json_uint(w, "upload_bytes", vk->upload_bytes);
+  json_uint(w, "descriptor_sets", vk->descriptor_sets);
+  json_object_end(w);
+}
+
+/* --resize-at, --validate and the shader cache: the run's settings. */
+static void json_gpu_settings(json_writer* w, const play_trace* t0, const play_trace* last) {
+  json_object_begin(w, "resize_at"); /* width 0: none */
+  json_uint(w, "frame", t0->resize_frame);
+  json_uint(w, "width", t0->resize_width);
+  json_uint(w, "height", t0->resize_height);
+  json_object_end(w);
+  json_bool(w, "validate", t0->validate);
+  json_uint(w, "validation_messages", last->validation_messages);
+  json_string(w, "shader_cache", t0->shader_cache ? t0->shader_cache : "");
+}
+
 static bool summary_json(FILE* f, const void* data) {
   const summary_job* j = data;
   const play_trace* t0 = j->runs[0];
@@ -63,6 +91,7 @@ static bool summary_json(FILE* f, const void* data) {
   json_number(&w, "fps", t0->fps);
   json_uint(&w, "width", t0->width);
   json_uint(&w, "height", t0->height);
+  json_gpu_settings(&w, t0, j->runs[j->run_count - 1]);
   json_string(&w, "out_dir", j->out_dir);
   json_array_begin(&w, "runs");
   run_summary base = {0};
@@ -102,6 +131,8 @@ static bool summary_json(FILE* f, const void* data) {
       json_number(&w, NULL, r.histogram_mean[l]);
     json_array_end(&w);
     json_resources(&w, t);
+    json_vk(&w, &t->vk); /* zero but for vulkan */
+    json_uint(&w, "validation_messages", t->validation_messages);
     if (j->run_count > 1) {
       json_object_begin(&w, "relative_to_first");
       json_number(&w, "frame_ms_mean", base.frame_ms.mean > 0.0 ? r.frame_ms.mean / base.frame_ms.mean : 0.0);

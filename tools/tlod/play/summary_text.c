@@ -5,6 +5,16 @@
 #include "tlod_atomic_file.h"
 #include "tool_names.h"
 
+/* vulkan: shaders, pipelines and validation of the mode. */
+static void print_vulkan(FILE* f, const play_trace* t) {
+  if (strcmp(t->backend, "vulkan")) return;
+  const tlod_device_vk_stats* vk = &t->vk;
+  fprintf(f,
+          "    vulkan: shader stages %u compiled, %u from the cache (%.2f ms), %u pipelines, device create %.2f ms\n",
+          vk->shader_compiles, vk->shader_cache_hits, vk->shader_ms, vk->pipelines, vk->create_ms);
+  if (t->validate) fprintf(f, "    validation: %llu messages\n", (unsigned long long)t->validation_messages);
+}
+
 void play_print_summary(FILE* f, const play_trace* const* runs, uint32_t run_count, const char* out_dir) {
   const play_trace* t0 = runs[0];
   fprintf(f, "tlod play: %s (", t0->scene);
@@ -13,6 +23,8 @@ void play_print_summary(FILE* f, const play_trace* const* runs, uint32_t run_cou
   fprintf(f, "), %s surface, path %s (%.3g s%s), %ux%u, %g fps fixed step\n", t0->surface, t0->path,
           t0->path_duration_s, t0->loop ? ", looped" : "", t0->width, t0->height, t0->fps);
   fprintf(f, "backend %s: %s\n", t0->backend, t0->renderer);
+  if (t0->resize_width)
+    fprintf(f, "resized to %ux%u before frame %u\n", t0->resize_width, t0->resize_height, t0->resize_frame);
   fprintf(f, "%-12s %11s | frame ms: %7s %7s %7s %7s %7s | %6s | %9s %9s | %10s\n", "mode", "frames", "mean", "p50",
           "p95", "p99", "max", "fps", "sched ms", "draw ms", "triangles");
   run_summary base = {0};
@@ -39,7 +51,8 @@ void play_print_summary(FILE* f, const play_trace* const* runs, uint32_t run_cou
       fprintf(f, " %s %.3f", tool_stage_name(s), r.stage_mean[s]);
     fprintf(f, "\n    backend (mean ms): cpu %.3f, wall %.3f, gpu ", r.backend_cpu_ms.mean, r.backend_wall_ms.mean);
     if (r.gpu_frames) {
-      fprintf(f, "%.3f (timer query; misses most llvmpipe work)", r.gpu_mean);
+      fprintf(f, "%.3f (%s)", r.gpu_mean,
+              strcmp(t->backend, "vulkan") ? "timer query; misses most llvmpipe work" : "timestamp queries, read late");
     } else {
       fputs("n/a", f);
     }
@@ -55,6 +68,7 @@ void play_print_summary(FILE* f, const play_trace* const* runs, uint32_t run_cou
     if (k > 0 && base.frame_ms.mean > 0.0 && base.triangles.mean > 0.0)
       fprintf(f, "    vs %s: frame time %.2fx, triangles %.2fx\n", runs[0]->mode, r.frame_ms.mean / base.frame_ms.mean,
               r.triangles.mean / base.triangles.mean);
+    print_vulkan(f, t);
     if (strcmp(t->stopped, "completed")) fprintf(f, "    stopped early: %s\n", t->stopped);
   }
   if (run_count > 1) {

@@ -309,7 +309,8 @@ typedef struct tlod_draw_desc {
   const tlod_draw_item* items; /* required, item_count > 0; drawn in order */
   uint32_t item_count;
   float view[16], proj[16]; /* column-major world -> eye -> clip (the scheduler's view of the world) */
-  uint32_t viewport[4];     /* x, y, width, height in the bound framebuffer; width, height > 0 */
+  uint32_t viewport[4];     /* x, y, width, height in the bound framebuffer; width, height > 0
+                               (gl: y from the bottom; vulkan: from the top, Vulkan's origin) */
   /* World direction towards the light; (0, 0, 0) (no direction) == (0.3, 0.8, 0.5).
    * Normalised by the device. Shading (the built-in material; "gl": a
    * fragment hook replaces it): base * (0.15 + 0.85 * max(dot(n, l), 0)),

@@ -1,0 +1,335 @@
+/* tesslod::vulkan -- tlod_device_draw(): validates the draw's Vulkan
+ * fields, begins the frame slot, makes the pipelines the items need,
+ * stages every item exactly as the gl device (device_stage.h), writes
+ * instances, strips, strip references and one uniform block per item into
+ * the slot's ring, writes one descriptor set per item and records, per
+ * item in draw order (BLEND last, farthest first): its pattern draws
+ * (indexed, instanced) or its tessellation batches, its strips, and with
+ * wireframe its edges. Nothing is submitted or waited for. */
+#include <string.h>
+
+#include "vk_internal.h"
+
+/* Where this draw's data sits in the ring (absolute offsets). */
+typedef struct ring_view {
+  VkBuffer buffer;
+  char* mapped;
+  VkDeviceSize uniforms, instances, strips, refs;
+  VkDeviceSize instance_bytes, strip_bytes;
+} ring_view;
+
+static tlod_result check_vk(vk_device* d, const tlod_draw_desc* fr) {
+  const char* fn = "tlod_device_draw";
+  if (!fr->vk.command_buffer)
+    return tlod_context_fail(d->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "%s: desc.vk.command_buffer is NULL (the vulkan device records into the engine's)", fn);
+  if (fr->vk.frame_index >= d->frames.count)
+    return tlod_context_fail(d->ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "%s: desc.vk.frame_index %u outside [0, %u) (desc.vk.frames_in_flight of device '%s')", fn,
+                             fr->vk.frame_index, d->frames.count, d->label);
+  if (fr->wireframe && !d->wireframe_ok)
+    return tlod_context_fail(d->ctx, TLOD_ERROR_UNSUPPORTED,
+                             "%s: wireframe needs the fillModeNonSolid feature, which the physical device of '%s' "
+                             "lacks",
+                             fn, d->label);
+  return TLOD_SUCCESS;
+}
+
+/* As gl_device.c: PLAIN unless the item's fragments read a texture or (a
+ * fragment hook) its mesh's attributes; MASK items their own. */
+static int variant_of(const vk_device* d, const _tlod_draw_ref* it) {
+  const vk_surface* vs = it->surface_state;
+  return _tlod_stage_variant(d->pipelines.hook != NULL, vs->attribute_count, it->item);
+}
+
+/* Every pipeline the items need, before anything is recorded (a failure
+ * leaves the command buffer untouched). */
+static tlod_result prepare(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items) {
+  for (uint32_t k = 0; k < fr->item_count; k++) {
+    const vk_surface* vs = items[k].surface_state;
+    int v = variant_of(d, &items[k]), k0 = d->hardware ? VK_KIND_TESS3 : VK_KIND_PATTERN;
+    bool blend = items[k].item->blend == TLOD_BLEND_BLEND;
+    for (int kind = k0; kind < k0 + 2; kind++) {
+      for (int line = 0; line <= (int)fr->wireframe; line++) {
+        VkPipeline p;
+        tlod_result r = _tlod_vkb_pipeline(&d->pipelines, vs->type, v, kind, blend, line, &p);
+        if (r != TLOD_SUCCESS) return r;
+      }
+    }
+  }
+  return TLOD_SUCCESS;
+}
+
+/* proj * view * model with Vulkan's depth range: z' = 0.5 z + 0.5 w (rows
+ * x, y and w stay bitwise GL's). */
+static void item_uniforms(const vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it,
+                          const float view[3][3], tlod_vk_uniforms* u) {
+  const vk_surface* vs = it->surface_state;
+  _tlod_item_shading sh;
+  _tlod_item_shading_of(fr, it->item, &sh);
+  memset(u, 0, sizeof(*u));
+  memcpy(u->view_proj, sh.mvp, sizeof(u->view_proj));
+  for (int c = 0; c < 4; c++)
+    u->view_proj[c * 4 + 2] = 0.5f * sh.mvp[c * 4 + 2] + 0.5f * sh.mvp[c * 4 + 3];
+  memcpy(u->model, sh.model, sizeof(u->model));
+  for (int c = 0; c < 3; c++)
+    memcpy(&u->normal_matrix[c * 4], &sh.normal_matrix[c * 3], sizeof(float[3]));
+  memcpy(u->light_dir, view[0], sizeof(u->light_dir));
+  memcpy(u->base_color, sh.color, sizeof(u->base_color));
+  memcpy(u->eye, view[1], sizeof(u->eye));
+  memcpy(u->forward, view[2], sizeof(u->forward));
+  u->ortho = fr->proj[15] == 1.0f ? 1u : 0u;
+  u->alpha_cutoff = it->item->has_alpha_cutoff ? it->item->alpha_cutoff : 0.5f;
+  u->grid = 1u << d->lmax;
+  u->max_level = d->lmax;
+  u->texcoord = it->item->base_color_texture ? it->item->base_color_texcoord : TLOD_SHADER_MAX_ATTRIBUTES;
+  u->attribute_count = vs->attribute_count;
+}
+
+/* The strip references, each triangle rotated by one vertex (a b c -> c a
+ * b: the same triangle and winding). Flat varyings come from a triangle's
+ * first vertex in Vulkan and from its last in GL; a strip triangle spans
+ * two levels (v_level), so without the rotation the levels view and a
+ * hook reading f.level would colour strips differently from GL. */
+static void write_refs(uint32_t (*out)[2], const uint32_t (*refs)[2], uint32_t count) {
+  for (uint32_t t = 0; t + 2 < count; t += 3) {
+    memcpy(out[t], refs[t + 2], sizeof(uint32_t[2]));
+    memcpy(out[t + 1], refs[t], sizeof(uint32_t[2]));
+    memcpy(out[t + 2], refs[t + 1], sizeof(uint32_t[2]));
+  }
+}
+
+/* The ring block of this draw: uniforms, instances, strips, references. */
+static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items, ring_view* rv) {
+  VkDeviceSize a = d->ring_align, n = fr->item_count;
+  VkDeviceSize ib = sizeof(tlod_gl_instance) * (VkDeviceSize)d->st.instance_count;
+  VkDeviceSize sb = sizeof(tlod_gl_strip) * (VkDeviceSize)d->st.strip_count;
+  VkDeviceSize rb = sizeof(uint32_t[2]) * (VkDeviceSize)d->st.ref_count;
+  rv->instance_bytes = ib ? ib : 16, rv->strip_bytes = sb ? sb : 16;
+  VkDeviceSize i0 = _tlod_vkb_align(n * d->uniform_stride, a), s0 = _tlod_vkb_align(i0 + rv->instance_bytes, a);
+  VkDeviceSize r0 = _tlod_vkb_align(s0 + rv->strip_bytes, a), total = r0 + (rb ? rb : 16), base = 0;
+  VkResult r = _tlod_vkb_ring_take(&d->frames, total, a, &base, d->stats);
+  if (r != VK_SUCCESS)
+    return tlod_context_fail(d->ctx, r == VK_ERROR_OUT_OF_HOST_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
+                             "tlod_device_draw: device '%s': upload ring of %llu bytes: %s", d->label,
+                             (unsigned long long)total, _tlod_vkb_result_name(r));
+  const vk_slot* s = &d->frames.slots[d->frames.current];
+  rv->buffer = s->ring.buffer;
+  rv->mapped = s->ring.mem.mapped;
+  rv->uniforms = base, rv->instances = base + i0, rv->strips = base + s0, rv->refs = base + r0;
+  float view[3][3];
+  _tlod_view_vectors(fr, view[0], view[1], view[2]);
+  for (uint32_t k = 0; k < fr->item_count; k++)
+    item_uniforms(d, fr, &items[k], (const float(*)[3])view,
+                  (tlod_vk_uniforms*)(rv->mapped + base + k * d->uniform_stride));
+  memcpy(rv->mapped + rv->instances, d->st.instances, (size_t)ib);
+  memcpy(rv->mapped + rv->strips, d->st.strips, (size_t)sb);
+  write_refs((uint32_t(*)[2])(rv->mapped + rv->refs), d->st.refs, d->st.ref_count);
+  d->stats->vk.upload_bytes = n * sizeof(tlod_vk_uniforms) + ib + sb + rb;
+  return TLOD_SUCCESS;
+}
+
+static void write_set(vk_device* d, VkDescriptorSet set, const _tlod_draw_ref* it, const ring_view* rv) {
+  uint32_t slot = d->frames.current;
+  const vk_surface* vs = it->surface_state;
+  const vk_texture* t = it->texture_state ? it->texture_state : d->white;
+  VkDescriptorBufferInfo b[6] = {{vs->patches[slot].buffer, 0, vs->record_bytes},
+                                 {d->pattern_vertices.buffer, 0, VK_WHOLE_SIZE},
+                                 {rv->buffer, 0, rv->instance_bytes},
+                                 {rv->buffer, 0, rv->strip_bytes},
+                                 {vs->attrs[slot].buffer, 0, vs->attribute_bytes},
+                                 {rv->buffer, 0, sizeof(tlod_vk_uniforms)}};
+  VkDescriptorImageInfo img = {t->sampler, t->view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  static const VkDescriptorType types[7] = {
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC,
+      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC,
+      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  VkWriteDescriptorSet w[7];
+  for (uint32_t i = 0; i < 7; i++)
+    w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                                  .dstSet = set,
+                                  .dstBinding = i,
+                                  .descriptorCount = 1,
+                                  .descriptorType = types[i],
+                                  .pBufferInfo = i < 6 ? &b[i] : NULL,
+                                  .pImageInfo = i == 6 ? &img : NULL};
+  vkUpdateDescriptorSets(d->device, 7, w, 0, NULL);
+}
+
+/* The surfaces' copies of this slot, then one set per item. */
+static tlod_result descriptors(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
+                               const ring_view* rv) {
+  uint32_t n = fr->item_count;
+  VkResult r = VK_SUCCESS;
+  for (uint32_t k = 0; k < n && r == VK_SUCCESS; k++)
+    r = _tlod_vkb_surface_sync(d, items[k].surface_state, d->frames.current);
+  if (r == VK_SUCCESS && !_tlod_device_grow(d->ctx, (void**)&d->sets, &d->set_cap, n, sizeof(VkDescriptorSet)))
+    r = VK_ERROR_OUT_OF_HOST_MEMORY;
+  if (r == VK_SUCCESS) r = _tlod_vkb_sets(&d->frames, n, d->sets);
+  if (r != VK_SUCCESS)
+    return tlod_context_fail(d->ctx, r == VK_ERROR_OUT_OF_HOST_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
+                             "tlod_device_draw: device '%s': surface copies / descriptor sets: %s", d->label,
+                             _tlod_vkb_result_name(r));
+  for (uint32_t k = 0; k < n; k++)
+    write_set(d, d->sets[k], &items[k], rv);
+  d->stats->vk.descriptor_sets = n;
+  return TLOD_SUCCESS;
+}
+
+/* ---- recording ------------------------------------------------------------------ */
+
+typedef struct item_rec {
+  VkCommandBuffer cmd;
+  const vk_surface* vs;
+  int variant;
+  bool blend;
+  const tlod_draw_list* dl;
+  const _tlod_stage_range* range;
+} item_rec;
+
+static void push(vk_device* d, VkCommandBuffer cmd, uint32_t first, uint32_t shape_base, uint32_t corners,
+                 uint32_t debug) {
+  tlod_vk_push p = {first, shape_base, corners, debug};
+  vkCmdPushConstants(cmd, d->pipelines.layout, VK_SHADER_STAGE_ALL_GRAPHICS, 0, sizeof(p), &p);
+}
+
+static void bind(vk_device* d, const item_rec* ir, int kind, bool line) {
+  VkPipeline p = d->pipelines.pipelines[ir->vs->type][ir->variant][kind][ir->blend][line];
+  vkCmdBindPipeline(ir->cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p);
+}
+
+/* One instanced draw per refinement pattern, then the item's strips in one draw. */
+static uint32_t issue_draws(vk_device* d, const item_rec* ir, bool line, uint32_t debug, uint64_t* vertices) {
+  uint32_t calls = 0;
+  bind(d, ir, VK_KIND_PATTERN, line);
+  for (uint32_t k = 0; k < ir->dl->bucket_count; k++) {
+    const tlod_draw_bucket* bk = &ir->dl->buckets[k];
+    uint32_t sh = (uint32_t)bk->shape;
+    push(d, ir->cmd, ir->range->instance_first + bk->first, d->shape_base[sh], 0, debug);
+    vkCmdDrawIndexed(ir->cmd, d->index_count[sh][bk->level], bk->count, d->index_first[sh][bk->level], 0, 0);
+    *vertices += (uint64_t)tlod_pattern_vertex_count(bk->shape, bk->level) * bk->count;
+    calls++;
+  }
+  if (ir->range->ref_count) {
+    bind(d, ir, VK_KIND_STRIP, line);
+    push(d, ir->cmd, 0, 0, 0, debug);
+    vkCmdDraw(ir->cmd, ir->range->ref_count, 1, ir->range->ref_first, 0);
+    *vertices += ir->range->ref_count;
+    calls++;
+  }
+  return calls;
+}
+
+/* Hardware path: per bucket, batches of whole patches under 65,536
+ * tessellated vertices (_tlod_tess_batch), as gl_device.c. */
+static uint32_t issue_tess_draws(vk_device* d, const item_rec* ir, bool line, uint32_t debug, uint64_t* vertices) {
+  uint32_t calls = 0;
+  for (uint32_t k = 0; k < ir->dl->bucket_count; k++) {
+    const tlod_draw_bucket* bk = &ir->dl->buckets[k];
+    uint32_t sh = (uint32_t)bk->shape, corners = sh ? 4u : 3u;
+    bind(d, ir, sh ? VK_KIND_TESS4 : VK_KIND_TESS3, line);
+    uint32_t end = ir->range->instance_first + bk->first + bk->count;
+    for (uint32_t start = ir->range->instance_first + bk->first, next; start < end; start = next) {
+      next = _tlod_tess_batch(d->st.instances, start, end, corners, vertices);
+      push(d, ir->cmd, start, 0, corners, debug);
+      vkCmdDraw(ir->cmd, (next - start) * corners, 1, 0, 0);
+      calls++;
+    }
+  }
+  return calls;
+}
+
+static uint32_t issue(vk_device* d, const item_rec* ir, bool line, uint32_t debug, uint64_t* vertices) {
+  return d->hardware ? issue_tess_draws(d, ir, line, debug, vertices) : issue_draws(d, ir, line, debug, vertices);
+}
+
+/* Item k: its state (culling, depth writes, its set), patterns and strips,
+ * then (wireframe) its edges over them with the fill pushed back by a
+ * depth bias (GL: polygon offset 1, 1). */
+static void draw_item(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, uint32_t k, const ring_view* rv,
+                      tlod_draw_item_stats* st) {
+  double t0 = tlod_now_ms();
+  VkCommandBuffer cmd = fr->vk.command_buffer;
+  item_rec ir = {.cmd = cmd,
+                 .vs = it->surface_state,
+                 .variant = variant_of(d, it),
+                 .blend = it->item->blend == TLOD_BLEND_BLEND,
+                 .dl = it->item->draw_list,
+                 .range = &d->st.ranges[k]};
+  vkCmdSetCullMode(cmd, it->item->cull_back_faces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
+  vkCmdSetDepthWriteEnable(cmd, ir.blend ? VK_FALSE : VK_TRUE);
+  vkCmdSetDepthBiasEnable(cmd, fr->wireframe ? VK_TRUE : VK_FALSE);
+  uint32_t dyn[3] = {(uint32_t)rv->instances, (uint32_t)rv->strips, (uint32_t)(rv->uniforms + k * d->uniform_stride)};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, d->pipelines.layout, 0, 1, &d->sets[k], 3, dyn);
+  uint64_t vertices = 0, unused = 0;
+  uint32_t calls = issue(d, &ir, false, (uint32_t)fr->debug, &vertices);
+  if (fr->wireframe) {
+    vkCmdSetDepthBiasEnable(cmd, VK_FALSE);
+    calls += issue(d, &ir, true, 4u, &unused);
+  }
+  st->triangles = d->hardware ? ir.dl->pattern_triangles : ir.dl->pattern_triangles + ir.range->ref_count / 3;
+  st->vertices = vertices;
+  st->draw_calls = calls;
+  st->cpu_ms += tlod_now_ms() - t0;
+}
+
+/* Viewport flipped (negative height: GL's y up, so the image and the
+ * winding are GL's); origin at the framebuffer's top-left (Vulkan's). */
+static void begin_state(vk_device* d, const tlod_draw_desc* fr, const ring_view* rv) {
+  VkCommandBuffer cmd = fr->vk.command_buffer;
+  const uint32_t* v = fr->viewport;
+  VkViewport vp = {(float)v[0], (float)v[1] + (float)v[3], (float)v[2], -(float)v[3], 0.0f, 1.0f};
+  VkRect2D sc = {{(int32_t)v[0], (int32_t)v[1]}, {v[2], v[3]}};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &sc);
+  vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.0f);
+  vkCmdBindIndexBuffer(cmd, d->pattern_indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+  VkDeviceSize off = rv->refs;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &rv->buffer, &off);
+}
+
+/* The first draw of a frame is measured: timestamps around it and the
+ * clipping invocations (read a slot-reuse later, vk_frame.c). */
+static bool begin_queries(vk_device* d, VkCommandBuffer cmd) {
+  vk_slot* s = &d->frames.slots[d->frames.current];
+  if (!d->frames.queries || s->queried) return false;
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s->timestamps, 0);
+  if (s->statistics) vkCmdBeginQuery(cmd, s->statistics, 0, 0);
+  s->queried = true;
+  s->query_draw = d->stats->draws + 1; /* the dispatch counts this draw on success */
+  return true;
+}
+
+static void end_queries(vk_device* d, VkCommandBuffer cmd) {
+  vk_slot* s = &d->frames.slots[d->frames.current];
+  if (s->statistics) vkCmdEndQuery(cmd, s->statistics, 0);
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s->timestamps, 1);
+}
+
+static const float* vk_surface_center(const void* surface_state) { return ((const vk_surface*)surface_state)->center; }
+
+tlod_result _tlod_vkb_draw(void* state, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
+                           tlod_draw_item_stats* item_stats) {
+  vk_device* d = state;
+  tlod_result r = check_vk(d, fr);
+  if (r != TLOD_SUCCESS) return r;
+  _tlod_vkb_frames_begin(&d->frames, fr->vk.frame_index, d->stats);
+  r = prepare(d, fr, items);
+  _tlod_vkb_shader_stats(d);
+  if (r == TLOD_SUCCESS) r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "vulkan device", fr, items, item_stats);
+  if (r == TLOD_SUCCESS) r = _tlod_stage_order(d->ctx, &d->st, "vulkan device", fr, items, vk_surface_center);
+  ring_view rv;
+  if (r == TLOD_SUCCESS) r = upload(d, fr, items, &rv);
+  if (r == TLOD_SUCCESS) r = descriptors(d, fr, items, &rv);
+  if (r != TLOD_SUCCESS) return r;
+  VkCommandBuffer cmd = fr->vk.command_buffer;
+  begin_state(d, fr, &rv);
+  bool timed = begin_queries(d, cmd);
+  for (uint32_t j = 0; j < fr->item_count; j++) {
+    uint32_t k = d->st.order[j];
+    draw_item(d, fr, &items[k], k, &rv, &item_stats[k]);
+  }
+  if (timed) end_queries(d, cmd);
+  return TLOD_SUCCESS;
+}
