@@ -287,7 +287,9 @@ static int write_summary(play_session* p, int rc) {
 /* --serve: the streams' end, --serve-linger, then the server's counts for the summary. */
 static void stop_server(play_session* p) {
   if (!p->server) return;
-  play_server_end(p->server, play_interrupted ? 0.0f : p->o.serve_linger);
+  sig_atomic_t interrupted = play_interrupted;
+  play_server_end(p->server, interrupted ? 0.0f : p->o.serve_linger);
+  play_interrupted = interrupted; /* Ctrl-C while lingering stops the server, not the (complete) run */
   play_server_stop(p->server, &p->serve_stats);
   p->server = NULL;
   p->served = true;

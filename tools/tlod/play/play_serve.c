@@ -84,10 +84,10 @@ static enum MHD_Result route(play_server* s, struct MHD_Connection* c, const cha
 }
 
 /* MHD calls this once with the headers, then per piece of body, then once
- * more: a body is refused (read-only), then the answer. */
+ * more: a body is refused (read-only), as are an HTTP/1.1 request without
+ * Host (RFC 9112 3.2) and a target that is not a path; then the answer. */
 static enum MHD_Result on_request(void* cls, struct MHD_Connection* c, const char* url, const char* method,
                                   const char* version, const char* upload, size_t* upload_size, void** state) {
-  (void)version;
   (void)upload;
   static int seen, with_body;
   if (!*state) {
@@ -101,7 +101,8 @@ static enum MHD_Result on_request(void* cls, struct MHD_Connection* c, const cha
   }
   bool get = !strcmp(method, MHD_HTTP_METHOD_GET), head = !strcmp(method, MHD_HTTP_METHOD_HEAD);
   if (!get && !head) return error(c, MHD_HTTP_METHOD_NOT_ALLOWED, "405 read-only: GET and HEAD only\n");
-  if (*state == &with_body || url[0] != '/') return error(c, MHD_HTTP_BAD_REQUEST, "400 bad request\n");
+  bool no_host = !strcmp(version, MHD_HTTP_VERSION_1_1) && !MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Host");
+  if (*state == &with_body || url[0] != '/' || no_host) return error(c, MHD_HTTP_BAD_REQUEST, "400 bad request\n");
   return route(cls, c, url, head);
 }
 
