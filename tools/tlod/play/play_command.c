@@ -170,6 +170,7 @@ static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t f
                       .height = o->height,
                       .frames_requested = frames,
                       .screenshot_every = o->screenshot_every,
+                      .debug_view = play_debug_view_names[o->debug_view],
                       .resize_frame = o->resize ? o->resize_frame : 0,
                       .resize_width = o->resize ? o->resize_w : 0,
                       .resize_height = o->resize ? o->resize_h : 0,

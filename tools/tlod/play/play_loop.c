@@ -181,6 +181,13 @@ static int framed_draw(play_run* r, tlod_draw_desc* d, uint32_t n, double* gpu_m
   return CLI_OK;
 }
 
+/* --debug-view: the first four play_debug_views are tlod_debug_view's;
+ * wireframe is the shaded view with edges. */
+static void set_debug_view(tlod_draw_desc* d, play_debug_view v) {
+  d->wireframe = v == PLAY_DEBUG_WIREFRAME;
+  d->debug = d->wireframe ? TLOD_DEBUG_NONE : (tlod_debug_view)v;
+}
+
 /* One draw of every object. Per object: its item's CPU time, triangles and
  * draw calls; the draw's wall time past the items' CPU times (GL: the
  * finish; Vulkan: the submit and the wait for the frame's fence, the GPU
@@ -192,6 +199,7 @@ static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, dou
   for (uint32_t i = 0; i < s->count; i++)
     items[i] = draw_item(s, &s->objects[i]);
   tlod_draw_desc d = {.items = items, .item_count = s->count, .viewport = {0, 0, r->width, r->height}, .finish = true};
+  set_debug_view(&d, r->o->debug_view);
   memcpy(d.view, view->view, sizeof(d.view));
   memcpy(d.proj, view->proj, sizeof(d.proj));
   double t0 = cli_now_ms(), gpu_ms = 0.0;

@@ -13,6 +13,8 @@
 #include "tesslod/backend.h"
 #include "tool_names.h"
 
+const char* const play_debug_view_names[] = {"none", "levels", "silhouette", "strips", "wireframe", NULL};
+
 void play_usage(FILE* f) {
   fprintf(
       f,
@@ -41,6 +43,8 @@ void play_usage(FILE* f) {
       "  --fps F             fixed time step 1/F s per frame (default 60): runs are repeatable\n"
       "  --loop              start the path over at its end (default: hold the last keyframe)\n"
       "  --screenshot-every N  gl, vulkan: write screenshots/frame_NNNNN.png every N frames (from frame 0)\n"
+      "  --debug-view V      gl, vulkan: levels (colour by level) | silhouette | strips (strips in pink)\n"
+      "                      | wireframe (edges over the shading) | none (default); in trace and screenshots\n"
       "  --window            gl, vulkan: draw into a GLFW window (needs DISPLAY) instead of headless\n"
       "  --resize-at N:WxH   resize the framebuffer and viewport to WxH before frame N (every mode)\n"
       "  --validate          vulkan: Vulkan validation layer (with synchronization validation) on; any\n"
@@ -169,6 +173,11 @@ static int parse_output(int argc, char** argv, int* i, play_options* o) {
   if (!strcmp(a, "--screenshot-every"))
     return cli_usage_unless((v = cli_value(argc, argv, i)) &&
                             cli_parse_uint(a, v, 1, PLAY_MAX_FRAMES, &o->screenshot_every));
+  if (!strcmp(a, "--debug-view")) {
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, play_debug_view_names)) < 0) return CLI_USAGE;
+    o->debug_view = (play_debug_view)e;
+    return CLI_OK;
+  }
   if (!strcmp(a, "--resize-at")) return cli_usage_unless((v = cli_value(argc, argv, i)) && parse_resize(a, v, o));
   if (!strcmp(a, "--shader-cache")) {
     if (!(o->shader_cache = cli_value(argc, argv, i))) return CLI_USAGE;
@@ -210,6 +219,9 @@ static int check(const play_options* o) {
   if (!image && o->screenshot_every)
     return cli_error(CLI_USAGE,
                      "--screenshot-every: the %s backend draws no image (screenshots need --backend gl or vulkan)",
+                     o->backend);
+  if (!image && o->debug_view)
+    return cli_error(CLI_USAGE, "--debug-view: the %s backend draws no image (needs --backend gl or vulkan)",
                      o->backend);
   if (!image && o->window)
     return cli_error(CLI_USAGE, "--window: the %s backend draws no image (needs --backend gl or vulkan)", o->backend);

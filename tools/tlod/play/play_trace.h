@@ -120,6 +120,7 @@ typedef struct play_trace {
   uint32_t width, height;
   uint32_t frames_requested;
   uint32_t screenshot_every;                          /* 0: none */
+  const char* debug_view;                             /* --debug-view: "none", "levels", ... */
   uint32_t resize_frame, resize_width, resize_height; /* --resize-at; resize_width 0: none */
   bool validate;                                      /* --validate (vulkan) */
   const char* shader_cache;                           /* vulkan: the SPIR-V cache folder, "" none */

@@ -89,6 +89,7 @@ static bool summary_json(FILE* f, const void* data) {
   json_string(&w, "surface", t0->surface);
   json_string(&w, "path", t0->path);
   json_string(&w, "animation", t0->animation ? t0->animation : "");
+  json_string(&w, "debug_view", t0->debug_view);
   json_warnings(&w, t0->warnings, t0->warning_count);
   json_number(&w, "fps", t0->fps);
   json_uint(&w, "width", t0->width);

@@ -50,6 +50,7 @@ void trace_json_settings(json_writer* w, const play_trace* t) {
   json_uint(w, "width", t->width);
   json_uint(w, "height", t->height);
   json_uint(w, "screenshot_every", t->screenshot_every);
+  json_string(w, "debug_view", t->debug_view);
   json_uint(w, "frames_requested", t->frames_requested);
   json_array_begin(w, "objects");
   for (uint32_t i = 0; i < t->object_count; i++) {
