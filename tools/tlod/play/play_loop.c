@@ -11,6 +11,7 @@
 #include "common/gpu_target.h"
 #include "play_run.h"
 #include "play_run_folder.h"
+#include "play_serve.h"
 #include "tool_names.h"
 
 #if TLOD_HAS_GL || TLOD_HAS_VULKAN
@@ -297,6 +298,7 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
   sample_resources(r, t);
   if (r->o->screenshot_every && n % r->o->screenshot_every == 0 && (rc = play_screenshot(r, fr, run_start)) != CLI_OK)
     return rc;
+  play_server_frame(r->server, t); /* after the frame's timing and its screenshot: hands over, never waits */
   if (present(r)) t->stopped = "window closed", *stop = true;
   return CLI_OK;
 }
@@ -323,6 +325,7 @@ int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
   if (!play_trace_digests_open(t, r->run_dir, err, sizeof(err)) ||
       !play_trace_files_open(t, r->run_dir, err, sizeof(err)))
     return cli_error(CLI_FAILED, "%s", err);
+  play_server_run(r->server, t);
   r->first_draw = tlod_device_query_stats(r->scene->device).draws + 1;
   /* Every mode starts at the given size (an earlier one may have resized). */
   if ((r->width != r->o->width || r->height != r->o->height) && (rc = resize(r, r->o->width, r->o->height)) != CLI_OK)

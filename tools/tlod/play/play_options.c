@@ -9,6 +9,7 @@
 #include "common/gpu_target.h"
 #include "common/mesh_load.h"
 #include "play_options.h"
+#include "play_serve.h"
 #include "tesslod/backend.h"
 #include "tool_names.h"
 
@@ -52,6 +53,8 @@ void play_usage(FILE* f) {
       "                      $HOME/.cache/tesslod; a given folder that cannot be made or written is an error)\n"
       "  --out DIR           run folder (default runs/YYYYmmdd-HHMMSS)\n"
       "  -q, --quiet         no progress bar and no summary\n"
+      "  --serve [ADDR:]PORT serve the live dashboard while playing (ADDR default 127.0.0.1; docs/play.md)\n"
+      "  --serve-linger S    keep serving S seconds after playing (default 0: stop at the end)\n"
       "Writes trace.json, trace.csv, chrome_trace.json, summary.json and summary.txt into the run folder.\n"
       "Ctrl-C stops after the current frame, writes what was played and exits with 130.\n",
       cli_demo_names(), tlod_backend_names(), TLOD_MAX_LEVEL, TLOD_MAX_LEVEL);
@@ -200,6 +203,7 @@ static int parse_argument(int argc, char** argv, int* i, play_options* o) {
   if (rc == CLI_NOT_MINE) rc = parse_lod(argc, argv, i, o);
   if (rc == CLI_NOT_MINE) rc = parse_timing(argc, argv, i, o);
   if (rc == CLI_NOT_MINE) rc = parse_output(argc, argv, i, o);
+  if (rc == CLI_NOT_MINE) rc = play_serve_option(argc, argv, i, o);
   if (rc != CLI_NOT_MINE) return rc;
   if (a[0] == '-' && a[1]) return cli_error(CLI_USAGE, "play: unknown option '%s' (see tlod play --help)", a);
   if (o->scene) return cli_error(CLI_USAGE, "play: unexpected argument '%s' (one scene per run)", a);

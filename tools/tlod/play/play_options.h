@@ -59,6 +59,8 @@ typedef struct play_options {
   uint32_t resize_frame, resize_w, resize_h;
   const char* out;
   bool quiet;
+  const char* serve;  /* --serve [ADDR:]PORT (play_serve.h); NULL: none */
+  float serve_linger; /* seconds the server stays up after playing */
 } play_options;
 
 /* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */
