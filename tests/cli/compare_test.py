@@ -93,6 +93,9 @@ def compare_tests():
           all(any(l.startswith(m) and " 1.000 " in l for l in out.splitlines())
               for m in ("frame_ms p95", "triangles mean")), out)
     check("identical run: p95 printed is the trace's nearest-rank p95", ("%.3f" % p95(ms)) in out, out)
+    summary = load_json(os.path.join(base, "summary.json"))
+    check("identical run: p95 printed is summary.json's frame_ms p95",
+          ("%.3f" % summary["runs"][0]["frame_ms"]["p95"]) in out, out)
     same = edited_copy(base, "same")
     rc, out, err = compare(base, same)
     check("a copy rewritten unchanged: exit 0", rc == 0, out + err)
