@@ -5,7 +5,9 @@
  * WHAT IT DOES: over the frames both runs hold (the common prefix, see
  * frames below), computes per metric the baseline's and the new run's value,
  * their ratio new / base and the change in percent; checks two limits: frame
- * time p95 and mean triangles may grow by at most their percentage.
+ * time p95 and mean triangles may grow by at most their percentage. Scene
+ * and path must match; mode, backend and debug view may differ (the last
+ * with a note: a debug view costs frame time).
  * DOES NOT: read files (the caller fills run_compare_side from its loaded
  * run, common/run_read.h), allocate beyond a scratch copy for sorting, or
  * print unless asked (run_compare_print, run_compare_json).
@@ -73,7 +75,7 @@ typedef struct run_compare_result {
   run_compare_row rows[RUN_COMPARE_ROWS];
   uint32_t regressions; /* rows regressed */
   char note[512];       /* "" or notes, one a line: only a prefix compared; the debug views differ */
-  char error[512];      /* "" or why the runs cannot be compared ("B: scene 'x' differs from A's 'y'") */
+  char error[512]; /* "" or why the runs cannot be compared ("NEW: scene 'x' differs from the baseline BASE's 'y'") */
 } run_compare_result;
 
 /* Compares base and next under limits into *out. Returns false (and
