@@ -128,6 +128,16 @@ def compare_tests():
     check("40 of 60 frames: exit 0, compared the prefix with a note",
           rc == 0 and "compared frames 0..39" in out and ("%.3f" % p95(ms[:40])) in out, out + err)
 
+    cut = edited_copy(base, "cut")
+    with open(os.path.join(cut, "trace.json"), "rb") as f:
+        text = f.read()
+    with open(os.path.join(cut, "trace.json"), "wb") as f:
+        f.write(text[:len(text) * 6 // 10])  # a run killed mid-write
+    rc, out, err = compare(base, cut)
+    check("a truncated trace: exit 0, a warning naming it, its complete frames compared",
+          rc == 0 and "warning: " + os.path.join(cut, "trace.json") + ": truncated after frame" in err and
+          "compared frames 0.." in out, out + err)
+
     mismatch_tests(base)
 
 
