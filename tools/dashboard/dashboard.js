@@ -142,7 +142,7 @@ function chart(parent, spec) {
     title: spec.title, width, height: 220, scales: { x: { time: false } }, plugins: [wheelZoom()],
     cursor: { sync: { key: 'frames' } },
     series: [{ label: spec.xLabel || 'frame' }].concat(spec.series.map((s, i) =>
-      Object.assign({ stroke: COLORS[i % COLORS.length], width: 1 }, s, { values: undefined }))),
+      Object.assign({ stroke: COLORS[i % COLORS.length], width: 1.5, points: { show: false } }, s, { values: undefined }))),
   }, spec.extra || {});
   const u = new uPlot(opts, specData(spec), parent);
   window.tlodDashboard.charts.push({ title: spec.title, chart: u });
@@ -301,8 +301,12 @@ function main() {
   window.tlodDashboard = { data, charts: [] };
   document.title = data.config.title;
   document.getElementById('title').textContent = data.config.title;
-  if (data.runs.length) root.append(el('h2', { textContent: 'Summary' }), summaryTable(data.runs), ...comparisonTables(data));
-  if (data.runs.length > 1) overlayChart(root, data.runs);
+  if (data.runs.length) root.append(el('h2', { textContent: 'Summary' }), summaryTable(data.runs));
+  if (data.runs.length > 1) {
+    overlayChart(root, data.runs);
+    root.append(el('h2', { textContent: 'Every run against the first (as tlod compare)' }),
+      el('div', { className: 'comparisons' }, ...comparisonTables(data)));
+  }
   const grid = el('div', { className: data.runs.length > 1 ? 'side-by-side' : '' });
   root.append(grid);
   for (const run of data.runs) {
