@@ -1,5 +1,5 @@
 // The dashboard page in a real browser (headless Chromium from Debian, driven by playwright-core):
-//   node page_test.js TLOD WORK_DIR gl|nogl [--update-image REPO]
+//   node page_browser.js TLOD WORK_DIR gl|nogl [--update-image REPO]
 // A real `tlod play` run is made here (nothing committed); the page must load with no console
 // errors and no network request, its charts must hold one point per frame of trace.csv, its summary
 // table must match figures computed here from trace.csv, and its picture must show charts. Bad run
@@ -208,7 +208,7 @@ async function main() {
   try {
     const page = await checkStaticPage(browser, file, runs);
     if (gl === 'gl') await checkScreenshotClick(page, 'run');
-    else console.log('page_test: nogl build: no screenshots to click (the cpu backend draws no image)');
+    else console.log('page_browser: nogl build: no screenshots to click (the cpu backend draws no image)');
     await page.evaluate(() => window.scrollTo(0, 0));
     const png = await page.screenshot();
     fs.writeFileSync(path.join(work, 'dashboard.png'), png);
@@ -220,7 +220,7 @@ async function main() {
   } finally {
     await browser.close();
   }
-  console.log('page_test: ok');
+  console.log('page_browser: ok');
 }
 
 main().catch((e) => {
