@@ -170,11 +170,14 @@ async function checkLive(browser, run) {
   const page = path.join(work, 'live.html');
   tlodRun(['dashboard', '--live', '/events', '-o', page]);
   const frames = JSON.parse(fs.readFileSync(path.join(run, 'trace.json'), 'utf8')).frames.slice(0, 5);
+  let stream = null;
   const server = http.createServer((req, res) => {
     if (req.url === '/') return res.writeHead(200, { 'Content-Type': 'text/html' }), res.end(fs.readFileSync(page));
     if (req.url !== '/events') return res.writeHead(404), res.end();
     res.writeHead(200, { 'Content-Type': 'text/event-stream' });
+    res.write('event: run\ndata: {"scene": "demo:live", "mode": "adaptive"}\n\n');
     frames.forEach((f, i) => res.write(`data: ${JSON.stringify(Object.assign({}, f, { dropped: i === 4 ? 3 : 0 }))}\n\n`));
+    stream = res; // "end" is sent once the frames have been checked
   });
   await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
   const base = `http://127.0.0.1:${server.address().port}`;
@@ -185,6 +188,10 @@ async function checkLive(browser, run) {
   await p.waitForFunction(() => window.tlodDashboard.charts.length > 0 &&
     window.tlodDashboard.charts[0].chart.data[0].length === 5, null, { timeout: 10000 });
   assert.match(await p.textContent('.run .note'), /live: 5 frames, 3 dropped for this page/);
+  stream.end('event: end\ndata: {"dropped": 4}\n\n');
+  await p.waitForFunction(() => /ended/.test(document.querySelector('.run .note').textContent));
+  assert.match(await p.textContent('.run .note'), /live: 5 frames, 4 dropped for this page \(the run ended\)/);
+  assert.match(await p.textContent('.run .meta'), /demo:live · adaptive/);
   assert.deepEqual(problems, []);
   await p.close();
   server.closeAllConnections();

@@ -231,8 +231,8 @@ function metaLine(run) {
 }
 
 function runSection(run) {
-  const box = el('section', { className: 'run' }, el('h2', { textContent: run.label }),
-    el('p', { className: 'meta', textContent: metaLine(run) }));
+  run.metaBox = el('p', { className: 'meta', textContent: metaLine(run) });
+  const box = el('section', { className: 'run' }, el('h2', { textContent: run.label }), run.metaBox);
   if (run.truncated) box.append(el('p', { className: 'warning', textContent: run.truncated + ' (showing what it has)' }));
   if (run.screenshots_omitted) box.append(el('p', { className: 'note', textContent:
     run.screenshots_omitted + ' screenshots left out (over the page\'s size budget)' }));
@@ -294,6 +294,17 @@ function startLive(data, root) {
     appendRecord(run, JSON.parse(e.data));
     if (!pending) pending = requestAnimationFrame(redraw);
   };
+  // tlod play --serve also sends the run's settings first ("run") and "end" when it stops.
+  source.addEventListener('run', (e) => {
+    run.meta = JSON.parse(e.data);
+    run.metaBox.textContent = metaLine(run);
+  });
+  source.addEventListener('end', (e) => {
+    source.close(); // no reconnecting to a server that is done
+    run.dropped = JSON.parse(e.data).dropped;
+    redraw();
+    run.dropBox.textContent += ' (the run ended)';
+  });
   window.tlodDashboard.live = { run, source };
 }
 
