@@ -145,6 +145,20 @@ function checkBadFolders(run) {
   r = tlodRun(['dashboard', v9, '-o', path.join(work, 'x.html')], 1);
   assert.match(r.stderr, /v9\/trace.json: schema 'tlod-play-trace\/9' is not tlod-play-trace\/2/);
   assert.ok(!fs.existsSync(path.join(work, 'x.html')), 'a refused run left a page');
+  checkScreenshotEscape(text);
+}
+
+// A trace whose screenshot paths climb out of its folder (to real PNGs): none is inlined, all are counted.
+function checkScreenshotEscape(text) {
+  const evil = path.join(work, 'evil');
+  fs.mkdirSync(evil);
+  fs.writeFileSync(path.join(evil, 'trace.json'), text.replaceAll('"screenshots/frame_', '"../run/screenshots/frame_'));
+  const out = path.join(work, 'evil.html');
+  tlodRun(['dashboard', evil, '-o', out]);
+  const island = /<script type="application\/json" id="tlod-data">([^]*?)<\/script>/.exec(fs.readFileSync(out, 'utf8'));
+  const r = JSON.parse(island[1]).runs[0];
+  assert.deepEqual(r.screenshots, {});
+  assert.equal(r.screenshots_omitted, gl === 'gl' ? 3 : 0);
 }
 
 // A trace cut in the middle of a frame: the page shows the frames before it and says so.
