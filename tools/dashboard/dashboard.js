@@ -140,9 +140,10 @@ function chart(parent, spec) {
   const width = Math.max(320, Math.min(900, parent.clientWidth || 640));
   const opts = Object.assign({
     title: spec.title, width, height: 220, scales: { x: { time: false } }, plugins: [wheelZoom()],
+    axes: [{}, { size: 60 }], // room for "100,000" triangles
     cursor: { sync: { key: 'frames' } },
     series: [{ label: spec.xLabel || 'frame' }].concat(spec.series.map((s, i) =>
-      Object.assign({ stroke: COLORS[i % COLORS.length], width: 1 }, s, { values: undefined }))),
+      Object.assign({ stroke: COLORS[i % COLORS.length], width: 1.5, points: { show: false } }, s, { values: undefined }))),
   }, spec.extra || {});
   const u = new uPlot(opts, specData(spec), parent);
   window.tlodDashboard.charts.push({ title: spec.title, chart: u });
@@ -177,10 +178,11 @@ function histogramSpec(run) {
 function stackedSpec(title, x, layers) {
   const tops = stack(layers.map((l) => l.values));
   const series = layers.map((l, i) => ({
-    label: l.label, values: tops[i], fill: COLORS[i % COLORS.length] + 'aa', stroke: COLORS[i % COLORS.length],
+    label: l.label, values: tops[i], fill: COLORS[i % COLORS.length], stroke: COLORS[i % COLORS.length],
     value: (u, v, si, idx) => (idx == null ? '–' : fmt(l.values[idx], 3)),
   })).reverse();
-  return { title, x, series };
+  const fromZero = { x: { time: false }, y: { range: (u, min, max) => [0, max > 0 ? max : 1] } };
+  return { title, x, series, extra: { scales: fromZero } };
 }
 
 /* Every chart of one run, as specs (live mode rebuilds them to update the data). */
@@ -190,7 +192,7 @@ function runSpecs(run) {
     stackedSpec(t + 'scheduler stages (ms, stacked)', x, STAGE_KEYS.map((k) => ({ label: k, values: c[k] }))),
     { title: t + 'triangles and strips', x, series: [{ label: 'triangles', values: c.triangles },
       { label: 'strips', values: c.strips, scale: 'strips' }],
-    extra: { axes: [{}, {}, { scale: 'strips', side: 1, grid: { show: false } }] } },
+    extra: { axes: [{}, { size: 60 }, { scale: 'strips', side: 1, size: 60, grid: { show: false } }] } },
     stackedSpec(t + 'visible patches per level (stacked)', x,
       Array.from({ length: LEVELS }, (_, l) => ({ label: 'level ' + l, values: c['level_' + l] })))];
   if (epsilonVaries(run)) {
@@ -229,8 +231,8 @@ function metaLine(run) {
 }
 
 function runSection(run) {
-  const box = el('section', { className: 'run' }, el('h2', { textContent: run.label }),
-    el('p', { className: 'meta', textContent: metaLine(run) }));
+  run.metaBox = el('p', { className: 'meta', textContent: metaLine(run) });
+  const box = el('section', { className: 'run' }, el('h2', { textContent: run.label }), run.metaBox);
   if (run.truncated) box.append(el('p', { className: 'warning', textContent: run.truncated + ' (showing what it has)' }));
   if (run.screenshots_omitted) box.append(el('p', { className: 'note', textContent:
     run.screenshots_omitted + ' screenshots left out (over the page\'s size budget)' }));
@@ -292,6 +294,17 @@ function startLive(data, root) {
     appendRecord(run, JSON.parse(e.data));
     if (!pending) pending = requestAnimationFrame(redraw);
   };
+  // tlod play --serve also sends the run's settings first ("run") and "end" when it stops.
+  source.addEventListener('run', (e) => {
+    run.meta = JSON.parse(e.data);
+    run.metaBox.textContent = metaLine(run);
+  });
+  source.addEventListener('end', (e) => {
+    source.close(); // no reconnecting to a server that is done
+    run.dropped = JSON.parse(e.data).dropped;
+    redraw();
+    run.dropBox.textContent += ' (the run ended)';
+  });
   window.tlodDashboard.live = { run, source };
 }
 
@@ -301,15 +314,17 @@ function main() {
   window.tlodDashboard = { data, charts: [] };
   document.title = data.config.title;
   document.getElementById('title').textContent = data.config.title;
-  if (data.runs.length) root.append(el('h2', { textContent: 'Summary' }), summaryTable(data.runs), ...comparisonTables(data));
-  if (data.runs.length > 1) overlayChart(root, data.runs);
+  if (data.runs.length) root.append(el('h2', { textContent: 'Summary' }), summaryTable(data.runs));
+  if (data.runs.length > 1) {
+    overlayChart(root, data.runs);
+    root.append(el('h2', { textContent: 'Every run against the first (as tlod compare)' }),
+      el('div', { className: 'comparisons' }, ...comparisonTables(data)));
+  }
   const grid = el('div', { className: data.runs.length > 1 ? 'side-by-side' : '' });
   root.append(grid);
-  for (const run of data.runs) {
-    const col = el('div', {}, runSection(run));
-    grid.append(col);
-    runCharts(col, run);
-  }
+  // Every column first, so each chart is sized to its column's final width.
+  const cols = data.runs.map((run) => grid.appendChild(el('div', {}, runSection(run))));
+  data.runs.forEach((run, i) => runCharts(cols[i], run));
   if (data.config.live) startLive(data, root);
 }
 

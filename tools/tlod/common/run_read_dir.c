@@ -1,5 +1,6 @@
 /* Run folders (run_read.h): trace.json loaded whole (bounded), objects.csv,
  * and --compare parents expanded into their mode runs. */
+#define _POSIX_C_SOURCE 200809L /* dirent, stat */
 #include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
@@ -88,30 +89,35 @@ bool run_read(const char* dir, run* out, char* err, size_t err_size) {
 
 static int by_name(const void* a, const void* b) { return strcmp(*(char* const*)a, *(char* const*)b); }
 
-/* The sub-folders of dir that hold a trace.json, sorted; NULL-terminated. */
+/* dir/name when it is a folder holding a trace.json (a mode run), else NULL. */
+static char* mode_folder(const char* dir, const char* name) {
+  char* sub = name[0] == '.' ? NULL : join(dir, name);
+  char* trace = sub ? join(sub, "trace.json") : NULL;
+  bool is_run = trace && is_file(trace);
+  free(trace);
+  if (!is_run) free(sub);
+  return is_run ? sub : NULL;
+}
+
+/* The sub-folders of dir that hold a trace.json, sorted by name. */
 static char** mode_folders(const char* dir, size_t* count) {
   DIR* d = opendir(dir);
+  size_t cap = 0;
+  char** names = NULL;
   *count = 0;
-  if (!d) return NULL;
-  size_t cap = 8;
-  char** names = malloc(cap * sizeof *names);
-  for (struct dirent* e; names && (e = readdir(d));) {
-    char* sub = e->d_name[0] == '.' ? NULL : join(dir, e->d_name);
-    char* trace = sub ? join(sub, "trace.json") : NULL;
-    if (trace && is_file(trace) && *count + 1 >= cap) {
-      char** more = realloc(names, (cap *= 2) * sizeof *names);
-      if (!more)
-        free(sub), sub = NULL;
-      else
-        names = more;
+  for (struct dirent* e; d && (e = readdir(d));) {
+    char* sub = mode_folder(dir, e->d_name);
+    if (sub && *count == cap) {
+      char** more = realloc(names, (cap = cap ? cap * 2 : 8) * sizeof *names);
+      if (!more) { /* out of memory: the folders so far */
+        free(sub);
+        break;
+      }
+      names = more;
     }
-    if (sub && trace && is_file(trace))
-      names[(*count)++] = sub;
-    else
-      free(sub);
-    free(trace);
+    if (sub) names[(*count)++] = sub;
   }
-  closedir(d);
+  if (d) closedir(d);
   if (names) qsort(names, *count, sizeof *names, by_name);
   return names;
 }
@@ -133,17 +139,13 @@ static run* add_run(run_set* s) {
 /* dir, or its mode runs when it is a --compare parent. */
 static bool read_folder(const char* dir, run_set* s, char* err, size_t err_size) {
   size_t count = 0;
-  char** modes = NULL;
   char* trace = join(dir, "trace.json");
-  if (trace && !is_file(trace)) modes = mode_folders(dir, &count);
+  char** modes = trace && !is_file(trace) ? mode_folders(dir, &count) : NULL;
   free(trace);
-  if (!count)
-    return free(modes), add_run(s) ? (run_read(dir, &s->runs[s->count], err, err_size) && ++s->count)
-                                   : run_fail(err, err_size, "%s: out of memory", dir);
   bool ok = true;
-  for (size_t i = 0; ok && i < count; i++) {
+  for (size_t i = 0; ok && i < (count ? count : 1); i++) {
     run* r = add_run(s);
-    ok = r ? run_read(modes[i], r, err, err_size) : run_fail(err, err_size, "%s: out of memory", dir);
+    ok = r ? run_read(count ? modes[i] : dir, r, err, err_size) : run_fail(err, err_size, "%s: out of memory", dir);
     if (ok) s->count++;
   }
   free_names(modes, count);

@@ -7,9 +7,10 @@
  * URL and appends each event's frame record (the keys of a trace.json frame
  * record, plus `dropped`: frames dropped for this client) to a run of its own.
  *
- * Screenshots are inlined as data: URIs, at most options.screenshot_bytes in
- * all (0: DASHBOARD_SCREENSHOT_BYTES); past the budget a frame's picture is
- * left out (the page says so) rather than the page growing without bound. */
+ * Screenshots are inlined as data: URIs, at most options.screenshot_bytes of
+ * encoded images in all (0: DASHBOARD_SCREENSHOT_BYTES); past the budget a
+ * frame's picture is left out (the page says how many) rather than the page
+ * growing without bound. */
 #ifndef TLOD_TOOLS_DASHBOARD_PAGE_H
 #define TLOD_TOOLS_DASHBOARD_PAGE_H
 
@@ -27,9 +28,11 @@ typedef struct dashboard_page_options {
   size_t screenshot_bytes; /* 0: DASHBOARD_SCREENSHOT_BYTES; screenshots are read from run.dir */
 } dashboard_page_options;
 
-/* Writes the page for runs (count 0 is fine: a live page starts empty) to f.
- * opt may be NULL (a static report). False when a write failed or a screenshot
- * could not be read (err names it); f then holds a partial page. */
+/* Writes the page for runs (NULL or count 0 is fine: a live page starts
+ * empty) to f. opt may be NULL (a static report). A screenshot that is
+ * missing, not a PNG, outside its run folder (absolute, "..") or over the
+ * budget is left out and counted, never an error. False when a write failed
+ * (err says so); f then holds a partial page. */
 bool dashboard_page_write(FILE* f, const run_set* runs, const dashboard_page_options* opt, char* err, size_t err_size);
 
 #endif
