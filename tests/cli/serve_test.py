@@ -133,6 +133,9 @@ w0, w1 = summary("alone")["runs"][0]["wall_s"], summary("stuck")["runs"][0]["wal
 print("median frame_ms without %.4f, with a stuck client %.4f; wall_s %.3f vs %.3f" % (m0, m1, w0, w1))
 check("serve: a stuck client does not slow the frames (median frame_ms within 3x)", m1 < 3 * m0 + 0.05, (m0, m1))
 check("serve: a stuck client does not slow the loop (wall time within 3x)", w1 < 3 * w0 + 0.5, (w0, w1))
+r0, r1 = (summary(o)["runs"][0]["resources"][-1]["peak_rss_kib"] for o in ("alone", "stuck"))
+check("serve: a stuck client's queue is bounded (peak RSS within 3 MiB of the run without it)", r1 - r0 < 3072,
+      (r0, r1))
 s = summary("stuck").get("serve", {})
 check("serve: the stuck client's dropped frames are counted",
       s.get("streams") == 1 and s.get("dropped", 0) > N // 2 and s.get("max_dropped_per_stream") == s.get("dropped"), s)
@@ -190,5 +193,7 @@ for value, problem in [("abc", "expected [ADDR:]PORT"), ("70000", "PORT 0..65535
           rc == 2 and t.one_error_line(err) and problem in err and not os.path.exists(out_dir), (rc, err))
 rc, out, err = run("play", "--backend", "null", "--frames", "2", "--serve-linger", "-1")
 check("serve: --serve-linger -1 is a usage error", rc == 2 and t.one_error_line(err), (rc, err))
+rc, out, err = run("play", "--backend", "null", "--frames", "2", "--serve-linger", "1")
+check("serve: --serve-linger without --serve is a usage error", rc == 2 and "needs --serve" in err, (rc, err))
 
 t.finish()
