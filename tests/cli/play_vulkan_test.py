@@ -3,7 +3,7 @@
 lavapipe: a generated multi-object animated glTF scene played 100 frames under the validation layer with a resize in
 the middle (exit 0, no validation message, every frame's drawn triangles equal to its draw lists' and to the gl run's
 on the same scene and camera path); image parity of gl and vulkan screenshots of the same frames within the tolerance
-of docs/vulkan.md "parity"; the SPIR-V cache (a second start compiles nothing, counted in summary.json); a
+of docs/play.md "Parity with gl"; the SPIR-V cache (a second start compiles nothing, counted in summary.json); a
 --shader-cache folder that cannot be made is an error, a default one a warning; a Vulkan that cannot start (no
 driver, no validation layer) is an error, never a fallback; --window under Xvfb; usage errors;
 bench --suite objects / vkstart on vulkan. Usage: play_vulkan_test.py TLOD DATA_DIR WORK_DIR [vk|novk]"""
@@ -19,7 +19,7 @@ W, H = 320, 200
 RW, RH = 256, 160  # --resize-at 50:256x160
 FRAMES = 100
 CLEAR = (28, 31, 36)  # play_loop.c play_clear_rgba (0.11, 0.12, 0.14) in 8 bits
-# Parity (docs/vulkan.md "parity"): at least 99% of the pixels within 8/255 on every channel, and no pixel that is
+# Parity (docs/play.md "Parity with gl"): at least 99% of the pixels within 8/255 on every channel, and no pixel that is
 # background in one image and object in the other unless it is an edge pixel (its 3x3 neighbourhood holds both).
 PARITY_CHANNEL, PARITY_SHARE = 8, 0.99
 

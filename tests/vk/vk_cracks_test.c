@@ -210,6 +210,7 @@ TEST(test_no_holes) {
   for (int k = 0; k < 3; ++k)
     shape_free(&shapes[k]);
   env_close(&env);
+  CALL(vk_check_no_messages());
   printf("  %d frames, %u with mixed levels, %llu back-face pixels at the surface's depth (contour folds), %u with "
          "holes\n",
          6 * CAMERAS, mixed, (unsigned long long)contour, failures);
@@ -252,6 +253,7 @@ TEST(test_detector_sees_missing_strips) {
   fixture_free(&fx);
   shape_free(&cube);
   env_close(&env);
+  CALL(vk_check_no_messages());
   CHECK_MSG(removed > 0, "the draw lists had no strips to remove");
   CHECK_MSG(full_holes == 0, "%u hole pixels with the strips drawn", full_holes);
   CHECK_MSG(frames_with_holes >= 1, "no holes found with the strips removed: the detector is blind");
@@ -310,6 +312,7 @@ TEST(test_hardware_path_no_holes) {
   for (int k = 0; k < 2; ++k)
     shape_free(&shapes[k]);
   env_close(&env);
+  CALL(vk_check_no_messages());
   CHECK_MSG(failures == 0, "hardware path: %u frames with holes (see above)", failures);
 }
 

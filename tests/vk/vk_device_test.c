@@ -24,16 +24,6 @@
 #define W 96
 #define H 72
 
-static void dump(const char* name, const uint8_t* rgba) {
-  if (!getenv("VK_DEVICE_TEST_DUMP")) return;
-  FILE* f = fopen(name, "wb");
-  if (!f) return;
-  fprintf(f, "P6 %d %d 255\n", W, H);
-  for (int i = 0; i < W * H; i++)
-    fwrite(rgba + 4 * i, 1, 3, f);
-  fclose(f);
-}
-
 /* Destroys the session (device before platform) and checks the validation
  * layer said nothing, destruction included. */
 static void platform_clean(tlod_platform* p) {
@@ -107,21 +97,47 @@ TEST(test_desc_fields_refused) {
   CALL(platform_clean(p));
 }
 
+/* One object on a session of its own: its shape, fixture, scheduler, one
+ * planned view and a one-item draw of it. */
+typedef struct one_object {
+  vk_session s;
+  shape shp;
+  fixture fx;
+  tlod_scheduler* sch;
+  tlod_view_desc v;
+  const tlod_draw_list* dl;
+  one_draw od;
+} one_object;
+
+static void object_open(one_object* o, shape shp, tlod_surface_type type, tlod_device_vk_desc opt,
+                        tlod_scheduler_desc sd, const camera* cam) {
+  memset(o, 0, sizeof *o);
+  o->shp = shp;
+  CHECK_MSG(vk_session_open(&o->s, W, H, sd.max_level, "vk_device", true, opt), "no Vulkan device");
+  CHECK(fixture_make(&o->fx, o->s.ctx, &o->shp, type, o->s.pat, o->s.dev));
+  o->sch = new_scheduler(&o->fx, sd);
+  o->v = make_view(cam);
+  CHECK(o->sch && (o->dl = plan(&o->fx, o->sch, &o->v, 16.0f)));
+  one_draw_make(&o->od, o->fx.ds, o->dl, &o->v);
+}
+
+static void object_close(one_object* o) {
+  tlod_scheduler_destroy(o->sch);
+  fixture_free(&o->fx);
+  shape_free(&o->shp);
+  CALL(close_clean(&o->s));
+}
+
 /* ---- desc.vk of a draw ---------------------------------------------------------- */
 
 TEST(test_draw_fields_refused) {
-  vk_session s;
-  CHECK_MSG(vk_session_open(&s, W, H, 4, "vk_device", true, (tlod_device_vk_desc){0}), "no Vulkan device");
-  shape sph = shape_icosphere(2);
-  fixture fx;
-  CHECK(fixture_make(&fx, s.ctx, &sph, TLOD_SURFACE_PN, s.pat, s.dev));
-  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 4});
+  one_object o;
   camera cam = front_camera();
-  tlod_view_desc v = make_view(&cam);
-  const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
-  CHECK(sch && dl);
-  one_draw od;
-  one_draw_make(&od, fx.ds, dl, &v);
+  CALL(object_open(&o, shape_icosphere(2), TLOD_SURFACE_PN, (tlod_device_vk_desc){0},
+                   (tlod_scheduler_desc){.max_level = 4}, &cam));
+  vk_session s = o.s;
+  one_draw od = o.od;
+  od.desc.items = &od.item;
   CHECK(vk_frame_begin(s.platform, &od.desc));
   void* cmd = od.desc.vk.command_buffer;
   od.desc.vk.command_buffer = NULL;
@@ -146,10 +162,7 @@ TEST(test_draw_fields_refused) {
   r = tlod_device_read_image(s.dev, 1, 1, px);
   CHECK_MSG(r == TLOD_ERROR_UNSUPPORTED, "read_image: %s", tlod_result_string(r));
   free(rgba);
-  tlod_scheduler_destroy(sch);
-  fixture_free(&fx);
-  shape_free(&sph);
-  CALL(close_clean(&s));
+  CALL(object_close(&o));
 }
 
 /* ---- everything freed -------------------------------------------------------- */
@@ -263,7 +276,6 @@ TEST(test_destroy_frees_everything) {
   uint8_t* rgba = malloc(4 * W * H);
   CHECK(rgba);
   CALL(draw_scene_frames(&s, &sc, 4, rgba));
-  dump("/tmp/h2_scene.ppm", rgba);
   st = tlod_device_query_stats(s.dev);
   printf("  4 frames: %u covered, %u checker pixels; last draw %u calls, %u sets, %llu upload bytes, ring %llu bytes, "
          "%u pipelines, gpu_ms %.3f (draw %llu)\n",
@@ -273,6 +285,9 @@ TEST(test_destroy_frees_everything) {
   CHECK(covered_pixels(rgba, W, H) > W * H / 10 && coloured_pixels(rgba) > 20);
   CHECK(st.vk.descriptor_sets == 3 && st.vk.upload_bytes > 3 * 256 && st.vk.ring_bytes >= st.vk.upload_bytes);
   CHECK(st.items == 3 && st.draw_calls > 3 && st.triangles > 0);
+  /* Pattern buffers, the white texture, the checker, 2 rings and 2 x 2 x 2
+   * surface buffers (11 objects) live in a few suballocated blocks. */
+  CHECK_MSG(st.vk.memory_blocks <= 4, "%u VkDeviceMemory blocks for 11 buffers and images", st.vk.memory_blocks);
   CHECK_MSG(st.gpu_draw > 0 && st.gpu_ms >= 0.0, "no timestamp reading after 4 frames (gpu_draw %llu)",
             (unsigned long long)st.gpu_draw);
   /* Destroyed while the last frame may be in flight: retired, freed later. */
@@ -318,28 +333,20 @@ static void move_mesh(fixture* fx, const shape* sph, float dx) {
 }
 
 TEST(test_update_reaches_every_slot) {
-  vk_session s;
-  CHECK_MSG(vk_session_open(&s, W, H, 4, "vk_slots", true, (tlod_device_vk_desc){0}), "no Vulkan device");
-  CHECK(vk_desc_of(s.platform).frames_in_flight == 2);
-  shape sph = shape_icosphere(2);
-  fixture fx;
-  CHECK(fixture_make(&fx, s.ctx, &sph, TLOD_SURFACE_PHONG, s.pat, s.dev));
-  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 3});
+  one_object o;
   camera cam = front_camera();
-  tlod_view_desc v = make_view(&cam);
-  const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
-  CHECK(sch && dl);
-  one_draw od;
-  one_draw_make(&od, fx.ds, dl, &v);
+  CALL(object_open(&o, shape_icosphere(2), TLOD_SURFACE_PHONG, (tlod_device_vk_desc){0},
+                   (tlod_scheduler_desc){.max_level = 3}, &cam));
+  CHECK(vk_desc_of(o.s.platform).frames_in_flight == 2);
   uint8_t* rgba = malloc(4 * W * H);
   CHECK(rgba);
   double x[4];
   uint32_t slot[4];
   for (int f = 0; f < 4; f++) {
-    if (f == 2) CALL(move_mesh(&fx, &sph, 0.6f));
-    CHECK(vk_draw_frame(s.platform, s.dev, s.ctx, &od.desc, rgba));
+    if (f == 2) CALL(move_mesh(&o.fx, &o.shp, 0.6f));
+    CHECK(vk_draw_frame(o.s.platform, o.s.dev, o.s.ctx, &o.od.desc, rgba));
     x[f] = centroid_x(rgba);
-    slot[f] = od.desc.vk.frame_index;
+    slot[f] = o.od.desc.vk.frame_index;
   }
   printf("  centroid x: slot %u %.2f, slot %u %.2f; after the update: slot %u %.2f, slot %u %.2f\n", slot[0], x[0],
          slot[1], x[1], slot[2], x[2], slot[3], x[3]);
@@ -347,28 +354,20 @@ TEST(test_update_reaches_every_slot) {
   CHECK(fabs(x[0] - x[1]) < 0.01 && fabs(x[2] - x[3]) < 0.01);
   CHECK_MSG(x[2] > x[0] + 4.0, "the update did not reach slot %u (%.2f -> %.2f)", slot[2], x[0], x[2]);
   free(rgba);
-  tlod_scheduler_destroy(sch);
-  fixture_free(&fx);
-  shape_free(&sph);
-  CALL(close_clean(&s));
+  CALL(object_close(&o));
 }
 
 /* Two views in one frame: the second draw appends to the frame's ring (it
  * must not overwrite what the first recorded). */
 TEST(test_two_draws_in_one_frame) {
-  vk_session s;
-  CHECK_MSG(vk_session_open(&s, W, H, 4, "vk_two", true, (tlod_device_vk_desc){0}), "no Vulkan device");
-  shape sph = shape_icosphere(2);
-  fixture fx;
-  CHECK(fixture_make(&fx, s.ctx, &sph, TLOD_SURFACE_PN, s.pat, s.dev));
-  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 4});
+  one_object o;
   camera cam = camera_look(0, -4.0, 0.8, 0, 0, 0, 45, W / 2, H);
-  tlod_view_desc v = make_view(&cam);
-  const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
-  CHECK(sch && dl);
+  CALL(object_open(&o, shape_icosphere(2), TLOD_SURFACE_PN, (tlod_device_vk_desc){0},
+                   (tlod_scheduler_desc){.max_level = 4}, &cam));
+  vk_session s = o.s;
   one_draw a, b;
-  one_draw_make(&a, fx.ds, dl, &v);
-  one_draw_make(&b, fx.ds, dl, &v);
+  one_draw_make(&a, o.fx.ds, o.dl, &o.v);
+  one_draw_make(&b, o.fx.ds, o.dl, &o.v);
   a.desc.viewport[2] = b.desc.viewport[2] = W / 2;
   b.desc.viewport[0] = W / 2;
   a.desc.light_dir[1] = b.desc.light_dir[1] = -1.0f; /* towards the camera */
@@ -379,7 +378,6 @@ TEST(test_two_draws_in_one_frame) {
   b.desc.vk = a.desc.vk;
   CHECK(tlod_device_draw(s.dev, &a.desc) == TLOD_SUCCESS && tlod_device_draw(s.dev, &b.desc) == TLOD_SUCCESS);
   CHECK(vk_frame_end(s.platform, rgba));
-  dump("/tmp/h2_two.ppm", rgba);
   uint32_t grey = 0, red = 0;
   for (uint32_t i = 0; i < W * H; i++) {
     const uint8_t* px = rgba + 4 * i;
@@ -391,29 +389,20 @@ TEST(test_two_draws_in_one_frame) {
   printf("  left half %u grey pixels, right half %u red pixels\n", grey, red);
   CHECK(grey > 200 && red > 200 && abs((int)grey - (int)red) < 40);
   free(rgba);
-  tlod_scheduler_destroy(sch);
-  fixture_free(&fx);
-  shape_free(&sph);
-  CALL(close_clean(&s));
+  CALL(object_close(&o));
 }
 
 /* Every debug view, with and without wireframe, on the pattern path and on
  * the hardware path (tessellation pipelines, batches): drawn, and clean. */
 static void draw_views(bool hardware) {
-  vk_session s;
+  one_object o;
   tlod_device_vk_desc opt = {.hardware_tessellation = hardware};
-  CHECK_MSG(vk_session_open(&s, W, H, 5, "vk_views", true, opt), "no Vulkan device");
-  shape torus = shape_torus(12, 8);
-  fixture fx;
-  CHECK(fixture_make(&fx, s.ctx, &torus, TLOD_SURFACE_PN, s.pat, s.dev));
   tlod_scheduler_desc sd = {.max_level = 5, .morph = hardware ? TLOD_MORPH_NONE : TLOD_MORPH_DEFAULT};
-  tlod_scheduler* sch = new_scheduler(&fx, sd);
   camera cam = camera_look(0, -2.6, 1.4, 0, 0, 0, 45, W, H);
-  tlod_view_desc v = make_view(&cam);
-  const tlod_draw_list* dl = plan(&fx, sch, &v, 16.0f);
-  CHECK(sch && dl);
-  one_draw od;
-  one_draw_make(&od, fx.ds, dl, &v);
+  CALL(object_open(&o, shape_torus(12, 8), TLOD_SURFACE_PN, opt, sd, &cam));
+  vk_session s = o.s;
+  one_draw od = o.od;
+  od.desc.items = &od.item;
   uint8_t* rgba = malloc(4 * W * H);
   CHECK(rgba);
   for (int k = 0; k < 2 * TLOD_DEBUG_NUM; k++) {
@@ -428,10 +417,7 @@ static void draw_views(bool hardware) {
   printf("  %s path: %u debug views x wireframe off/on drawn, %u pipelines, %u draw calls in the last\n",
          hardware ? "hardware" : "pattern", TLOD_DEBUG_NUM, st.vk.pipelines, st.draw_calls);
   free(rgba);
-  tlod_scheduler_destroy(sch);
-  fixture_free(&fx);
-  shape_free(&torus);
-  CALL(close_clean(&s));
+  CALL(object_close(&o));
 }
 
 TEST(test_debug_views_and_wireframe) {

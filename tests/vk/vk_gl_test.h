@@ -3,7 +3,11 @@
  * (vk_parity_test, vk_cracks_test): a GL platform (the GL device and
  * gl_test.h's independent reference renderer draw there) and a Vulkan
  * platform of the same size in one process, one tesslod context and one
- * pattern set. Built only with the GL backend (tests/vk/CMakeLists.txt).
+ * pattern set. The Vulkan platform runs the validation layer (synchronization
+ * validation on): the tests end with vk_check_no_messages(), so these
+ * scenes are validated too and a Vulkan object tesslod forgets is the
+ * object tracker's error. Built only with the GL backend
+ * (tests/vk/CMakeLists.txt).
  */
 #ifndef TLOD_VK_GL_TEST_H
 #define TLOD_VK_GL_TEST_H
@@ -35,7 +39,7 @@ static inline bool vk_gl_open(vk_gl_env* e, uint32_t w, uint32_t h, uint32_t max
   char err[512] = "";
   memset(e, 0, sizeof *e);
   e->gl = gl_test_platform(w, h, err, sizeof err);
-  e->vk = e->gl ? vk_test_platform(w, h, false, err, sizeof err) : NULL;
+  e->vk = e->gl ? vk_test_platform(w, h, true, err, sizeof err) : NULL;
   if (!e->vk) return false;
   tlod_platform_bind(e->gl);
   if (!ref_init(&e->ref)) return false;

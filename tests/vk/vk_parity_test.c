@@ -189,6 +189,7 @@ TEST(test_shapes_match_gl_and_cpu) {
   for (int k = 0; k < 3; ++k)
     shape_free(&shapes[k]);
   env_close(&env);
+  CALL(vk_check_no_messages());
   printf("  %u frames: coverage differs on %llu (vs gl) / %llu (vs cpu) of %llu covered pixels; worst colour diff "
          "%u / %u\n",
          s_totals.comparisons, (unsigned long long)s_totals.gl_diff, (unsigned long long)s_totals.ref_diff,
@@ -343,8 +344,10 @@ TEST(test_materials_match_gl) {
     /* not CALL: every view is compared and printed, a failed one still fails the test */
     check_pair(env.img_vk, env.img_gl, k_vs_gl, names[k], "gl", &s_totals.gl_diff, &s_totals.gl_worst);
   }
+  tlod_platform_finish(env.b.vk);
   material_close(&ms, &env);
   env_close(&env);
+  CALL(vk_check_no_messages());
 }
 
 /* The hardware tessellation path: the same image as GL's hardware path
@@ -362,6 +365,7 @@ TEST(test_hardware_path_matches_gl) {
   for (int k = 0; k < 2; ++k)
     shape_free(&shapes[k]);
   env_close(&env);
+  CALL(vk_check_no_messages());
 }
 
 int main(void) {

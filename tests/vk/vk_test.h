@@ -164,6 +164,13 @@ static inline bool vk_draw_frame(tlod_platform* p, tlod_device* dev, tlod_contex
   return vk_frame_end(p, rgba) && r == TLOD_SUCCESS;
 }
 
+/* No validation message in this process so far (platforms destroyed
+ * included: the object tracker's leak reports at vkDestroyDevice count). */
+static inline void vk_check_no_messages(void) {
+  uint64_t n = tlod_platform_validation_messages(NULL);
+  CHECK_MSG(n == 0, "%llu validation messages in this process (printed above)", (unsigned long long)n);
+}
+
 /* Pixels of an image that are not the background. */
 static inline uint32_t covered_pixels(const uint8_t* rgba, uint32_t w, uint32_t h) {
   uint32_t n = 0;

@@ -470,7 +470,10 @@ tlod_result tlod_device_read_image(tlod_device* dev, uint32_t width, uint32_t he
 tlod_device_stats tlod_device_query_stats(const tlod_device* dev) {
   tlod_device_stats none = {0};
   none.gpu_ms = -1.0;
-  return dev ? dev->stats : none;
+  if (!dev) return none;
+  /* The device object is never const itself: its readings are refreshed here. */
+  if (dev->vtbl->poll_stats) dev->vtbl->poll_stats(dev->state, (tlod_device_stats*)&dev->stats);
+  return dev->stats;
 }
 
 tlod_draw_item_stats tlod_device_query_item_stats(const tlod_device* dev, uint32_t item) {

@@ -38,6 +38,10 @@ typedef struct _tlod_device_vtbl {
    * desc is validated, its label resolved. */
   tlod_result (*create_texture)(void* state, const tlod_texture_desc* desc, void** texture_state);
   void (*destroy_texture)(void* state, void* texture_state);
+  /* May be NULL: called by tlod_device_query_stats() to bring GPU readings
+   * (gpu_ms, gpu_draw, ...) into stats (vulkan: its query results, read
+   * there and not in a draw, where a driver may wait to answer). */
+  void (*poll_stats)(void* state, tlod_device_stats* stats);
 } _tlod_device_vtbl;
 
 extern const _tlod_device_vtbl _tlod_cpu_device_vtbl;

@@ -267,6 +267,11 @@ static void vk_destroy_texture(void* state, void* texture_state) {
     _tlod_vkb_texture_destroy(d->ctx, &d->memory, texture_state);
 }
 
+static void vk_poll_stats(void* state, tlod_device_stats* stats) {
+  vk_device* d = state;
+  _tlod_vkb_frames_poll(&d->frames, stats);
+}
+
 const _tlod_device_vtbl _tlod_vk_device_vtbl = {.create = vk_create,
                                                 .destroy = vk_destroy,
                                                 .create_surface = _tlod_vkb_surface_create,
@@ -276,4 +281,5 @@ const _tlod_device_vtbl _tlod_vk_device_vtbl = {.create = vk_create,
                                                 .read_image = NULL,
                                                 .times_draws = false,
                                                 .create_texture = vk_create_texture,
-                                                .destroy_texture = vk_destroy_texture};
+                                                .destroy_texture = vk_destroy_texture,
+                                                .poll_stats = vk_poll_stats};

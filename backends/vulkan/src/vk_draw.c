@@ -314,7 +314,7 @@ tlod_result _tlod_vkb_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   vk_device* d = state;
   tlod_result r = check_vk(d, fr);
   if (r != TLOD_SUCCESS) return r;
-  _tlod_vkb_frames_begin(&d->frames, fr->vk.frame_index, d->stats);
+  _tlod_vkb_frames_begin(&d->frames, fr->vk.frame_index);
   r = prepare(d, fr, items);
   _tlod_vkb_shader_stats(d);
   if (r == TLOD_SUCCESS) r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "vulkan device", fr, items, item_stats);

@@ -60,24 +60,40 @@ void _tlod_vkb_frames_destroy(vk_frames* f) {
   tlod_context_free(f->ctx, f->retired);
 }
 
-/* The slot's queries of its previous frame: finished (the contract), so
- * they are read without waiting; a result not available is skipped. */
-static void read_queries(vk_frames* f, vk_slot* s, tlod_device_stats* stats) {
-  if (!s->queried) return;
+/* A slot's queries, once its frame has run: read without waiting (a result
+ * not yet available stays pending). Not in a draw: lavapipe answers
+ * vkGetQueryPoolResults only after waiting for the device to be idle
+ * (docs/vulkan.md), which in a draw would wait for the frame in flight. */
+static bool read_queries(vk_frames* f, vk_slot* s, tlod_device_stats* stats) {
   uint64_t t[2] = {0, 0}, prims = 0;
   VkResult r =
       vkGetQueryPoolResults(f->device, s->timestamps, 0, 2, sizeof(t), t, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
-  if (r == VK_SUCCESS) {
+  if (r != VK_SUCCESS) return false;
+  if (s->statistics && vkGetQueryPoolResults(f->device, s->statistics, 0, 1, sizeof(prims), &prims, sizeof(uint64_t),
+                                             VK_QUERY_RESULT_64_BIT) != VK_SUCCESS)
+    return false;
+  if (s->query_draw > stats->gpu_draw) {
     stats->gpu_ms = (double)((t[1] - t[0]) & f->timestamp_mask) * f->timestamp_period * 1e-6;
     stats->gpu_draw = s->query_draw;
-  }
-  if (r == VK_SUCCESS && s->statistics &&
-      vkGetQueryPoolResults(f->device, s->statistics, 0, 1, sizeof(prims), &prims, sizeof(uint64_t),
-                            VK_QUERY_RESULT_64_BIT) == VK_SUCCESS)
     stats->vk.primitives = prims;
+  }
+  return true;
+}
+
+void _tlod_vkb_frames_poll(vk_frames* f, tlod_device_stats* stats) {
+  for (uint32_t k = 0; k < f->count; k++) {
+    vk_slot* s = &f->slots[k];
+    if (s->queried && !s->read) s->read = read_queries(f, s, stats);
+  }
+}
+
+/* At the slot's new frame (its previous one has finished): the queries
+ * are free to reset; a reading nobody polled is dropped. */
+static void reset_queries(vk_frames* f, vk_slot* s) {
+  if (!s->queried) return;
   vkResetQueryPool(f->device, s->timestamps, 0, 2);
   if (s->statistics) vkResetQueryPool(f->device, s->statistics, 0, 1);
-  s->queried = false;
+  s->queried = s->read = false;
 }
 
 /* Retired before every slot's last frame began: no frame that can still
@@ -96,13 +112,14 @@ static void collect(vk_frames* f) {
   f->retired_count = kept;
 }
 
-void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* stats) {
-  if (f->started && index == f->current) return;
+void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index) {
+  /* One slot: every draw is a frame of its own (nothing else tells frames apart). */
+  if (f->started && index == f->current && f->count > 1) return;
   f->started = true;
   f->current = index;
   vk_slot* s = &f->slots[index];
   s->begun = ++f->serial;
-  read_queries(f, s, stats);
+  reset_queries(f, s);
   s->head = 0;
   for (uint32_t p = 0; p < s->pool_count; p++)
     vkResetDescriptorPool(f->device, s->pools[p], 0);

@@ -156,6 +156,7 @@ typedef struct vk_slot {
   uint32_t pool_count, pool_cap, pool_current;
   VkQueryPool timestamps, statistics;
   bool queried;        /* this frame's queries are recorded */
+  bool read;           /* ... and their results taken into the stats */
   uint64_t query_draw; /* the draw they measure (stats numbering) */
   uint64_t begun;      /* serial of this slot's last frame (0: none) */
 } vk_slot;
@@ -182,9 +183,12 @@ tlod_result _tlod_vkb_frames_init(vk_frames* f, bool queries, bool statistics);
 void _tlod_vkb_frames_destroy(vk_frames* f);
 /* A draw with frame index `index`: when it is not the previous draw's,
  * slot `index` begins a new frame (its previous one has finished: the
- * frame-index contract): results read, queries, ring and pools reset,
- * what was retired before every other slot's last frame destroyed. */
-void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index, tlod_device_stats* stats);
+ * frame-index contract): queries, ring and pools reset, what was retired
+ * before every other slot's last frame destroyed. */
+void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index);
+/* The query results of every slot whose frame has run into stats (the
+ * latest draw measured wins); tlod_device_query_stats() calls it. */
+void _tlod_vkb_frames_poll(vk_frames* f, tlod_device_stats* stats);
 /* `bytes` at an offset aligned to `align` in the current slot's ring
  * (grown, the old ring retired, when it does not fit). */
 VkResult _tlod_vkb_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize align, VkDeviceSize* offset,

@@ -89,9 +89,14 @@
  *   hostQueryReset when it sets host_query_reset.
  *   With host_query_reset: a timestamp query pool (2) and, with
  *   pipelineStatisticsQuery, a clipping-invocations pool (1) per frame slot;
- *   the first draw of a frame is measured and read without waiting when its
- *   slot begins its next frame (stats.gpu_ms, gpu_draw, vk.primitives);
- *   without it gpu_ms stays < 0.
+ *   the first draw of a frame is measured. Results are read (without
+ *   VK_QUERY_RESULT_WAIT_BIT) by tlod_device_query_stats(), never by a
+ *   draw: the latest measured draw whose frame has run gives stats.gpu_ms,
+ *   gpu_draw and vk.primitives; a reading nobody asked for before its slot
+ *   begins its next frame is dropped (the queries are reset then). Note:
+ *   lavapipe waits for the device to be idle inside vkGetQueryPoolResults,
+ *   so there tlod_device_query_stats() waits for the frames in flight.
+ *   Without host_query_reset gpu_ms stays < 0.
  *
  * VULKAN OBJECTS
  *   Every object is created with VkAllocationCallbacks that route Vulkan's
