@@ -260,7 +260,9 @@ json_read_status json_read(const char* text, size_t size, json_value** out, char
 const json_value* json_get(const json_value* v, const char* key) {
   if (!v || v->type != JSON_OBJECT) return NULL;
   for (size_t i = 0; i < v->count; i++) {
-    if (!strcmp(v->keys[i], key)) return &v->items[i];
+    const json_value* x = &v->items[i];
+    bool container = x->type == JSON_ARRAY || x->type == JSON_OBJECT;
+    if (!strcmp(v->keys[i], key)) return x->complete || container ? x : NULL;
   }
   return NULL;
 }

@@ -40,7 +40,10 @@ typedef enum json_read_status {
 /* Parses text[0..size) into *out (free with json_free). */
 json_read_status json_read(const char* text, size_t size, json_value** out, char* err, size_t err_size);
 void json_free(json_value* v);
-/* The value of key in an object (first of duplicates), NULL when absent or v is not an object. */
+/* The value of key in an object (first of duplicates), NULL when absent, when
+ * v is not an object, or when the value is a scalar the text cut short (a
+ * string or number that may go on: absent, not a wrong value). Containers
+ * cut short are returned, marked incomplete. */
 const json_value* json_get(const json_value* v, const char* key);
 
 #endif
