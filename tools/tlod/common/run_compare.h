@@ -5,7 +5,9 @@
  * WHAT IT DOES: over the frames both runs hold (the common prefix, see
  * frames below), computes per metric the baseline's and the new run's value,
  * their ratio new / base and the change in percent; checks two limits: frame
- * time p95 and mean triangles may grow by at most their percentage.
+ * time p95 and mean triangles may grow by at most their percentage. Scene
+ * and path must match; mode, backend and debug view may differ (the last
+ * with a note: a debug view costs frame time).
  * DOES NOT: read files (the caller fills run_compare_side from its loaded
  * run, common/run_read.h), allocate beyond a scratch copy for sorting, or
  * print unless asked (run_compare_print, run_compare_json).
@@ -27,11 +29,12 @@
  * arrays (frames entries each, milliseconds and triangles as in
  * trace.csv). Strings are NUL-terminated; none may be NULL. */
 typedef struct run_compare_side {
-  const char* dir;     /* the run folder, for messages */
-  const char* scene;   /* trace.json "scene" */
-  const char* path;    /* trace.json "path" */
-  const char* mode;    /* trace.json "mode" (may differ: adaptive vs uniform is a fair question) */
-  const char* backend; /* trace.json "backend" (may differ: gl vs vulkan) */
+  const char* dir;        /* the run folder, for messages */
+  const char* scene;      /* trace.json "scene" */
+  const char* path;       /* trace.json "path" */
+  const char* mode;       /* trace.json "mode" (may differ: adaptive vs uniform is a fair question) */
+  const char* backend;    /* trace.json "backend" (may differ: gl vs vulkan) */
+  const char* debug_view; /* trace.json "debug_view" (NULL or "" read as "none"); may differ, with a note */
   uint32_t frames;
   const double* frame_ms;
   const double* scheduler_ms;
@@ -71,8 +74,8 @@ typedef struct run_compare_result {
   bool prefix;     /* the runs hold different counts: only the first `frames` were compared */
   run_compare_row rows[RUN_COMPARE_ROWS];
   uint32_t regressions; /* rows regressed */
-  char note[256];       /* "" or why only a prefix was compared */
-  char error[512];      /* "" or why the runs cannot be compared ("B: scene 'x' differs from A's 'y'") */
+  char note[512];       /* "" or notes, one a line: only a prefix compared; the debug views differ */
+  char error[512]; /* "" or why the runs cannot be compared ("NEW: scene 'x' differs from the baseline BASE's 'y'") */
 } run_compare_result;
 
 /* Compares base and next under limits into *out. Returns false (and

@@ -25,7 +25,7 @@ void run_compare_print(FILE* f, const run_compare_side* base, const run_compare_
   fprintf(f, "%-22s %12s %12s %8s %9s  %7s\n", "metric", "baseline", "new", "ratio", "change", "limit");
   for (int i = 0; i < RUN_COMPARE_ROWS; i++)
     print_row(f, &r->rows[i]);
-  if (r->note[0]) fprintf(f, "\n%s\n", r->note);
+  if (r->note[0]) fprintf(f, "\n%s", r->note);
   for (int i = 0; i < RUN_COMPARE_ROWS; i++) {
     const run_compare_row* x = &r->rows[i];
     if (x->regressed)
