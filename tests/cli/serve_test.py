@@ -120,7 +120,7 @@ s = summary("live").get("serve", {})
 check("serve: summary.json counts the stream and the frames", s.get("streams") == 1 and s.get("frames") == 3000, s)
 
 # --- a stuck client: connects, asks for /events, never reads (small receive buffer)
-N = 3000
+N = 6000  # frames: an unbounded queue would hold about 10 MiB of records by the end
 p, _, _ = start("alone", "--frames", str(N))
 rc0, err0 = finish(p)
 stuck = socket.socket()
@@ -139,7 +139,7 @@ print("median frame_ms without %.4f, with a stuck client %.4f; wall_s %.3f vs %.
 check("serve: a stuck client does not slow the frames (median frame_ms within 3x)", m1 < 3 * m0 + 0.05, (m0, m1))
 check("serve: a stuck client does not slow the loop (wall time within 4x)", w1 < 4 * w0 + 1.0, (w0, w1))
 r0, r1 = (summary(o)["runs"][0]["resources"][-1]["peak_rss_kib"] for o in ("alone", "stuck"))
-check("serve: a stuck client's queue is bounded (peak RSS within 3 MiB of the run without it)", r1 - r0 < 3072,
+check("serve: a stuck client's queue is bounded (peak RSS within 8 MiB of the run without it)", r1 - r0 < 8192,
       (r0, r1))
 s = summary("stuck").get("serve", {})
 check("serve: the stuck client's dropped frames are counted",
