@@ -151,9 +151,13 @@ code, body = raw(port, b"GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n"
 check("serve: GET / is the dashboard page in live mode (its config names /events)",
       code == 200 and b"text/html" in body and re.search(rb'"live":\s*"/events"', body) and b"uPlot" in body,
       body[:300])
-code, body = raw(port, b"GET /run.json HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
-meta = json.loads(body.split(b"\r\n\r\n", 1)[1]) if code == 200 else None
-check("serve: /run.json is the run's settings", meta and meta["scene"] == "demo:scene" and meta["backend"] == "null",
+for _ in range(100):  # {"status": "starting"} until the first mode starts
+    code, body = raw(port, b"GET /run.json HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
+    meta = json.loads(body.split(b"\r\n\r\n", 1)[1]) if code == 200 else {}
+    if meta.get("status") != "starting":
+        break
+    time.sleep(0.1)
+check("serve: /run.json is the run's settings", meta.get("scene") == "demo:scene" and meta.get("backend") == "null",
       body[:300])
 for name, req, want in [
         ("404: unknown path", b"GET /etc/passwd HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n", 404),
