@@ -13,10 +13,15 @@ TLOD, DATA, WORK, _ = t.setup(sys.argv)
 check, run = t.check, t.run
 
 
+# Under ASan freed memory stays in its quarantine and counts in RSS: none, so the RSS check below measures what is
+# held (other builds ignore ASAN_OPTIONS).
+ENV = dict(os.environ, ASAN_OPTIONS=":".join(filter(None, [os.environ.get("ASAN_OPTIONS"), "quarantine_size_mb=0"])))
+
+
 def start(out, *args):
     """tlod play on the null backend with --serve on a free port: (process, host, port) once the URL is printed."""
     p = subprocess.Popen([TLOD, "play", "--backend", "null", "-q", "--out", os.path.join(WORK, out), "--serve", "0",
-                          *args], stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+                          *args], stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True, env=ENV)
     line = p.stderr.readline()
     m = re.search(r"http://([0-9.]+):([0-9]+)/", line)
     if not m:
@@ -115,7 +120,7 @@ s = summary("live").get("serve", {})
 check("serve: summary.json counts the stream and the frames", s.get("streams") == 1 and s.get("frames") == 3000, s)
 
 # --- a stuck client: connects, asks for /events, never reads (small receive buffer)
-N = 3000
+N = 6000  # frames: an unbounded queue would hold about 10 MiB of records by the end
 p, _, _ = start("alone", "--frames", str(N))
 rc0, err0 = finish(p)
 stuck = socket.socket()
@@ -132,19 +137,27 @@ m0, m1 = median_frame_ms("alone"), median_frame_ms("stuck")
 w0, w1 = summary("alone")["runs"][0]["wall_s"], summary("stuck")["runs"][0]["wall_s"]
 print("median frame_ms without %.4f, with a stuck client %.4f; wall_s %.3f vs %.3f" % (m0, m1, w0, w1))
 check("serve: a stuck client does not slow the frames (median frame_ms within 3x)", m1 < 3 * m0 + 0.05, (m0, m1))
-check("serve: a stuck client does not slow the loop (wall time within 3x)", w1 < 3 * w0 + 0.5, (w0, w1))
+check("serve: a stuck client does not slow the loop (wall time within 4x)", w1 < 4 * w0 + 1.0, (w0, w1))
+r0, r1 = (summary(o)["runs"][0]["resources"][-1]["peak_rss_kib"] for o in ("alone", "stuck"))
+check("serve: a stuck client's queue is bounded (peak RSS within 8 MiB of the run without it)", r1 - r0 < 8192,
+      (r0, r1))
 s = summary("stuck").get("serve", {})
 check("serve: the stuck client's dropped frames are counted",
-      s.get("streams") == 1 and s.get("dropped", 0) > N // 2 and s.get("max_dropped_per_stream") == s.get("dropped"), s)
+      s.get("streams") == 1 and s.get("dropped", 0) > N // 4 and s.get("max_dropped_per_stream") == s.get("dropped"), s)
 
 # --- bad requests, the page, run.json, at most 16 streams, the port taken
 p, _, port = start("requests", "--frames", "5", "--serve-linger", "20")
-code, body = raw(port, b"GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
-check("serve: GET / is the page in live mode", code == 200 and b"text/html" in body and b'"live":"/events"' in body,
+code, body = raw(port, b"GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n", read=1 << 22)
+check("serve: GET / is the dashboard page in live mode (its config names /events)",
+      code == 200 and b"text/html" in body and re.search(rb'"live":\s*"/events"', body) and b"uPlot" in body,
       body[:300])
-code, body = raw(port, b"GET /run.json HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
-meta = json.loads(body.split(b"\r\n\r\n", 1)[1]) if code == 200 else None
-check("serve: /run.json is the run's settings", meta and meta["scene"] == "demo:scene" and meta["backend"] == "null",
+for _ in range(100):  # {"status": "starting"} until the first mode starts
+    code, body = raw(port, b"GET /run.json HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
+    meta = json.loads(body.split(b"\r\n\r\n", 1)[1]) if code == 200 else {}
+    if meta.get("status") != "starting":
+        break
+    time.sleep(0.1)
+check("serve: /run.json is the run's settings", meta.get("scene") == "demo:scene" and meta.get("backend") == "null",
       body[:300])
 for name, req, want in [
         ("404: unknown path", b"GET /etc/passwd HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n", 404),
@@ -190,5 +203,7 @@ for value, problem in [("abc", "expected [ADDR:]PORT"), ("70000", "PORT 0..65535
           rc == 2 and t.one_error_line(err) and problem in err and not os.path.exists(out_dir), (rc, err))
 rc, out, err = run("play", "--backend", "null", "--frames", "2", "--serve-linger", "-1")
 check("serve: --serve-linger -1 is a usage error", rc == 2 and t.one_error_line(err), (rc, err))
+rc, out, err = run("play", "--backend", "null", "--frames", "2", "--serve-linger", "1")
+check("serve: --serve-linger without --serve is a usage error", rc == 2 and "needs --serve" in err, (rc, err))
 
 t.finish()

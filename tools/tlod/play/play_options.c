@@ -215,6 +215,7 @@ static int parse_argument(int argc, char** argv, int* i, play_options* o) {
 static int check(const play_options* o) {
   if (o->compare && o->mode_given) return cli_error(CLI_USAGE, "play: give --mode or --compare, not both");
   if (o->frames && o->duration > 0.0f) return cli_error(CLI_USAGE, "play: give --frames or --duration, not both");
+  if (o->serve_linger > 0.0f && !o->serve) return cli_error(CLI_USAGE, "--serve-linger: needs --serve");
   bool image = !o->backend || gpu_backend(o->backend);
   if (!image && o->screenshot_every)
     return cli_error(CLI_USAGE,

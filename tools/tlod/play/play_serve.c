@@ -66,9 +66,11 @@ static enum MHD_Result events(play_server* s, struct MHD_Connection* c) {
 /* /run.json: a copy taken under the lock (a new mode replaces it). */
 static enum MHD_Result run_json(play_server* s, struct MHD_Connection* c) {
   pthread_mutex_lock(&s->lock);
-  size_t len = s->run_json ? s->run_json_len : 21;
+  static const char starting[] = "{\"status\":\"starting\"}"; /* before the first mode */
+  const char* text = s->run_json ? s->run_json : starting;
+  size_t len = s->run_json ? s->run_json_len : sizeof(starting) - 1;
   char* body = malloc(len + 1);
-  if (body) memcpy(body, s->run_json ? s->run_json : "{\"status\":\"starting\"}", len);
+  if (body) memcpy(body, text, len);
   pthread_mutex_unlock(&s->lock);
   if (!body) return MHD_NO;
   return answer(c, MHD_HTTP_OK, "application/json", body, len, MHD_RESPMEM_MUST_FREE);
@@ -106,19 +108,13 @@ static enum MHD_Result on_request(void* cls, struct MHD_Connection* c, const cha
   return route(cls, c, url, head);
 }
 
-/* MHD's own messages stay quiet: a bad request is answered, not logged. */
-static void quiet_log(void* cls, const char* fmt, va_list ap) {
-  (void)cls;
-  (void)fmt;
-  (void)ap;
-}
-
 static struct MHD_Daemon* start_daemon(play_server* s, int fd) {
-  unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_ERROR_LOG;
+  /* No MHD_USE_ERROR_LOG: a bad request is answered, not logged on the play's stderr. */
+  unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD;
   return MHD_start_daemon(flags, 0, NULL, NULL, on_request, s, MHD_OPTION_LISTEN_SOCKET, fd,
                           MHD_OPTION_CONNECTION_LIMIT, (unsigned)PLAY_SERVE_MAX_CONNECTIONS,
                           MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)SERVE_IDLE_S, MHD_OPTION_CONNECTION_MEMORY_LIMIT,
-                          (size_t)65536, MHD_OPTION_EXTERNAL_LOGGER, quiet_log, NULL, MHD_OPTION_END);
+                          (size_t)65536, MHD_OPTION_END);
 }
 
 void serve_free(play_server* s) {
