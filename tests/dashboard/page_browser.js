@@ -202,10 +202,18 @@ async function checkLive(browser, run) {
   await p.waitForFunction(() => window.tlodDashboard.charts.length > 0 &&
     window.tlodDashboard.charts[0].chart.data[0].length === 5, null, { timeout: 10000 });
   assert.match(await p.textContent('.run .note'), /live: 5 frames, 3 dropped for this page/);
-  stream.end('event: end\ndata: {"dropped": 4}\n\n');
-  await p.waitForFunction(() => /ended/.test(document.querySelector('.run .note').textContent));
-  assert.match(await p.textContent('.run .note'), /live: 5 frames, 4 dropped for this page \(the run ended\)/);
   assert.match(await p.textContent('.run .meta'), /demo:live · adaptive/);
+  // The next --compare mode: a "run" event, then frames from 0 again, into a second live run.
+  stream.write('event: run\ndata: {"scene": "demo:live", "mode": "uniform:2"}\n\n');
+  frames.slice(0, 3).forEach((f) => stream.write(`data: ${JSON.stringify(Object.assign({}, f, { dropped: 3 }))}\n\n`));
+  await p.waitForFunction(() => window.tlodDashboard.data.runs.length === 2 &&
+    window.tlodDashboard.data.runs[1].columns.frame.length === 3);
+  stream.end('event: end\ndata: {"dropped": 4}\n\n');
+  await p.waitForFunction(() => /ended/.test(document.querySelectorAll('.run .note')[1].textContent));
+  const notes = await p.$$eval('.run .note', (n) => n.map((x) => x.textContent));
+  assert.deepEqual(notes, ['live: 5 frames, 3 dropped for this page',
+    'live: 3 frames, 4 dropped for this page (the run ended)']);
+  assert.equal(await p.evaluate(() => window.tlodDashboard.data.runs[0].columns.frame.length), 5);
   assert.deepEqual(problems, []);
   await p.close();
   server.closeAllConnections();

@@ -226,7 +226,8 @@ function showScreenshot(run, frame) {
 
 function metaLine(run) {
   const m = run.meta || {};
-  return [m.scene, m.path, m.mode, m.backend, m.surface, m.debug_view ? 'debug view ' + m.debug_view : '',
+  const view = m.debug_view && m.debug_view !== 'none' ? 'debug view ' + m.debug_view : '';
+  return [m.scene, m.path, m.mode, m.backend, m.surface, view,
     m.stopped].filter(Boolean).join(' · ');
 }
 
@@ -274,38 +275,47 @@ function overlayChart(box, runs) {
   chart(box, { title: 'frame time of every run (ms)', x, series: series.concat(budgetSeries(n)) });
 }
 
-/* Live mode: frames from the server's event stream go to a run of their own. */
-function startLive(data, root) {
-  const run = { label: 'live', meta: {}, columns: {}, screenshots: {} };
+/* A run of its own for live frames, with its section and a redraw at most once per animation frame. */
+function liveRun(data, root, meta) {
+  const run = { label: 'live' + (meta.mode ? ': ' + meta.mode : ''), meta, columns: {}, screenshots: {} };
   for (const k of Object.keys(recordColumns({}))) run.columns[k] = [];
   data.runs.push(run);
   const box = el('div', { className: 'charts' });
   root.append(runSection(run), box);
   let charts = null, pending = false;
-  const redraw = () => {
+  run.redraw = () => {
     pending = false;
     if (!charts) charts = runCharts(box, run);
     else runSpecs(run).slice(0, charts.length).forEach((spec, i) => charts[i].setData(specData(spec)));
     run.dropBox.textContent = 'live: ' + run.columns.frame.length + ' frames, ' + (run.dropped || 0) +
-      ' dropped for this page';
+      ' dropped for this page' + (run.ended ? ' (the run ended)' : '');
   };
+  run.add = (rec) => {
+    appendRecord(run, rec);
+    if (!pending) pending = requestAnimationFrame(run.redraw);
+  };
+  return run;
+}
+
+/* Live mode: frames from the server's event stream (tlod play --serve: an event "run" with the settings,
+ * one message per frame, "run" again when the next --compare mode starts, "end" when playing ends). */
+function startLive(data, root) {
   const source = new EventSource(data.config.live);
-  source.onmessage = (e) => {
-    appendRecord(run, JSON.parse(e.data));
-    if (!pending) pending = requestAnimationFrame(redraw);
-  };
-  // tlod play --serve also sends the run's settings first ("run") and "end" when it stops.
+  const live = { run: liveRun(data, root, {}), source };
+  source.onmessage = (e) => live.run.add(JSON.parse(e.data));
   source.addEventListener('run', (e) => {
-    run.meta = JSON.parse(e.data);
-    run.metaBox.textContent = metaLine(run);
+    const meta = JSON.parse(e.data);
+    if (live.run.columns.frame.length) live.run = liveRun(data, root, meta); // the next mode: frames from 0
+    live.run.meta = meta;
+    live.run.metaBox.textContent = metaLine(live.run);
   });
   source.addEventListener('end', (e) => {
     source.close(); // no reconnecting to a server that is done
-    run.dropped = JSON.parse(e.data).dropped;
-    redraw();
-    run.dropBox.textContent += ' (the run ended)';
+    live.run.dropped = JSON.parse(e.data).dropped;
+    live.run.ended = true;
+    live.run.redraw();
   });
-  window.tlodDashboard.live = { run, source };
+  window.tlodDashboard.live = live;
 }
 
 function main() {
