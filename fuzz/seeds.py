@@ -27,7 +27,7 @@ import zlib
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data"
 TARGETS = ["fuzz_gltf", "fuzz_glb", "fuzz_obj", "fuzz_ply", "fuzz_mesh", "fuzz_camera_path", "fuzz_gltf_camera",
-           "fuzz_image"]
+           "fuzz_image", "fuzz_run_trace"]
 MAX_INLINE = 256 * 1024  # larger external buffers are left as they are
 MESH_SEED_MAX = 16 * 1024  # fuzz_mesh: only small meshes (fuzz_mesh.c skips big ones)
 
@@ -155,6 +155,29 @@ def camera_seeds(out):
     (out["fuzz_gltf_camera"] / "still_camera.gltf").write_text(json.dumps(still))
 
 
+def run_trace_seeds(out):
+    """fuzz_run_trace: a trace.json of two frames, cut at several points, and a wrong schema."""
+    frame = {"frame": 0, "time_s": 0, "eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0], "fovy": 45,
+             "near": 0.1, "far": 100, "frame_ms": 2.5, "anim_ms": 0, "scheduler_ms": 0.5,
+             "stage_ms": {"silhouette": 0.1, "metric": 0.1, "levels": 0.1, "morph": 0.1, "strips": 0.1},
+             "backend_cpu_ms": 1, "backend_gpu_ms": -1, "backend_wall_ms": 1.5, "screenshot_ms": 0,
+             "screenshot": "screenshots/frame_00000.png", "patches": 8, "visible": 6, "culled": 2, "strips": 3,
+             "pattern_triangles": 10, "strip_triangles": 4, "triangles": 14, "drawn_triangles": 14,
+             "draw_calls": 0, "effective_epsilon": 1, "level_histogram": [1, 2, 3] + [0] * 8,
+             "objects": [{"name": "o\u00e9", "patches": 8}]}
+    doc = {"schema": "tlod-play-trace/2", "tool": "tlod 1.0.0", "scene": "demo:scene", "mode": "adaptive",
+           "backend": "cpu", "objects": [{"name": "a", "source": "demo:cube", "vertices": 8, "faces": 6,
+                                          "patches": 12}],
+           "frames": [frame, dict(frame, frame=1, screenshot="", backend_gpu_ms=None)],
+           "frames_completed": 2, "stopped": "completed", "wall_s": 0.01}
+    text = json.dumps(doc)
+    d = out["fuzz_run_trace"]
+    (d / "trace.json").write_text(text)
+    for cut in (len(text) // 3, len(text) // 2, len(text) - 40):
+        (d / ("cut_%d.json" % cut)).write_text(text[:cut])
+    (d / "schema1.json").write_text(json.dumps(dict(doc, schema="tlod-play-trace/1")))
+
+
 def mesh_seeds(out):
     """fuzz_mesh: option byte (format in bits 0-1) + file."""
     sources = [(0, out["fuzz_obj"]), (1, out["fuzz_ply"]), (2, out["fuzz_glb"]), (3, out["fuzz_gltf"])]
@@ -240,6 +263,7 @@ def main():
     ply_seeds(out)
     camera_seeds(out)
     image_seeds(out)
+    run_trace_seeds(out)
     for t in TARGETS:
         copy_dir(ROOT / "fuzz" / "seeds" / t, out[t])
     mesh_seeds(out)

@@ -50,7 +50,7 @@ TRACE = obj({"schema": STR, "tool": STR, "scene": STR, "mode": STR, "backend": S
              "fps": NUM, "dt_ms": NUM, "width": INT, "height": INT, "screenshot_every": INT,
              "frames_requested": INT, "frames_completed": INT, "stopped": STR, "wall_s": NUM,
              "objects": ("list", OBJECT_INFO), "frames": ("list", FRAME), "objects_inline": INT,
-             "object_counts_file": STR, "animation": STR, "animation_duration_s": NUM, "warning_count": INT,
+             "object_counts_file": STR, "animation": STR, "animation_duration_s": NUM, "debug_view": STR, "warning_count": INT,
              "warnings": ("list", STR)})
 DIST = obj({k: NUM for k in ("mean", "p50", "p95", "p99", "max", "min")})
 VK_STATS = ("shader_compiles", "shader_cache_hits", "shader_ms", "pipelines", "create_ms", "memory_blocks",
@@ -67,7 +67,7 @@ RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level
 GL_OBJECTS = obj({k: INT for k in ("buffers", "textures", "renderbuffers", "framebuffers", "vertex_arrays", "programs",
                                    "shaders", "queries")})
 SUMMARY = obj({"schema": STR, "status": STR, "error": STR, "tool": STR, "scene": STR, "backend": STR, "renderer": STR, "surface": STR, "path": STR,
-               "animation": STR, "warning_count": INT, "warnings": ("list", STR), "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN),
+               "animation": STR, "debug_view": STR, "warning_count": INT, "warnings": ("list", STR), "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN),
                "resize_at": obj({"frame": INT, "width": INT, "height": INT}), "validate": BOOL,
                "validation_messages": INT, "shader_cache": STR})
 

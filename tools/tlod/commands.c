@@ -10,6 +10,8 @@ static const tlod_command commands[] = {
     {"tessellate", cmd_tessellate, tessellate_usage, "tessellate a mesh on the CPU and write it out"},
     {"info", cmd_info, info_usage, "print mesh statistics and validation findings"},
     {"bench", cmd_bench, bench_usage, "measure preprocessing and CPU evaluation rates"},
+    {"compare", cmd_compare, compare_usage, "compare two play runs; exit 1 when the new one regressed"},
+    {"dashboard", cmd_dashboard, dashboard_usage, "write play runs as one self-contained HTML page of charts"},
 };
 enum { COMMAND_COUNT = sizeof(commands) / sizeof(commands[0]) };
 

@@ -20,9 +20,13 @@ int cmd_play(int argc, char** argv);
 int cmd_tessellate(int argc, char** argv);
 int cmd_info(int argc, char** argv);
 int cmd_bench(int argc, char** argv);
+int cmd_compare(int argc, char** argv);
+int cmd_dashboard(int argc, char** argv);
 void play_usage(FILE* f);
 void tessellate_usage(FILE* f);
 void info_usage(FILE* f);
 void bench_usage(FILE* f);
+void compare_usage(FILE* f);
+void dashboard_usage(FILE* f);
 
 #endif

@@ -16,6 +16,7 @@
 #include "common/strict_number.h"
 #include "play_run.h"
 #include "play_run_folder.h"
+#include "play_serve.h"
 #include "tool_names.h"
 
 /* Everything one `tlod play` holds from set-up to the end. */
@@ -35,9 +36,12 @@ typedef struct play_session {
   const play_trace* done[PLAY_MAX_MODES];
   char run_dirs[PLAY_MAX_MODES][PLAY_PATH_MAX + 32];
   uint32_t run_count;
-  uint32_t frames;    /* of every mode */
-  int lock_fd;        /* the run folder's lock (play_run_folder.h); -1: not held */
-  char failure[1024]; /* the first error of a run that was played: summary.json's "error" */
+  uint32_t frames;     /* of every mode */
+  int lock_fd;         /* the run folder's lock (play_run_folder.h); -1: not held */
+  char failure[1024];  /* the first error of a run that was played: summary.json's "error" */
+  play_server* server; /* --serve: from set-up until playing ends */
+  play_serve_stats serve_stats;
+  bool served;
 } play_session;
 
 static void on_sigint(int sig) {
@@ -145,6 +149,7 @@ static int set_up(play_session* p) {
   if (rc == CLI_OK && !strcmp(p->backend, "vulkan")) rc = shader_cache(p);
   if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, o->surface, p->platform, p->shader_dir);
   if (rc == CLI_OK && o->screenshot_every) rc = alloc_pixels(p);
+  if (rc == CLI_OK) rc = play_server_start(o, &p->server); /* a port in use fails before the folder is made */
   if (rc == CLI_OK) rc = play_make_run_folder(o, p->out_dir, sizeof(p->out_dir), &p->lock_fd);
   return rc;
 }
@@ -165,6 +170,7 @@ static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t f
                       .height = o->height,
                       .frames_requested = frames,
                       .screenshot_every = o->screenshot_every,
+                      .debug_view = play_debug_view_names[o->debug_view],
                       .resize_frame = o->resize ? o->resize_frame : 0,
                       .resize_width = o->resize ? o->resize_w : 0,
                       .resize_height = o->resize ? o->resize_h : 0,
@@ -250,7 +256,8 @@ static int play_modes(play_session* p) {
                   .frames = p->frames,
                   .pixels = p->pixels,
                   .count = o->mode_count,
-                  .tty = !o->quiet && isatty(STDERR_FILENO)};
+                  .tty = !o->quiet && isatty(STDERR_FILENO),
+                  .server = p->server};
   int rc = CLI_OK;
   for (uint32_t k = 0; k < o->mode_count && rc == CLI_OK && (k == 0 || !play_interrupted); k++)
     rc = play_one_mode(p, &run, k);
@@ -270,14 +277,30 @@ static int write_summary(play_session* p, int rc) {
   if (!play_write_summary_text(p->done, p->run_count, p->out_dir, path, err, sizeof(err))) {
     note_failure(p, rc = cli_error(CLI_FAILED, "%s", err));
   }
-  play_outcome outcome = {.status = rc == CLI_OK ? "ok" : "failed", .error = p->failure};
+  play_outcome outcome = {
+      .status = rc == CLI_OK ? "ok" : "failed", .error = p->failure, .serve = p->served ? &p->serve_stats : NULL};
   play_path_join(path, sizeof(path), p->out_dir, "summary.json");
   if (!play_write_summary_json(p->done, p->run_count, p->out_dir, &outcome, path, err, sizeof(err)))
     rc = cli_error(CLI_FAILED, "%s", err);
   return rc;
 }
 
+/* --serve: the streams' end, --serve-linger, then the server's counts for the summary. */
+static void stop_server(play_session* p) {
+  if (!p->server) return;
+  sig_atomic_t interrupted = play_interrupted;
+  play_server_end(p->server, interrupted ? 0.0f : p->o.serve_linger);
+  play_interrupted = interrupted; /* Ctrl-C while lingering stops the server, not the (complete) run */
+  play_server_stop(p->server, &p->serve_stats);
+  p->server = NULL;
+  p->served = true;
+  if (!p->o.quiet)
+    fprintf(stderr, "tlod: live dashboard: %u streams, %llu frames dropped\n", p->serve_stats.streams,
+            (unsigned long long)p->serve_stats.dropped);
+}
+
 static void session_free(play_session* p) {
+  play_server_stop(p->server, NULL); /* set-up failed after the server started */
   for (uint32_t k = 0; k < p->run_count; k++)
     play_trace_free(&p->traces[k]);
   play_scene_destroy_device(&p->scene);
@@ -328,6 +351,7 @@ int cmd_play(int argc, char** argv) {
   catch_sigint(&old);
   rc = set_up(p);
   if (rc == CLI_OK) rc = play_modes(p);
+  stop_server(p); /* Ctrl-C ends --serve-linger */
   sigaction(SIGINT, &old, NULL);
   if (rc == CLI_OK || p->run_count) rc = finish(p, rc);
   bool interrupted = play_interrupted;

@@ -11,6 +11,7 @@
 #include "common/gpu_target.h"
 #include "play_run.h"
 #include "play_run_folder.h"
+#include "play_serve.h"
 #include "tool_names.h"
 
 #if TLOD_HAS_GL || TLOD_HAS_VULKAN
@@ -180,6 +181,13 @@ static int framed_draw(play_run* r, tlod_draw_desc* d, uint32_t n, double* gpu_m
   return CLI_OK;
 }
 
+/* --debug-view: the first four play_debug_views are tlod_debug_view's;
+ * wireframe is the shaded view with edges. */
+static void set_debug_view(tlod_draw_desc* d, play_debug_view v) {
+  d->wireframe = v == PLAY_DEBUG_WIREFRAME;
+  d->debug = d->wireframe ? TLOD_DEBUG_NONE : (tlod_debug_view)v;
+}
+
 /* One draw of every object. Per object: its item's CPU time, triangles and
  * draw calls; the draw's wall time past the items' CPU times (GL: the
  * finish; Vulkan: the submit and the wait for the frame's fence, the GPU
@@ -191,6 +199,7 @@ static int draw_objects(play_run* r, const tlod_view_desc* view, uint32_t n, dou
   for (uint32_t i = 0; i < s->count; i++)
     items[i] = draw_item(s, &s->objects[i]);
   tlod_draw_desc d = {.items = items, .item_count = s->count, .viewport = {0, 0, r->width, r->height}, .finish = true};
+  set_debug_view(&d, r->o->debug_view);
   memcpy(d.view, view->view, sizeof(d.view));
   memcpy(d.proj, view->proj, sizeof(d.proj));
   double t0 = cli_now_ms(), gpu_ms = 0.0;
@@ -289,6 +298,7 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
   sample_resources(r, t);
   if (r->o->screenshot_every && n % r->o->screenshot_every == 0 && (rc = play_screenshot(r, fr, run_start)) != CLI_OK)
     return rc;
+  play_server_frame(r->server, t); /* after the frame's timing and its screenshot: hands over, never waits */
   if (present(r)) t->stopped = "window closed", *stop = true;
   return CLI_OK;
 }
@@ -315,6 +325,7 @@ int play_mode_run(play_run* r, const play_mode* m, play_trace* t) {
   if (!play_trace_digests_open(t, r->run_dir, err, sizeof(err)) ||
       !play_trace_files_open(t, r->run_dir, err, sizeof(err)))
     return cli_error(CLI_FAILED, "%s", err);
+  play_server_run(r->server, t);
   r->first_draw = tlod_device_query_stats(r->scene->device).draws + 1;
   /* Every mode starts at the given size (an earlier one may have resized). */
   if ((r->width != r->o->width || r->height != r->o->height) && (rc = resize(r, r->o->width, r->o->height)) != CLI_OK)

@@ -9,8 +9,11 @@
 #include "common/gpu_target.h"
 #include "common/mesh_load.h"
 #include "play_options.h"
+#include "play_serve.h"
 #include "tesslod/backend.h"
 #include "tool_names.h"
+
+const char* const play_debug_view_names[] = {"none", "levels", "silhouette", "strips", "wireframe", NULL};
 
 void play_usage(FILE* f) {
   fprintf(
@@ -40,6 +43,8 @@ void play_usage(FILE* f) {
       "  --fps F             fixed time step 1/F s per frame (default 60): runs are repeatable\n"
       "  --loop              start the path over at its end (default: hold the last keyframe)\n"
       "  --screenshot-every N  gl, vulkan: write screenshots/frame_NNNNN.png every N frames (from frame 0)\n"
+      "  --debug-view V      gl, vulkan: levels (colour by level) | silhouette | strips (strips in pink)\n"
+      "                      | wireframe (edges over the shading) | none (default); in trace and screenshots\n"
       "  --window            gl, vulkan: draw into a GLFW window (needs DISPLAY) instead of headless\n"
       "  --resize-at N:WxH   resize the framebuffer and viewport to WxH before frame N (every mode)\n"
       "  --validate          vulkan: Vulkan validation layer (with synchronization validation) on; any\n"
@@ -48,6 +53,8 @@ void play_usage(FILE* f) {
       "                      $HOME/.cache/tesslod; a given folder that cannot be made or written is an error)\n"
       "  --out DIR           run folder (default runs/YYYYmmdd-HHMMSS)\n"
       "  -q, --quiet         no progress bar and no summary\n"
+      "  --serve [ADDR:]PORT serve the live dashboard while playing (ADDR default 127.0.0.1; docs/play.md)\n"
+      "  --serve-linger S    keep serving S seconds after playing (default 0: stop at the end)\n"
       "Writes trace.json, trace.csv, chrome_trace.json, summary.json and summary.txt into the run folder.\n"
       "Ctrl-C stops after the current frame, writes what was played and exits with 130.\n",
       cli_demo_names(), tlod_backend_names(), TLOD_MAX_LEVEL, TLOD_MAX_LEVEL);
@@ -166,6 +173,11 @@ static int parse_output(int argc, char** argv, int* i, play_options* o) {
   if (!strcmp(a, "--screenshot-every"))
     return cli_usage_unless((v = cli_value(argc, argv, i)) &&
                             cli_parse_uint(a, v, 1, PLAY_MAX_FRAMES, &o->screenshot_every));
+  if (!strcmp(a, "--debug-view")) {
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, play_debug_view_names)) < 0) return CLI_USAGE;
+    o->debug_view = (play_debug_view)e;
+    return CLI_OK;
+  }
   if (!strcmp(a, "--resize-at")) return cli_usage_unless((v = cli_value(argc, argv, i)) && parse_resize(a, v, o));
   if (!strcmp(a, "--shader-cache")) {
     if (!(o->shader_cache = cli_value(argc, argv, i))) return CLI_USAGE;
@@ -191,6 +203,7 @@ static int parse_argument(int argc, char** argv, int* i, play_options* o) {
   if (rc == CLI_NOT_MINE) rc = parse_lod(argc, argv, i, o);
   if (rc == CLI_NOT_MINE) rc = parse_timing(argc, argv, i, o);
   if (rc == CLI_NOT_MINE) rc = parse_output(argc, argv, i, o);
+  if (rc == CLI_NOT_MINE) rc = play_serve_option(argc, argv, i, o);
   if (rc != CLI_NOT_MINE) return rc;
   if (a[0] == '-' && a[1]) return cli_error(CLI_USAGE, "play: unknown option '%s' (see tlod play --help)", a);
   if (o->scene) return cli_error(CLI_USAGE, "play: unexpected argument '%s' (one scene per run)", a);
@@ -202,10 +215,14 @@ static int parse_argument(int argc, char** argv, int* i, play_options* o) {
 static int check(const play_options* o) {
   if (o->compare && o->mode_given) return cli_error(CLI_USAGE, "play: give --mode or --compare, not both");
   if (o->frames && o->duration > 0.0f) return cli_error(CLI_USAGE, "play: give --frames or --duration, not both");
+  if (o->serve_linger > 0.0f && !o->serve) return cli_error(CLI_USAGE, "--serve-linger: needs --serve");
   bool image = !o->backend || gpu_backend(o->backend);
   if (!image && o->screenshot_every)
     return cli_error(CLI_USAGE,
                      "--screenshot-every: the %s backend draws no image (screenshots need --backend gl or vulkan)",
+                     o->backend);
+  if (!image && o->debug_view)
+    return cli_error(CLI_USAGE, "--debug-view: the %s backend draws no image (needs --backend gl or vulkan)",
                      o->backend);
   if (!image && o->window)
     return cli_error(CLI_USAGE, "--window: the %s backend draws no image (needs --backend gl or vulkan)", o->backend);

@@ -20,6 +20,18 @@ typedef struct play_mode {
   char dir[24];   /* "adaptive", "uniform-3", "flat" */
 } play_mode;
 
+/* --debug-view: none (shaded), the backend's debug colourings
+ * (tlod_debug_view, in its order), or wireframe (shaded, edges drawn over). */
+typedef enum play_debug_view {
+  PLAY_DEBUG_NONE,
+  PLAY_DEBUG_LEVELS,
+  PLAY_DEBUG_SILHOUETTE,
+  PLAY_DEBUG_STRIPS,
+  PLAY_DEBUG_WIREFRAME
+} play_debug_view;
+/* "none", "levels", "silhouette", "strips", "wireframe", NULL: by play_debug_view. */
+extern const char* const play_debug_view_names[];
+
 typedef struct play_options {
   const char* scene;   /* NULL: the built-in demo scene */
   const char* backend; /* NULL: gl when a context can be made, else cpu; "vulkan" never falls back */
@@ -39,6 +51,7 @@ typedef struct play_options {
   const char* animation; /* NULL: the first; "none"; a name or an index */
   bool loop;
   uint32_t screenshot_every;
+  play_debug_view debug_view;
   bool window;
   bool validate;            /* vulkan: the validation layer on; any message fails the run */
   const char* shader_cache; /* vulkan: --shader-cache DIR or "off"; NULL: the default folder */
@@ -46,6 +59,8 @@ typedef struct play_options {
   uint32_t resize_frame, resize_w, resize_h;
   const char* out;
   bool quiet;
+  const char* serve;  /* --serve [ADDR:]PORT (play_serve.h); NULL: none */
+  float serve_linger; /* seconds the server stays up after playing */
 } play_options;
 
 /* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */

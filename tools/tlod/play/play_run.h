@@ -9,6 +9,7 @@
 #include "play_trace.h"
 
 typedef struct tlod_platform tlod_platform;
+typedef struct play_server play_server;
 
 typedef struct play_run {
   const play_options* o;
@@ -23,6 +24,7 @@ typedef struct play_run {
   uint32_t index, count; /* of the modes, for the progress bar */
   uint64_t first_draw;   /* the device's number of this mode's first draw (gpu times of earlier draws are not its) */
   bool tty;
+  play_server* server;   /* --serve; NULL: none */
   tlod_draw_item* items; /* one per object, reused every frame; freed by the caller */
   /* --scene-budget: the group update's arrays, one entry per object, reused
    * every frame; freed by the caller. */

@@ -3,11 +3,8 @@
 #ifndef TLOD_TOOLS_PLAY_SUMMARY_H
 #define TLOD_TOOLS_PLAY_SUMMARY_H
 
+#include "common/distribution.h"
 #include "play_trace.h"
-
-typedef struct distribution {
-  double mean, p50, p95, p99, max, min;
-} distribution;
 
 typedef struct run_summary {
   uint32_t frames;

@@ -120,6 +120,7 @@ typedef struct play_trace {
   uint32_t width, height;
   uint32_t frames_requested;
   uint32_t screenshot_every;                          /* 0: none */
+  const char* debug_view;                             /* --debug-view: "none", "levels", ... */
   uint32_t resize_frame, resize_width, resize_height; /* --resize-at; resize_width 0: none */
   bool validate;                                      /* --validate (vulkan) */
   const char* shader_cache;                           /* vulkan: the SPIR-V cache folder, "" none */
@@ -192,8 +193,9 @@ void play_resources_sample(play_trace* t, bool gl);
 /* The summary of runs (one per mode) as JSON and as the text printed at the
  * end; status "ok", or "failed" with the first error of the run. */
 typedef struct play_outcome {
-  const char* status; /* "ok" or "failed" */
-  const char* error;  /* the first error, "" when ok */
+  const char* status;                   /* "ok" or "failed" */
+  const char* error;                    /* the first error, "" when ok */
+  const struct play_serve_stats* serve; /* --serve: the server's counts (play_serve.h); NULL: none */
 } play_outcome;
 bool play_write_summary_json(const play_trace* const* runs, uint32_t run_count, const char* out_dir,
                              const play_outcome* outcome, const char* path, char* error, size_t error_size);

@@ -10,6 +10,9 @@
 /* trace.json: the settings and "frames": [ ... ], then the results (frames_completed, stopped, wall_s). */
 void trace_json_head(json_writer* w, FILE* f, const play_trace* t);
 void trace_json_frames(json_writer* w, const play_trace* t);
+/* Window frame n's record (one element of "frames"), and the settings keys of the head. */
+void trace_json_frame(json_writer* w, const play_trace* t, uint32_t n);
+void trace_json_settings(json_writer* w, const play_trace* t);
 bool trace_json_tail(json_writer* w, const play_trace* t);
 /* "warning_count" and "warnings" (one string per line of text) into w. */
 void json_warnings(json_writer* w, const char* text, uint32_t count);

@@ -1,6 +1,7 @@
 /* tlod play -- summary.json: every run (mode) summed up (schema
  * tlod-play-summary/1, docs/play.md). */
 #include "common/lod_json.h"
+#include "play_serve.h"
 #include "play_summary.h"
 #include "play_trace_format.h"
 #include "tlod_atomic_file.h"
@@ -80,6 +81,7 @@ static bool summary_json(FILE* f, const void* data) {
   json_string(&w, "schema", PLAY_SUMMARY_SCHEMA);
   json_string(&w, "status", j->outcome->status);
   json_string(&w, "error", j->outcome->error);
+  if (j->outcome->serve) play_serve_stats_json(&w, "serve", j->outcome->serve);
   json_string(&w, "tool", t0->tool_version);
   json_string(&w, "scene", t0->scene);
   json_string(&w, "backend", t0->backend);
@@ -87,6 +89,7 @@ static bool summary_json(FILE* f, const void* data) {
   json_string(&w, "surface", t0->surface);
   json_string(&w, "path", t0->path);
   json_string(&w, "animation", t0->animation ? t0->animation : "");
+  json_string(&w, "debug_view", t0->debug_view);
   json_warnings(&w, t0->warnings, t0->warning_count);
   json_number(&w, "fps", t0->fps);
   json_uint(&w, "width", t0->width);

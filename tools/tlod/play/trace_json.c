@@ -30,8 +30,8 @@ static void json_vec(json_writer* w, const char* key, const float* v, int n) {
   json_array_end(w);
 }
 
-/* The settings block of trace.json. */
-static void json_settings(json_writer* w, const play_trace* t) {
+/* The settings block of trace.json (also the live server's run.json). */
+void trace_json_settings(json_writer* w, const play_trace* t) {
   json_string(w, "tool", t->tool_version);
   json_string(w, "scene", t->scene);
   json_string(w, "mode", t->mode);
@@ -50,6 +50,7 @@ static void json_settings(json_writer* w, const play_trace* t) {
   json_uint(w, "width", t->width);
   json_uint(w, "height", t->height);
   json_uint(w, "screenshot_every", t->screenshot_every);
+  json_string(w, "debug_view", t->debug_view);
   json_uint(w, "frames_requested", t->frames_requested);
   json_array_begin(w, "objects");
   for (uint32_t i = 0; i < t->object_count; i++) {
@@ -79,7 +80,7 @@ void trace_json_head(json_writer* w, FILE* f, const play_trace* t) {
   json_begin(w, f);
   json_object_begin(w, NULL);
   json_string(w, "schema", PLAY_TRACE_SCHEMA);
-  json_settings(w, t);
+  trace_json_settings(w, t);
   json_array_begin(w, "frames");
 }
 
@@ -112,42 +113,46 @@ static void json_frame_objects(json_writer* w, const play_trace* t, uint32_t n) 
 }
 
 void trace_json_frames(json_writer* w, const play_trace* t) {
-  for (uint32_t n = 0; n < t->window_count; n++) {
-    const play_frame* fr = &t->frames[n];
-    play_frame_totals tot;
-    play_frame_totals_of(t, n, &tot);
-    json_object_begin(w, NULL);
-    json_uint(w, "frame", fr->frame);
-    json_number(w, "time_s", fr->time_s);
-    json_vec(w, "eye", fr->eye, 3);
-    json_vec(w, "target", fr->target, 3);
-    json_vec(w, "up", fr->up, 3);
-    json_number(w, "fovy", fr->fovy);
-    json_number(w, "near", fr->near_z);
-    json_number(w, "far", fr->far_z);
-    json_number(w, "frame_ms", fr->frame_ms);
-    json_number(w, "anim_ms", fr->anim_ms);
-    json_number(w, "scheduler_ms", tot.scheduler_ms);
-    json_stage_ms(w, "stage_ms", tot.stage_ms);
-    json_number(w, "backend_cpu_ms", tot.backend_cpu_ms);
-    json_number(w, "backend_gpu_ms", tot.backend_gpu_ms);
-    json_number(w, "backend_wall_ms", tot.backend_wall_ms);
-    json_number(w, "screenshot_ms", fr->screenshot_ms);
-    json_string(w, "screenshot", fr->screenshot);
-    json_uint(w, "patches", tot.patches);
-    json_uint(w, "visible", tot.patches - tot.culled);
-    json_uint(w, "culled", tot.culled);
-    json_uint(w, "strips", tot.strips);
-    json_uint(w, "pattern_triangles", tot.pattern_triangles);
-    json_uint(w, "strip_triangles", tot.strip_triangles);
-    json_uint(w, "triangles", tot.pattern_triangles + tot.strip_triangles);
-    json_uint(w, "drawn_triangles", tot.drawn_triangles);
-    json_uint(w, "draw_calls", tot.draw_calls);
-    json_number(w, "effective_epsilon", tot.effective_epsilon);
-    json_level_histogram(w, "level_histogram", tot.level_histogram, PLAY_LEVELS);
-    json_frame_objects(w, t, n);
-    json_object_end(w);
-  }
+  for (uint32_t n = 0; n < t->window_count; n++)
+    trace_json_frame(w, t, n);
+}
+
+/* One record: also what the live server streams (play_serve_stream.c). */
+void trace_json_frame(json_writer* w, const play_trace* t, uint32_t n) {
+  const play_frame* fr = &t->frames[n];
+  play_frame_totals tot;
+  play_frame_totals_of(t, n, &tot);
+  json_object_begin(w, NULL);
+  json_uint(w, "frame", fr->frame);
+  json_number(w, "time_s", fr->time_s);
+  json_vec(w, "eye", fr->eye, 3);
+  json_vec(w, "target", fr->target, 3);
+  json_vec(w, "up", fr->up, 3);
+  json_number(w, "fovy", fr->fovy);
+  json_number(w, "near", fr->near_z);
+  json_number(w, "far", fr->far_z);
+  json_number(w, "frame_ms", fr->frame_ms);
+  json_number(w, "anim_ms", fr->anim_ms);
+  json_number(w, "scheduler_ms", tot.scheduler_ms);
+  json_stage_ms(w, "stage_ms", tot.stage_ms);
+  json_number(w, "backend_cpu_ms", tot.backend_cpu_ms);
+  json_number(w, "backend_gpu_ms", tot.backend_gpu_ms);
+  json_number(w, "backend_wall_ms", tot.backend_wall_ms);
+  json_number(w, "screenshot_ms", fr->screenshot_ms);
+  json_string(w, "screenshot", fr->screenshot);
+  json_uint(w, "patches", tot.patches);
+  json_uint(w, "visible", tot.patches - tot.culled);
+  json_uint(w, "culled", tot.culled);
+  json_uint(w, "strips", tot.strips);
+  json_uint(w, "pattern_triangles", tot.pattern_triangles);
+  json_uint(w, "strip_triangles", tot.strip_triangles);
+  json_uint(w, "triangles", tot.pattern_triangles + tot.strip_triangles);
+  json_uint(w, "drawn_triangles", tot.drawn_triangles);
+  json_uint(w, "draw_calls", tot.draw_calls);
+  json_number(w, "effective_epsilon", tot.effective_epsilon);
+  json_level_histogram(w, "level_histogram", tot.level_histogram, PLAY_LEVELS);
+  json_frame_objects(w, t, n);
+  json_object_end(w);
 }
 
 /* The results come last: they are known only when the run ends. */
