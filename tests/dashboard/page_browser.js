@@ -130,7 +130,9 @@ async function checkPicture(browser, png) {
   }, 'data:image/png;base64,' + png.toString('base64'));
   await page.close();
   assert.ok(s.ink > 0.03, `the page's picture is nearly blank (${s.ink})`);
-  assert.ok(s.blue > 200, `no chart line in the picture (${s.blue} pixels of #1f77b4)`);
+  // A drawn line is hundreds of pixels of its colour, none without charts; how many depends on the run's frame
+  // times (a flat line under the others' keeps fewer exact-colour pixels: 192 seen on a loaded machine).
+  assert.ok(s.blue > 60, `no chart line in the picture (${s.blue} pixels of #1f77b4)`);
 }
 
 function checkBadFolders(run) {
