@@ -79,7 +79,10 @@ TEST(test_cut_everywhere) {
     CHECK_MSG(r.frame_count == want, "cut %zu: %zu frames, want %zu", cut, r.frame_count, want);
     CHECK_MSG(r.truncated, "cut %zu: not marked truncated", cut);
     char reason[64];
-    snprintf(reason, sizeof reason, "T: truncated after frame %d", (int)want - 1);
+    if (want)
+      snprintf(reason, sizeof reason, "T: truncated after frame %d", (int)want - 1);
+    else
+      snprintf(reason, sizeof reason, "T: truncated before its first frame");
     CHECK_MSG(!strcmp(r.truncated_reason, reason), "cut %zu: %s", cut, r.truncated_reason);
     run_free(&r);
   }

@@ -220,7 +220,10 @@ static bool note_truncation(run* r, const char* name, char* err, size_t n) {
   char line[1200];
   long long last = r->frame_count ? (long long)r->column[RUN_COL_FRAME][r->frame_count - 1] : -1;
   if (r->frame_count && isnan(r->column[RUN_COL_FRAME][r->frame_count - 1])) last = (long long)r->frame_count - 1;
-  snprintf(line, sizeof line, "%s: truncated after frame %lld", name, last);
+  if (r->frame_count)
+    snprintf(line, sizeof line, "%s: truncated after frame %lld", name, last);
+  else
+    snprintf(line, sizeof line, "%s: truncated before its first frame", name);
   r->truncated = true;
   r->truncated_reason = run_strdup(line);
   return r->truncated_reason ? true : run_fail(err, n, "%s: out of memory", name);
