@@ -1,7 +1,7 @@
 /* fuzz_run_trace.c -- the run reader (tools/tlod/common/run_read.h) on trace.json text: the
  * tolerant JSON reader (json_read.c) and the frame extraction. Contract: an answer, never a
  * crash; a refusal names the file; a loaded run has every string set and a truncated one says
- * after which frame. */
+ * after which frame (or that it ends before the first). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +26,9 @@ static void check_run(const run* r) {
     check(r->screenshot[i] != NULL, "a NULL screenshot path");
   for (size_t i = 0; i < r->object_count; i++)
     check(r->objects[i].name && r->objects[i].source, "object strings");
-  check(!r->truncated || strstr(r->truncated_reason, "trace.json: truncated after frame "), "truncation reason");
+  check(!r->truncated || strstr(r->truncated_reason, r->frame_count ? "trace.json: truncated after frame "
+                                                                    : "trace.json: truncated before its first frame"),
+        "truncation reason");
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
