@@ -14,25 +14,12 @@
  */
 #include <GL/gl.h>
 #include <GL/glext.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "tesslod/backend.h"
-#include "tesslod/lod.h"
+#include "sample_scene.h"
 #include "tlod_platform.h"
-
-/* The sphere's material: tesslod calls it for every fragment it draws.
- * f.attributes[0] is the mesh attribute TEXCOORD_0 (u, v). */
-static const char* const checker_hook =
-    "vec4 tlod_shade(tlod_fragment f) {\n"
-    "  vec2 cell = floor(f.attributes[0].xy * vec2(8.0, 4.0));\n"
-    "  vec3 base = mod(cell.x + cell.y, 2.0) < 0.5 ? vec3(0.95, 0.7, 0.1) : vec3(0.1, 0.4, 0.95);\n"
-    "  float lit = 0.25 + 0.75 * max(dot(f.normal, f.light_dir), 0.0);\n"
-    "  float rim = pow(1.0 - max(dot(f.normal, normalize(f.eye - f.position)), 0.0), 4.0);\n"
-    "  return vec4(base * lit + vec3(0.6 * rim), 1.0);\n"
-    "}\n";
 
 /* The engine's own flat-colour program: positions already in clip space. */
 static const char* const flat_vs = "#version 450 core\n"
@@ -62,21 +49,6 @@ typedef struct engine {
   GLint u_color;
   int size;
 } engine;
-
-typedef struct sphere_mesh {
-  float *positions, *uvs;
-  uint32_t *indices, vertex_count, index_count;
-} sphere_mesh;
-
-typedef struct scene {
-  tlod_context* ctx;
-  tlod_patterns* patterns;
-  tlod_device* dev;
-  tlod_mesh* mesh;
-  tlod_surface* surface;
-  tlod_device_surface* dsurf;
-  tlod_scheduler* scheduler;
-} scene;
 
 static bool parse_options(int argc, char** argv, options* o) {
   *o = (options){.out = "engine_gl.png", .frames = 3, .size = 256};
@@ -181,142 +153,16 @@ static void engine_draw(const engine* e, GLint first, GLsizei count, const float
   glDrawArrays(GL_TRIANGLES, first, count);
 }
 
-/* ---- the mesh: a lat-long sphere with TEXCOORD_0 ---------------------- */
-
-/* (nlat + 1) x (nlon + 1) vertices: the last column repeats the first (a UV
- * seam) and each pole is a row of copies, so every vertex has its own UV.
- * Seam and pole copies share bitwise-equal positions, which tesslod welds
- * for adjacency (tlod_mesh_desc.weld_epsilon 0). */
-static bool sphere_make(sphere_mesh* m, uint32_t nlat, uint32_t nlon) {
-  const double pi = 3.14159265358979323846;
-  m->vertex_count = (nlat + 1) * (nlon + 1);
-  m->index_count = 6 * nlon * (nlat - 1);
-  m->positions = malloc(sizeof(float) * 3 * m->vertex_count);
-  m->uvs = malloc(sizeof(float) * 2 * m->vertex_count);
-  m->indices = malloc(sizeof(uint32_t) * m->index_count);
-  if (!m->positions || !m->uvs || !m->indices) return false;
-  for (uint32_t i = 0; i <= nlat; ++i)
-    for (uint32_t j = 0; j <= nlon; ++j) {
-      double th = pi * i / nlat, ph = 2 * pi * (j % nlon) / nlon;
-      bool pole = i == 0 || i == nlat;
-      float* p = m->positions + 3 * (i * (nlon + 1) + j);
-      p[0] = pole ? 0.0f : (float)(sin(th) * cos(ph));
-      p[1] = pole ? 0.0f : (float)(sin(th) * sin(ph));
-      p[2] = (float)cos(th);
-      m->uvs[2 * (i * (nlon + 1) + j)] = (float)j / (float)nlon;
-      m->uvs[2 * (i * (nlon + 1) + j) + 1] = (float)i / (float)nlat;
-    }
-  uint32_t* ix = m->indices;
-  for (uint32_t i = 0; i < nlat; ++i)
-    for (uint32_t j = 0; j < nlon; ++j) {
-      uint32_t a = i * (nlon + 1) + j, b = a + 1, c = a + nlon + 1, d = c + 1;
-      if (i != 0) *ix++ = a, *ix++ = c, *ix++ = b; /* no triangle collapsed on a pole */
-      if (i != nlat - 1) *ix++ = b, *ix++ = c, *ix++ = d;
-    }
-  return true;
-}
-
-static void sphere_free(sphere_mesh* m) {
-  free(m->positions);
-  free(m->uvs);
-  free(m->indices);
-}
-
-/* ---- tesslod ---------------------------------------------------------- */
-
-static bool check(tlod_result r, const scene* s, const char* call) {
-  if (r == TLOD_SUCCESS) return true;
-  fprintf(stderr, "engine_gl: %s: %s: %s\n", call, tlod_result_string(r),
-          s->ctx ? tlod_context_last_error(s->ctx) : "");
-  return false;
-}
-
-static bool scene_init(scene* s, const sphere_mesh* m) {
-  memset(s, 0, sizeof *s);
-  tlod_attribute_desc uv = {.data = m->uvs, .components = 2, .name = "TEXCOORD_0"};
-  tlod_mesh_desc md = {.positions = m->positions,
-                       .vertex_count = m->vertex_count,
-                       .indices = m->indices,
-                       .index_count = m->index_count,
-                       .normal_mode = TLOD_NORMALS_ANGLE,
-                       .label = "uv sphere",
-                       .attributes = &uv,
-                       .attribute_count = 1};
-  tlod_device_desc dd = {.backend = "gl",
-                         .gl = {.surface_types = 1u << TLOD_SURFACE_PN, .fragment_hook = checker_hook},
-                         .label = "engine_gl"};
-  return check(tlod_context_create(NULL, &s->ctx), s, "tlod_context_create") &&
-         check(tlod_patterns_create(s->ctx, &(tlod_patterns_desc){.max_level = 5}, &s->patterns), s,
-               "tlod_patterns_create") &&
-         check((dd.patterns = s->patterns, tlod_device_create(s->ctx, &dd, &s->dev)), s, "tlod_device_create") &&
-         check(tlod_mesh_create(s->ctx, &md, &s->mesh), s, "tlod_mesh_create") &&
-         check(tlod_surface_create(s->ctx, s->mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PN}, &s->surface), s,
-               "tlod_surface_create") &&
-         check(tlod_device_create_surface(s->dev, s->surface, &s->dsurf), s, "tlod_device_create_surface") &&
-         check(tlod_scheduler_create(s->ctx, s->surface, s->patterns, &(tlod_scheduler_desc){.epsilon_px = 1.0f},
-                                     &s->scheduler),
-               s, "tlod_scheduler_create");
-}
-
-/* Every destroy takes NULL (a half-made scene frees what it has). */
-static void scene_free(scene* s) {
-  tlod_scheduler_destroy(s->scheduler);
-  tlod_device_destroy_surface(s->dev, s->dsurf);
-  tlod_surface_destroy(s->surface);
-  tlod_mesh_destroy(s->mesh);
-  tlod_device_destroy(s->dev);
-  tlod_patterns_destroy(s->patterns);
-  tlod_context_destroy(s->ctx);
-}
-
-/* ---- camera (column-major, GL conventions) ---------------------------- */
-
-static void look_at(const float eye[3], float m[16]) {
-  float f[3] = {-eye[0], -eye[1], -eye[2]}, up[3] = {0, 0, 1}; /* looking at the origin, z up */
-  float fl = sqrtf(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-  for (int k = 0; k < 3; ++k)
-    f[k] /= fl;
-  float s[3] = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
-  float sl = sqrtf(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-  for (int k = 0; k < 3; ++k)
-    s[k] /= sl;
-  float u[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
-  memset(m, 0, 16 * sizeof *m);
-  for (int k = 0; k < 3; ++k)
-    m[4 * k] = s[k], m[4 * k + 1] = u[k], m[4 * k + 2] = -f[k];
-  m[12] = -(s[0] * eye[0] + s[1] * eye[1] + s[2] * eye[2]);
-  m[13] = -(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]);
-  m[14] = f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2];
-  m[15] = 1;
-}
-
-static void perspective(float fovy, float n, float fa, float p[16]) {
-  float F = 1.0f / tanf(fovy / 2);
-  memset(p, 0, 16 * sizeof *p);
-  p[0] = F, p[5] = F, p[10] = (fa + n) / (n - fa), p[11] = -1, p[14] = 2 * fa * n / (n - fa);
-}
-
-/* The camera circles the sphere at distance 3.5, a little above it. */
-static tlod_view_desc camera_at_frame(int frame, int size) {
-  tlod_view_desc v = {.viewport_width = (uint32_t)size, .viewport_height = (uint32_t)size};
-  float a = 0.4f * (float)frame;
-  look_at((float[3]){3.4f * cosf(a), 3.4f * sinf(a), 0.8f}, v.view);
-  perspective(0.785398f, 0.1f, 20.0f, v.proj);
-  return v;
-}
-
 /* ---- the frame -------------------------------------------------------- */
 
 static const float floor_green[4] = {0.1f, 0.8f, 0.2f, 1}, overlay_red[4] = {0.9f, 0.1f, 0.1f, 1};
 
-static bool frame(const engine* e, const scene* s, int index, uint64_t* triangles) {
-  tlod_view_desc v = camera_at_frame(index, e->size);
-  tlod_frame_desc fd = {.views = &v, .view_count = 1, .dt_ms = 16.7f};
-  if (!check(tlod_scheduler_update(s->scheduler, &fd), s, "tlod_scheduler_update")) return false;
-  tlod_draw_item item = {.surface = s->dsurf, .draw_list = tlod_scheduler_draw_list(s->scheduler, 0)};
-  tlod_draw_desc dd = {.items = &item, .item_count = 1, .viewport = {0, 0, (uint32_t)e->size, (uint32_t)e->size}};
-  memcpy(dd.view, v.view, sizeof dd.view);
-  memcpy(dd.proj, v.proj, sizeof dd.proj);
+/* The camera circles the sphere, a little above it, 0.4 radians a frame. */
+static bool frame(const engine* e, sample_scene* s, int index, uint64_t* triangles) {
+  tlod_view_desc v = sample_orbit_camera(0.4f * (float)index, 3.4f, 0.8f, (uint32_t)e->size, (uint32_t)e->size);
+  tlod_draw_item item;
+  tlod_draw_desc dd;
+  if (!sample_scene_plan(s, &v, 16.7f, &item, &dd, "engine_gl")) return false;
 
   glBindFramebuffer(GL_FRAMEBUFFER, e->fbo); /* the engine's pass */
   glViewport(0, 0, e->size, e->size);
@@ -324,7 +170,7 @@ static bool frame(const engine* e, const scene* s, int index, uint64_t* triangle
   glClearColor(0.08f, 0.08f, 0.1f, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   engine_draw(e, 0, 6, floor_green);
-  if (!check(tlod_device_draw(s->dev, &dd), s, "tlod_device_draw")) return false;
+  if (!sample_check(tlod_device_draw(s->dev, &dd), s, "tlod_device_draw", "engine_gl")) return false;
   engine_draw(e, 6, 3, overlay_red); /* the engine's program and VAO are still bound: tesslod restored them */
   *triangles = tlod_device_query_stats(s->dev).triangles;
   return glGetError() == GL_NO_ERROR;
@@ -351,12 +197,15 @@ static bool write_png(const engine* e, const char* path) {
   return ok;
 }
 
-static bool run(const options* o, const sphere_mesh* m) {
+static bool run(const options* o, const sample_mesh* m) {
   engine e;
-  scene s = {0};
+  sample_scene s = {0};
+  tlod_device_desc dd = {.backend = "gl",
+                         .gl = {.surface_types = 1u << TLOD_SURFACE_PN, .fragment_hook = sample_checker_hook},
+                         .label = "engine_gl"};
   bool ok = engine_init(&e, o->size);
   if (!ok) fprintf(stderr, "engine_gl: the engine's own GL setup failed\n");
-  ok = ok && scene_init(&s, m);
+  ok = ok && sample_scene_init(&s, m, dd, "engine_gl");
   for (int f = 0; ok && f < o->frames; ++f) {
     uint64_t triangles = 0;
     ok = frame(&e, &s, f, &triangles);
@@ -364,7 +213,7 @@ static bool run(const options* o, const sphere_mesh* m) {
   }
   ok = ok && write_png(&e, o->out);
   if (ok) printf("wrote %s (%dx%d)\n", o->out, o->size, o->size);
-  scene_free(&s);
+  sample_scene_free(&s);
   engine_free(&e);
   return ok;
 }
@@ -378,9 +227,9 @@ int main(int argc, char** argv) {
     fprintf(stderr, "engine_gl: no GL context: %s\n", err);
     return 1;
   }
-  sphere_mesh m = {0};
-  bool ok = sphere_make(&m, 6, 12) && run(&o, &m);
-  sphere_free(&m);
+  sample_mesh m;
+  bool ok = sample_sphere_make(&m, 6, 12) && run(&o, &m);
+  sample_mesh_free(&m);
   tlod_platform_destroy(p);
   return ok ? 0 : 1;
 }
