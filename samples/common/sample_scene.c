@@ -98,23 +98,28 @@ bool sample_check(tlod_result r, const sample_scene* s, const char* call, const 
   return false;
 }
 
-static bool make_surface(sample_scene* s, const sample_mesh* m, const char* who) {
-  tlod_attribute_desc uv = {.data = m->uvs, .components = 2, .name = "TEXCOORD_0"};
-  tlod_mesh_desc md = {.positions = m->positions,
-                       .vertex_count = m->vertex_count,
-                       .indices = m->indices,
-                       .index_count = m->index_count,
-                       .normal_mode = TLOD_NORMALS_ANGLE,
-                       .label = "sphere",
-                       .attributes = &uv,
-                       .attribute_count = 1};
-  tlod_surface_desc sd = {.type = TLOD_SURFACE_PN, .label = "sphere"};
-  return sample_check(tlod_mesh_create(s->ctx, &md, &s->mesh), s, "tlod_mesh_create", who) &&
+tlod_mesh_desc sample_mesh_desc(const sample_mesh* m, tlod_attribute_desc* uv) {
+  *uv = (tlod_attribute_desc){.data = m->uvs, .components = 2, .name = "TEXCOORD_0"};
+  return (tlod_mesh_desc){.positions = m->positions,
+                          .vertex_count = m->vertex_count,
+                          .indices = m->indices,
+                          .index_count = m->index_count,
+                          .normal_mode = TLOD_NORMALS_ANGLE,
+                          .label = "sphere",
+                          .attributes = uv,
+                          .attribute_count = 1};
+}
+
+/* PN needs triangles: a mesh with quads becomes a Phong surface. */
+static bool make_surface(sample_scene* s, const tlod_mesh_desc* md, const char* who) {
+  bool quads = md->face_type == TLOD_FACE_QUADS || md->face_type == TLOD_FACE_MIXED;
+  tlod_surface_desc sd = {.type = quads ? TLOD_SURFACE_PHONG : TLOD_SURFACE_PN, .label = md->label};
+  return sample_check(tlod_mesh_create(s->ctx, md, &s->mesh), s, "tlod_mesh_create", who) &&
          sample_check(tlod_surface_create(s->ctx, s->mesh, &sd, &s->surface), s, "tlod_surface_create", who) &&
          sample_check(tlod_device_create_surface(s->dev, s->surface, &s->dsurf), s, "tlod_device_create_surface", who);
 }
 
-bool sample_scene_init(sample_scene* s, const sample_mesh* m, tlod_device_desc device, const char* who) {
+bool sample_scene_init(sample_scene* s, const tlod_mesh_desc* md, tlod_device_desc device, const char* who) {
   memset(s, 0, sizeof *s);
   tlod_scheduler_desc sd = {.epsilon_px = 1.0f};
   if (!sample_check(tlod_context_create(NULL, &s->ctx), s, "tlod_context_create", who) ||
@@ -123,7 +128,7 @@ bool sample_scene_init(sample_scene* s, const sample_mesh* m, tlod_device_desc d
     return false;
   device.patterns = s->patterns;
   return sample_check(tlod_device_create(s->ctx, &device, &s->dev), s, "tlod_device_create", who) &&
-         make_surface(s, m, who) &&
+         make_surface(s, md, who) &&
          sample_check(tlod_scheduler_create(s->ctx, s->surface, s->patterns, &sd, &s->scheduler), s,
                       "tlod_scheduler_create", who);
 }

@@ -28,6 +28,9 @@ typedef struct sample_mesh {
 } sample_mesh;
 bool sample_sphere_make(sample_mesh* m, uint32_t nlat, uint32_t nlon);
 void sample_mesh_free(sample_mesh* m);
+/* m's mesh desc (angle-weighted normals computed by tesslod, *uv its
+ * TEXCOORD_0); points into m and uv. */
+tlod_mesh_desc sample_mesh_desc(const sample_mesh* m, tlod_attribute_desc* uv);
 
 /* A camera at `distance` from the origin, `height` above it, at `angle`
  * radians around z, looking at the origin; 45 degree vertical field of view,
@@ -45,10 +48,11 @@ typedef struct sample_scene {
   tlod_scheduler* scheduler;
 } sample_scene;
 
-/* Makes every object of *s (zeroed first) for mesh m as a PN surface, the
+/* Makes every object of *s (zeroed first) for mesh *md as a PN surface (a
+ * Phong one when it has quads: the device must link that type), the
  * device from *device (its .patterns is set here). false with the reason
  * printed after `who`; sample_scene_free frees what was made. */
-bool sample_scene_init(sample_scene* s, const sample_mesh* m, tlod_device_desc device, const char* who);
+bool sample_scene_init(sample_scene* s, const tlod_mesh_desc* md, tlod_device_desc device, const char* who);
 void sample_scene_free(sample_scene* s);
 
 /* Plans the frame of view v and fills *item and *draw (items = item) for

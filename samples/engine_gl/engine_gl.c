@@ -203,9 +203,11 @@ static bool run(const options* o, const sample_mesh* m) {
   tlod_device_desc dd = {.backend = "gl",
                          .gl = {.surface_types = 1u << TLOD_SURFACE_PN, .fragment_hook = sample_checker_hook},
                          .label = "engine_gl"};
+  tlod_attribute_desc uv;
+  tlod_mesh_desc md = sample_mesh_desc(m, &uv);
   bool ok = engine_init(&e, o->size);
   if (!ok) fprintf(stderr, "engine_gl: the engine's own GL setup failed\n");
-  ok = ok && sample_scene_init(&s, m, dd, "engine_gl");
+  ok = ok && sample_scene_init(&s, &md, dd, "engine_gl");
   for (int f = 0; ok && f < o->frames; ++f) {
     uint64_t triangles = 0;
     ok = frame(&e, &s, f, &triangles);

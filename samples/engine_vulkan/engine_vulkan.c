@@ -548,7 +548,9 @@ static bool run(engine* e, const options* o, const sample_mesh* m) {
                             .surface_types = 1u << TLOD_SURFACE_PN,
                             .fragment_hook = sample_checker_hook};
   sample_scene sc;
-  bool ok = sample_scene_init(&sc, m, (tlod_device_desc){.backend = "vulkan", .vk = vk}, "engine_vulkan");
+  tlod_attribute_desc uv;
+  tlod_mesh_desc md = sample_mesh_desc(m, &uv);
+  bool ok = sample_scene_init(&sc, &md, (tlod_device_desc){.backend = "vulkan", .vk = vk}, "engine_vulkan");
   for (int f = 0; ok && f < o->frames; ++f) {
     uint64_t triangles = 0;
     ok = frame(e, &sc, f, &triangles);

@@ -10,6 +10,8 @@
  *     --object FX FY R G B  the 5x5 box of pixels around (FX, FY) holds
  *                           no pixel within 40 of R G B (the background)
  *                           and has varying colours (shading, not a flat fill)
+ *     --not FX FY R G B     the pixel at (FX, FY) is not within 40 of R G B
+ *                           (a flat-shaded object over that background)
  *     --two-tone FX FY      in the central quarter box around (FX, FY),
  *                           over 5% of pixels are clearly blue (b > r + 60)
  *                           and over 5% clearly yellow-orange (r > b + 60):
@@ -44,6 +46,13 @@ static bool check_color(const image* im, double fx, double fy, int r, int g, int
   return false;
 }
 
+static bool check_not(const image* im, double fx, double fy, int r, int g, int b) {
+  const unsigned char* p = at(im, fx, fy);
+  if (!near_rgb(p, r, g, b)) return true;
+  printf("FAIL --not %.2f %.2f: pixel is %d %d %d, the colour it must not be\n", fx, fy, p[0], p[1], p[2]);
+  return false;
+}
+
 static bool check_object(const image* im, double fx, double fy, int r, int g, int b) {
   int cx = (int)(fx * (im->w - 1)), cy = (int)(fy * (im->h - 1)), background = 0, lo = 255 * 3, hi = 0;
   for (int y = cy - 2; y <= cy + 2; ++y)
@@ -73,11 +82,12 @@ static bool check_two_tone(const image* im, double fx, double fy) {
 }
 
 static bool run_check(const image* im, char** a, int left, int* used) {
-  bool is_color = !strcmp(a[0], "--color"), is_object = !strcmp(a[0], "--object");
-  if ((is_color || is_object) && left >= 6) {
+  bool is_color = !strcmp(a[0], "--color"), is_object = !strcmp(a[0], "--object"), is_not = !strcmp(a[0], "--not");
+  if ((is_color || is_object || is_not) && left >= 6) {
     *used = 6;
     double fx = atof(a[1]), fy = atof(a[2]);
     int r = atoi(a[3]), g = atoi(a[4]), b = atoi(a[5]);
+    if (is_not) return check_not(im, fx, fy, r, g, b);
     return is_color ? check_color(im, fx, fy, r, g, b) : check_object(im, fx, fy, r, g, b);
   }
   if (!strcmp(a[0], "--two-tone") && left >= 3) {
