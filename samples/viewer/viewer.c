@@ -77,8 +77,10 @@ static bool parse_options(int argc, char** argv, options* o) {
       o->wireframe = true;
     else if (argv[i][0] != '-' && !o->model)
       o->model = argv[i];
-    else
-      ok = i + 1 < argc && parse_value(o, argv[i], argv[i + 1]), ++i;
+    else {
+      ok = i + 1 < argc && parse_value(o, argv[i], argv[i + 1]);
+      ++i; /* the value */
+    }
     if (!ok) {
       fprintf(stderr, "usage: viewer [MODEL] [--backend gl|vulkan] [--frames N] [--size PIXELS] [--levels] "
                       "[--wireframe] [--headless -o out.png]\n");
