@@ -48,7 +48,8 @@
  *   - load GL entry points: Linux links every GL 4.5 function directly
  *     (GL_GLEXT_PROTOTYPES, libOpenGL through glvnd);
  *   - handle input beyond the window's close button (a window's size changes
- *     only through tlod_platform_resize);
+ *     only through tlod_platform_resize): a caller reads keys and the mouse
+ *     from GLFW itself, on tlod_platform_glfw_window;
  *   - use VkAllocationCallbacks or a memory suballocator (it is host glue,
  *     not library code: a handful of images and buffers);
  *   - wait for the GPU in a frame, except begin_frame's wait for the frame
@@ -219,6 +220,11 @@ bool tlod_platform_should_close(tlod_platform* p);
 /* Window mode: GL swaps buffers and polls events; Vulkan polls events only
  * (end_frame presents). Headless: no-op. */
 void tlod_platform_swap(tlod_platform* p);
+
+/* Window mode: the GLFWwindow* (for the caller's own input callbacks and
+ * polling; it must not destroy it or change its context or size). Headless
+ * or NULL: NULL. */
+void* tlod_platform_glfw_window(const tlod_platform* p);
 
 /* Monotonic clock, milliseconds (arbitrary origin). */
 double tlod_platform_time_ms(void);

@@ -216,6 +216,8 @@ bool tlod_platform_read_rgba(tlod_platform* p, uint8_t* rgba) {
 
 bool tlod_platform_should_close(tlod_platform* p) { return p && p->window && _tlod_platform_glfw_should_close(p); }
 
+void* tlod_platform_glfw_window(const tlod_platform* p) { return p && p->window ? p->glfw_window : NULL; }
+
 void tlod_platform_swap(tlod_platform* p) {
   if (p && p->window) _tlod_platform_glfw_swap(p);
 }
