@@ -218,8 +218,10 @@ static bool read_frames(const json_value* root, run* r, const char* name, char* 
 
 static bool note_truncation(run* r, const char* name, char* err, size_t n) {
   char line[1200];
-  long long last = r->frame_count ? (long long)r->column[RUN_COL_FRAME][r->frame_count - 1] : -1;
-  if (r->frame_count && isnan(r->column[RUN_COL_FRAME][r->frame_count - 1])) last = (long long)r->frame_count - 1;
+  /* The last frame's own number when it is one (a hostile trace may hold NaN or 1e300 there: converting
+   * those is undefined), else its position. */
+  double v = r->frame_count ? r->column[RUN_COL_FRAME][r->frame_count - 1] : 0.0;
+  long long last = v >= 0.0 && v <= 9e15 ? (long long)v : (long long)r->frame_count - 1;
   if (r->frame_count)
     snprintf(line, sizeof line, "%s: truncated after frame %lld", name, last);
   else
