@@ -240,6 +240,51 @@ typedef struct tlod_import_skin {
   float* inverse_bind; /* 16 per joint, column-major; identity when the file has none */
 } tlod_import_skin;
 
+/* A result field (VTK point or cell data, issue 14): per vertex of the
+ * result, components floats; cell data averaged onto the points (the mean
+ * over the cells around each point, docs/vtk.md). A series (.pvd, numbered
+ * files) holds every step: step s of vertex v at data[(s * vertex_count + v)
+ * * components], ranges over all steps. Node-only vertices carry their
+ * point's values. Non-finite values are refused (an error naming the array
+ * and the tuple). */
+#define TLOD_IMPORT_MAX_FIELDS 16
+#define TLOD_IMPORT_MAX_FIELD_COMPONENTS 9
+typedef struct tlod_import_field {
+  char name[64];                               /* the array's name ("stress"), may be truncated */
+  char units[32];                              /* "" if the file gives none (a "NAME [UNITS]" or "NAME (UNITS)" name) */
+  uint32_t components;                         /* 1..TLOD_IMPORT_MAX_FIELD_COMPONENTS */
+  bool from_cells;                             /* cell data, averaged to points */
+  float* data;                                 /* step_count (>= 1) x vertex_count x components */
+  float min[TLOD_IMPORT_MAX_FIELD_COMPONENTS]; /* per component, over all steps */
+  float max[TLOD_IMPORT_MAX_FIELD_COMPONENTS];
+  float magnitude_min, magnitude_max; /* of the Euclidean norm (1 component: |value|) */
+} tlod_import_field;
+
+/* What a VTK import read and did (issue 14, `tlod info`). */
+#define TLOD_IMPORT_MAX_CELL_TYPES 32
+typedef struct tlod_import_cell_count {
+  uint32_t vtk_type; /* VTK cell type id (12 = hexahedron) */
+  char name[32];     /* "hexahedron", "quadratic tetra", ... */
+  uint64_t count;
+} tlod_import_cell_count;
+typedef struct tlod_import_vtk_info {
+  uint64_t points, cells; /* as in the file (a series: step 0) */
+  uint32_t cell_type_count;
+  tlod_import_cell_count cell_types[TLOD_IMPORT_MAX_CELL_TYPES];
+  uint64_t volume_cells;                  /* 3D cells whose faces were collected */
+  uint64_t boundary_triangles;            /* boundary (or surface) triangle faces kept */
+  uint64_t boundary_quads;                /* boundary (or surface) quad faces kept */
+  uint64_t second_order_faces;            /* faces with mid-edge nodes */
+  uint64_t interior_faces;                /* faces shared by two volume cells (dropped) */
+  uint64_t non_manifold_faces;            /* faces of three or more cells (kept once, a warning) */
+  uint64_t cells_reoriented;              /* volume cells given with negative orientation (faces flipped) */
+  uint64_t degenerate_cells;              /* cells with repeated points, dropped */
+  uint64_t polygons_triangulated;         /* polygons with > 4 corners fan-triangulated */
+  uint64_t strips_converted;              /* triangle strips converted to triangles */
+  uint64_t cells_ignored;                 /* vertex and line cells (no surface) */
+  double read_ms, boundary_ms, fields_ms; /* time in VTK's reader, in boundary extraction, in fields */
+} tlod_import_vtk_info;
+
 #define TLOD_IMPORT_WARNINGS_SIZE 1024
 
 typedef struct tlod_import_result {
@@ -276,7 +321,19 @@ typedef struct tlod_import_result {
   tlod_import_animation* animations;
   uint32_t skin_count;
   tlod_import_skin* skins;
-  uint32_t weights_renormalised;            /* vertices whose weights summed within 2e-2 of 1, rescaled */
+  uint32_t weights_renormalised; /* vertices whose weights summed within 2e-2 of 1, rescaled */
+  /* VTK (issue 14); NULL / 0 for the other formats. */
+  uint32_t* face_nodes; /* TLOD_FACE_NODES per face (tlod_mesh_desc.face_nodes); NULL: no second-order face */
+  uint32_t field_count;
+  tlod_import_field* fields;
+  tlod_import_vtk_info* vtk;
+  /* A time series (.pvd, or numbered files FOO_0000.vtu, FOO_0001.vtu ...):
+   * step_count >= 2 steps of the same cells; step_times[s] (seconds, the
+   * .pvd's timestep, else s), step_positions: step_count x vertex_count x 3
+   * (step 0 == positions). 0 / NULL for a single file. */
+  uint32_t step_count;
+  float* step_times;
+  float* step_positions;
   uint32_t warning_count;                   /* warnings issued, also those that did not fit below */
   char warnings[TLOD_IMPORT_WARNINGS_SIZE]; /* human-readable, newline-separated, may be empty */
   tlod_allocator _allocator;                /* private: the allocator the arrays came from */
@@ -301,6 +358,11 @@ typedef struct tlod_import_desc {
    * the nodes instancing it; skinned meshes keep their bind pose without the
    * bind-pose warning (the caller animates). */
   bool keep_scene;
+  /* Long imports (VTK): called with a stage ("read", "boundary", "fields",
+   * "step 3/10") and its done fraction 0..1, at most about 20 times a
+   * second, from the importing thread; NULL: none. */
+  void (*progress)(void* user, const char* stage, double fraction);
+  void* progress_user;
 } tlod_import_desc;
 
 /* Reads a mesh file; the format comes from the extension (.gltf .glb .obj

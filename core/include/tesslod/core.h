@@ -289,7 +289,20 @@ typedef struct tlod_mesh_desc {
    * finite: TLOD_ERROR_INVALID_MESH naming the vertex and the attribute. */
   const tlod_attribute_desc* attributes;
   uint32_t attribute_count;
+  /* Optional second-order nodes (issue 14; TLOD_SURFACE_QUADRATIC), 5 per
+   * input face: the mid-edge node of edges 0..3 (edge e from corner e to
+   * corner (e + 1) % n; a triangle's [3] unused) and the centre node
+   * ([4], quads: a 9-node face; TLOD_NO_NODE: an 8-node or linear face).
+   * A node is a vertex index < vertex_count, or TLOD_NO_NODE; node-only
+   * vertices are not "unused" and get no normal. A node index out of range
+   * or equal to a corner of its face: TLOD_ERROR_INVALID_MESH naming the
+   * face and the node. NULL: no face has nodes. Other surface types ignore
+   * the nodes. */
+  const uint32_t* face_nodes;
 } tlod_mesh_desc;
+
+#define TLOD_NO_NODE UINT32_MAX
+#define TLOD_FACE_NODES 5
 
 /* What validation found and repaired. Counts are of input elements. */
 typedef struct tlod_mesh_info {
@@ -308,6 +321,8 @@ typedef struct tlod_mesh_info {
   uint32_t non_manifold_edges;       /* three or more faces, or inconsistent orientation */
   uint32_t crease_edges;             /* two faces, but split normals (or alphas) */
   uint32_t attribute_seam_edges;     /* smooth edges with split attributes (tlod_edge_link.seam) */
+  uint32_t curved_faces;             /* kept faces with at least one given node (face_nodes) */
+  uint32_t nodes_shared;             /* face edges without a node that took their neighbour's */
   uint32_t finding_count;            /* findings stored (at most TLOD_MAX_FINDINGS) */
   uint32_t findings_dropped;         /* findings past the limit */
   bool closed;                       /* no boundary and no non-manifold edge */
@@ -392,6 +407,14 @@ typedef enum tlod_surface_type {
   TLOD_SURFACE_FLAT,        /* the input faces (bilinear quads) */
   TLOD_SURFACE_PHONG,       /* Phong triangles and Phong quads */
   TLOD_SURFACE_PN,          /* PN triangles; quads are not supported */
+  /* Second-order (isoparametric quadratic) faces, exact (issue 14): a face
+   * with nodes (tlod_mesh_desc.face_nodes) is the 6-node triangle or the
+   * 9-node biquadratic quad through them (8-node serendipity quads: the
+   * biquadratic with the serendipity centre, the same surface); a face
+   * without a node on an edge takes the neighbour's node there, else the
+   * Phong node (so a linear face is its Phong patch, docs/design.md
+   * "Quadratic faces"). Shading normal: interpolated corner normals. */
+  TLOD_SURFACE_QUADRATIC,
   TLOD_SURFACE_NUM,
   _TLOD_SURFACE_FORCE_U32 = 0x7FFFFFFF
 } tlod_surface_type;
@@ -515,7 +538,9 @@ TLOD_API tlod_result tlod_surface_eval(const tlod_surface* surface, uint32_t pat
 
 /* One table per enum, (value, name): the names tools parse and print. The
  * DEFAULT value has no name of its own; *_name() gives its resolved value's. */
-#define TLOD_SURFACE_TYPE_NAMES(X) X(TLOD_SURFACE_FLAT, "flat") X(TLOD_SURFACE_PHONG, "phong") X(TLOD_SURFACE_PN, "pn")
+#define TLOD_SURFACE_TYPE_NAMES(X)                                                                                     \
+  X(TLOD_SURFACE_FLAT, "flat")                                                                                         \
+  X(TLOD_SURFACE_PHONG, "phong") X(TLOD_SURFACE_PN, "pn") X(TLOD_SURFACE_QUADRATIC, "quadratic")
 #define TLOD_SHADING_NORMAL_NAMES(X)                                                                                   \
   X(TLOD_SHADING_NORMAL_INTERPOLATED, "interpolated") X(TLOD_SHADING_NORMAL_TRUE, "true")
 #define TLOD_ALPHA_MODE_NAMES(X) X(TLOD_ALPHA_GLOBAL, "global") X(TLOD_ALPHA_PER_VERTEX, "per-vertex")
@@ -591,6 +616,10 @@ typedef struct tlod_mesh_view {
    * components past the attribute's are (0, 0, 0, 1) as in GL; NULL when
    * attribute_count is 0. Never changed by an update. */
   const float (*attributes)[4];
+  /* Per kept face the resolved nodes (tlod_mesh_desc.face_nodes, with the
+   * neighbours' nodes shared onto edges that had none): vertex indices or
+   * TLOD_NO_NODE; NULL when the desc had no face_nodes. */
+  const uint32_t (*face_nodes)[TLOD_FACE_NODES];
 } tlod_mesh_view;
 TLOD_API tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* mesh);
 
@@ -616,12 +645,18 @@ TLOD_API tlod_surface_view tlod_surface_query_view(const tlod_surface* surface);
 /* One patch as GPU shaders read it: std430-compatible (every member a
  * multiple of 16 bytes, no padding), 368 bytes. Unused entries are zero. */
 typedef struct tlod_patch_record {
-  float corner[4][4];      /* corner positions xyz, w = the corner's alpha */
-  float normal[4][4];      /* corner unit normals xyz, w = 0 */
-  uint32_t weld[4];        /* corner weld ids (canonical edge direction) */
-  uint32_t info[4];        /* [0] corner count (3 or 4), [1..3] zero */
-  float pn_control[10][4]; /* PN: b300 b030 b003 b210 b120 b021 b012 b102 b201 b111, w = 0 */
-  float pn_normal[3][4];   /* PN: mid-edge normals n110 n011 n101, w = 0 */
+  float corner[4][4]; /* corner positions xyz, w = the corner's alpha */
+  float normal[4][4]; /* corner unit normals xyz, w = 0 */
+  uint32_t weld[4];   /* corner weld ids (canonical edge direction) */
+  uint32_t info[4];   /* [0] corner count (3 or 4), [1..3] zero */
+  /* PN: b300 b030 b003 b210 b120 b021 b012 b102 b201 b111, w = 0.
+   * QUADRATIC: [0..3] the node of edge 0..3 (given, shared, or the Phong
+   * node), [4] the centre node of a quad (given; else from an 8-node
+   * face's serendipity rule; else the Phong quad's centre), as positions
+   * (Lagrange nodes, not Bezier points), w = 0; info[1] = 1 when the face
+   * had a given node. */
+  float pn_control[10][4];
+  float pn_normal[3][4]; /* PN: mid-edge normals n110 n011 n101, w = 0 */
 } tlod_patch_record;
 #if defined(__cplusplus) && __cplusplus >= 201103L
 static_assert(sizeof(tlod_patch_record) == 23 * 16, "tlod_patch_record is the std430 Patch");
