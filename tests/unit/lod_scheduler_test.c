@@ -2427,10 +2427,23 @@ TEST(test_allocation) {
   CHECK_MSG(counter.allocs == counter.frees, "%ld allocations, %ld frees", counter.allocs, counter.frees);
 }
 
-/* With an argument, only the tests whose name contains it run. */
+/* With arguments, only the tests selected by one of them run: "=NAME" the
+ * test NAME, any other argument the tests whose name contains it. ctest runs
+ * this file as shards (tests/CMakeLists.txt) so the slow tests spread over
+ * the cores; a selection that runs nothing fails. */
+static bool selected(const char* name, int argc, char** argv) {
+  if (argc < 2) return true;
+  for (int a = 1; a < argc; ++a)
+    if (argv[a][0] == '=' ? strcmp(name, argv[a] + 1) == 0 : strstr(name, argv[a]) != NULL) return true;
+  return false;
+}
+static int g_selected_runs;
 #define RUN_SELECTED(name)                                                                                             \
   do {                                                                                                                 \
-    if (argc < 2 || strstr(#name, argv[1])) RUN(name);                                                                 \
+    if (selected(#name, argc, argv)) {                                                                                 \
+      g_selected_runs++;                                                                                               \
+      RUN(name);                                                                                                       \
+    }                                                                                                                  \
   } while (0)
 
 int main(int argc, char** argv) {
@@ -2454,5 +2467,9 @@ int main(int argc, char** argv) {
   RUN_SELECTED(test_bad_input);
   RUN_SELECTED(test_allocation);
   printf("%.1f s\n", now_seconds() - t0);
+  if (g_selected_runs == 0) {
+    fprintf(stderr, "no test matches the selection\n");
+    return 1;
+  }
   TEST_END();
 }
