@@ -25,7 +25,8 @@
  * cube matches the CPU tessellation drawn by gl_test.h's renderer
  * (coverage off only on its silhouette band); an attribute replaced by
  * tlod_mesh_update_attribute() reaches the image after
- * tlod_device_update_surface() (fragment hook showing attribute 0).
+ * tlod_device_update_surface() (fragment hook showing attribute 0; the
+ * "cpu" device's mesh carries it too).
  */
 #include "device_stage.h"
 #include "gl_test.h"
@@ -533,6 +534,31 @@ static bool colour_is(const uint8_t px[4], const float rgb[3]) {
   return true;
 }
 
+/* The "cpu" device keeps no copy (it tessellates from the mesh at every
+ * draw): its mesh carries rgb in attribute 0 after the device update too. */
+static void check_cpu_device(gl_session* gs, const fixture* fx, tlod_scheduler* sch, const float rgb[3]) {
+  tlod_device* cpu = new_device(gs->ctx, &(tlod_device_desc){.backend = "cpu", .patterns = gs->pat});
+  CHECK(cpu);
+  tlod_device_surface* ds = NULL;
+  CHECK(tlod_device_create_surface(cpu, fx->surf, &ds) == TLOD_SUCCESS);
+  CHECK(tlod_device_update_surface(cpu, ds) == TLOD_SUCCESS);
+  camera cam = camera_look(2.6, -3.4, 1.9, 0, 0, 0, 45, W, H);
+  tlod_view_desc v = make_view(&cam);
+  const tlod_draw_list* dl = plan(fx, sch, &v, 0.0f);
+  CHECK(dl);
+  one_draw d;
+  one_draw_make(&d, ds, dl, &v);
+  CHECK(tlod_device_draw(cpu, &d.desc) == TLOD_SUCCESS);
+  const tlod_cpu_mesh* m = tlod_cpu_device_mesh(cpu, 0);
+  CHECK(m && m->attribute_count == 1 && m->vertex_count > 0);
+  double err = 0.0;
+  for (uint32_t k = 0; k < m->vertex_count; k++)
+    for (int c = 0; c < 3; c++)
+      err = fmax(err, fabs(m->attributes[k][c] - rgb[c]));
+  CHECK_MSG(err < 1e-6, "cpu device: attribute 0 %.2e from the updated values", err);
+  tlod_device_destroy(cpu);
+}
+
 /* A field's next time step (tlod_mesh_update_attribute) reaches the image
  * at tlod_device_update_surface(), with no surface refresh. */
 TEST(test_attribute_update_reaches_image) {
@@ -565,6 +591,7 @@ TEST(test_attribute_update_reaches_image) {
   printf("  attribute update: centre pixel (%u %u %u) after tlod_device_update_surface, want (%ld %ld %ld)\n", px[0],
          px[1], px[2], lroundf(b[0] * 255.0f), lroundf(b[1] * 255.0f), lroundf(b[2] * 255.0f));
   CHECK_MSG(colour_is(px, b), "the updated attribute did not reach the image");
+  CALL(check_cpu_device(&gs, &fx, sch, b));
   tlod_scheduler_destroy(sch);
   fixture_free(&fx);
   gl_session_close(&gs);
