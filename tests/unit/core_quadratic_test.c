@@ -885,6 +885,37 @@ TEST(test_random_nodes) {
   CHECK_MSG(silent == 0 && broken == 0, "%u refusals without a message, %u surfaces not finite", silent, broken);
 }
 
+/* Every allocation of a quadratic mesh and surface failing in turn: a clean
+ * refusal each time, nothing leaked (frees == allocations). */
+TEST(test_out_of_memory) {
+  uint32_t failures = 0, leaks = 0, silent = 0;
+  long calls = -1;
+  for (long k = 0; calls < 0 || k < calls; k++) {
+    counting_allocator ca = {.fail_at = -1};
+    tlod_context* ctx = new_context(1, &ca, NULL);
+    long before = ca.calls;
+    ca.fail_at = calls < 0 ? -1 : before + k;
+    hex_mesh m = {.ctx = ctx};
+    hex_make(&m.h, k % 2 == 1, 4);
+    tlod_mesh_desc d = hex_desc(&m);
+    tlod_result r = tlod_mesh_create(ctx, &d, &m.mesh);
+    if (r == TLOD_SUCCESS)
+      r = tlod_surface_create(ctx, m.mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_QUADRATIC}, &m.surf);
+    if (r != TLOD_SUCCESS) failures++, silent += r != TLOD_ERROR_OUT_OF_MEMORY;
+    tlod_surface_destroy(m.surf);
+    tlod_mesh_destroy(m.mesh);
+    ca.fail_at = -1;
+    long made = ca.calls - before;
+    tlod_context_destroy(ctx);
+    leaks += ca.allocs != ca.frees;
+    if (calls < 0) calls = made, k = -1; /* the first pass counts the allocations */
+  }
+  printf("  out of memory: %ld allocations each failed in turn\n", calls);
+  CHECK(calls > 5);
+  CHECK_MSG(failures == (uint32_t)calls && silent == 0 && leaks == 0, "%u failures, %u not OOM, %u leaks", failures,
+            silent, leaks);
+}
+
 /* ------------------------------------------------------------------------ */
 /* tlod_mesh_update_attribute                                               */
 /* ------------------------------------------------------------------------ */
@@ -944,6 +975,7 @@ int main(void) {
   RUN(test_error_tables);
   RUN(test_hostile_nodes);
   RUN(test_random_nodes);
+  RUN(test_out_of_memory);
   RUN(test_update_attribute);
   TEST_END();
 }
