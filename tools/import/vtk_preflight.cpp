@@ -108,6 +108,10 @@ public:
     const char* tnl = static_cast<const char*>(memchr(title, '\n', size_t(words_.end - title)));
     if (!tnl) fail(TLOD_ERROR_PARSE, "truncated header (no title line)");
     words_.p = tnl + 1;
+    const char* v = begin_ + 14;
+    while (v < nl && !(*v >= '0' && *v <= '9'))
+      ++v;
+    offsets_layout_ = v < nl && atoi(v) >= 5; // 5.x: CELLS n m counts n = cells + 1 offsets
     const std::string mode = words_.word();
     if (mode != "ascii" && mode != "binary") fail(TLOD_ERROR_PARSE, "line 3: expected ASCII or BINARY");
     binary_ = mode == "binary";
@@ -126,6 +130,15 @@ private:
   size_t room_;
   bool binary_ = false;
   uint64_t tuples_ = 0; // of the current POINT_DATA / CELL_DATA section
+  bool offsets_layout_ = false;
+  uint64_t points_ = UINT64_MAX, cells_ = UINT64_MAX; // as declared; UINT64_MAX: not yet
+
+  // VTK sizes one array by one declaration and fills it by another: they must agree.
+  void agree(const char* what, uint64_t n, const char* other, uint64_t m) {
+    if (m != UINT64_MAX && n != m)
+      fail(TLOD_ERROR_PARSE,
+           format("%s %llu disagrees with %s %llu", what, (unsigned long long)n, other, (unsigned long long)m));
+  }
 
   // values of width bytes (binary) must fit the rest of the file, and 8 bytes each the budget.
   void need(const std::string& what, uint64_t count, uint64_t per, size_t width) {
@@ -146,6 +159,8 @@ private:
   void counted(const std::string& upper, uint64_t per, bool typed) {
     uint64_t n;
     if (!words_.number(&n)) return;
+    if (upper == "POINTS") points_ = n;
+    if (upper == "CELL_TYPES") agree("CELL_TYPES", n, "the cell count of CELLS", cells_);
     const size_t width = typed ? type_size(words_.word()) : 4;
     need(upper, n, per, width);
   }
@@ -153,6 +168,7 @@ private:
   void cells(const std::string& upper) {
     uint64_t n, size;
     if (!words_.number(&n) || !words_.number(&size)) return;
+    if (upper == "CELLS") cells_ = offsets_layout_ && n > 0 ? n - 1 : n;
     need(upper, size, 1, 4);
     need(upper, n, 1, 1);
   }
@@ -217,6 +233,10 @@ private:
     if (starts_with(w, "dimensions")) return dimensions();
     if (starts_with(w, "point_data") || starts_with(w, "cell_data")) {
       if (!words_.number(&tuples_)) tuples_ = 0;
+      if (w[0] == 'p')
+        agree("POINT_DATA", tuples_, "POINTS", points_);
+      else
+        agree("CELL_DATA", tuples_, "the cell count of CELLS", cells_);
       return;
     }
     if (starts_with(w, "color_scalars")) {
