@@ -466,6 +466,11 @@ TEST(declared_counts_that_disagree_refused) {
   /* Fewer values than declared: VTK's own message ("Error reading ascii data"), captured. */
   snprintf(t, sizeof t, "%sPOINTS 4 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("short.vtk", t, strlen(t), TLOD_ERROR_PARSE, "VTK: "));
+  /* A cell's point count past the declared size: VTK's vtkCellArray::AppendLegacyFormat read past
+   * its buffer (fuzz_vtk, tests/data/fuzz/fuzz_vtk/cell_count_past_size.vtk). */
+  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 5\n3 0 1 2\n900 0\nCELL_TYPES 2\n5\n5\n", k_head);
+  CALL(check_refused("count.vtk", t, strlen(t), TLOD_ERROR_PARSE,
+                     "CELLS: cell 1: its point count runs past the 5 values declared"));
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 7\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("ids.vtk", t, strlen(t), TLOD_ERROR_INVALID_MESH, "cell 0: point id 7 out of range (3 points)"));
 }
