@@ -463,9 +463,19 @@ TEST(declared_counts_that_disagree_refused) {
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 8\n3 0 1 2\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("types.vtk", t, strlen(t), TLOD_ERROR_PARSE,
                      "CELL_TYPES 1 disagrees with the cell count of CELLS 2"));
-  /* Fewer values than declared: VTK's own message ("Error reading ascii data"), captured. */
+  /* Fewer values than declared: our own scan of the ASCII data names the value. */
   snprintf(t, sizeof t, "%sPOINTS 4 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
-  CALL(check_refused("short.vtk", t, strlen(t), TLOD_ERROR_PARSE, "VTK: "));
+  CALL(check_refused("short.vtk", t, strlen(t), TLOD_ERROR_PARSE, "POINTS: value 9 'CELLS' is not a finite number"));
+  /* Malformed XML: VTK's own message (its XML parser's), captured into ours. */
+  snprintf(t, sizeof t, "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"3\">");
+  CALL(check_refused("open.vtu", t, strlen(t), TLOD_ERROR_PARSE, "open.vtu: VTK: vtkXMLDataParser: "));
+  /* 5.x layout, a connectivity value that is not a number: VTK's reader leaked its cell array
+   * (LeakSanitizer, fuzz_vtk: tests/data/fuzz/fuzz_vtk/connectivity_not_a_number.vtk). */
+  snprintf(t, sizeof t,
+           "# vtk DataFile Version 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+           "CELLS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1x 2\nCELL_TYPES 1\n5\n");
+  CALL(
+      check_refused("conn.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CONNECTIVITY: value 1 is not a non-negative integer"));
   /* A cell's point count past the declared size: VTK's vtkCellArray::AppendLegacyFormat read past
    * its buffer (fuzz_vtk, tests/data/fuzz/fuzz_vtk/cell_count_past_size.vtk). */
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 5\n3 0 1 2\n900 0\nCELL_TYPES 2\n5\n5\n", k_head);
@@ -473,6 +483,24 @@ TEST(declared_counts_that_disagree_refused) {
                      "CELLS: cell 1: its point count runs past the 5 values declared"));
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 7\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("ids.vtk", t, strlen(t), TLOD_ERROR_INVALID_MESH, "cell 0: point id 7 out of range (3 points)"));
+}
+
+/* An appended array whose raw header announces 4 GB: VTK allocated what the header says
+ * (fuzz_vtk: tests/data/fuzz/fuzz_vtk/appended_header_huge.vtp). */
+TEST(xml_array_header_past_the_file_refused) {
+  size_t size = 0;
+  char* text = test_read_file(TLOD_TEST_DATA_DIR "/vtk-data/Hexahedron.vtu", &size);
+  CHECK(text);
+  char* app = strstr(text, "<AppendedData");
+  char* u = app ? strchr(app, '_') : NULL;
+  if (u) memcpy(u + 1, "\xf0\xff\xff\xff", 4);
+  tlod_import_result* r = NULL;
+  const tlod_result res = u ? tlod_import_memory("huge.vtu", text, size, NULL, &r, g_err, sizeof g_err) : TLOD_SUCCESS;
+  free(text);
+  CHECK(u);
+  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL && strstr(g_err, "huge.vtu: DataArray ") &&
+                strstr(g_err, ": its header announces 4294967280 bytes"),
+            "%s", g_err);
 }
 
 TEST(unsupported_cell_type_named) {
@@ -697,6 +725,7 @@ int main(void) {
   RUN(second_order_surface_cells);
   RUN(truncated_file_refused);
   RUN(declared_counts_that_disagree_refused);
+  RUN(xml_array_header_past_the_file_refused);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);
