@@ -404,6 +404,21 @@ TEST(second_order_cells_give_face_nodes) {
   CALL(check_second_order((const double(*)[3])p, n, 27, 5, 4, 0, 1.0 / 3));
 }
 
+/* A 10-node tetra whose first mid-edge node is its corner 0: dropped as degenerate (a face node
+ * equal to a corner would fail core's node check), the linear tetra next to it kept. */
+TEST(second_order_node_on_a_corner_is_degenerate) {
+  char t[1024];
+  snprintf(t, sizeof t,
+           "%sPOINTS 10 float\n0 0 0 1 0 0 0 1 0 0 0 1 .5 0 0 .5 .5 0 0 .5 0 0 0 .5 .5 0 .5 0 .5 .5\n"
+           "CELLS 2 16\n10 0 1 2 3 0 5 6 7 8 9\n4 0 1 2 3\nCELL_TYPES 2\n24\n10\n",
+           "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n");
+  tlod_import_result* r = NULL;
+  CHECK_MSG(import_text("node_on_corner.vtk", t, &r) == TLOD_SUCCESS, "%s", g_err);
+  const int ok = r->vtk->degenerate_cells == 1 && r->face_count == 4 && r->face_nodes == NULL && r->vertex_count == 4;
+  tlod_import_free(r);
+  CHECK(ok);
+}
+
 /* 2D second-order cells: quadratic triangle (6), quadratic quad (8), biquadratic quad (9). */
 TEST(second_order_surface_cells) {
   static const double quad[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
@@ -466,6 +481,12 @@ TEST(declared_counts_that_disagree_refused) {
   /* Fewer values than declared: our own scan of the ASCII data names the value. */
   snprintf(t, sizeof t, "%sPOINTS 4 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("short.vtk", t, strlen(t), TLOD_ERROR_PARSE, "POINTS: value 9 'CELLS' is not a finite number"));
+  /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
+  snprintf(t, sizeof t,
+           "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"
+           "<Points><DataArray type=\"Float32\" NumberOfComponents=\"2\" format=\"ascii\">0 0</DataArray></Points>"
+           "</Piece></UnstructuredGrid></VTKFile>");
+  CALL(check_refused("xy.vtu", t, strlen(t), TLOD_ERROR_PARSE, "Piece 0: Points: NumberOfComponents 2 (must be 3)"));
   /* Malformed XML: VTK's own message (its XML parser's), captured into ours. */
   snprintf(t, sizeof t, "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"3\">");
   CALL(check_refused("open.vtu", t, strlen(t), TLOD_ERROR_PARSE, "open.vtu: VTK: vtkXMLDataParser: "));
@@ -722,6 +743,7 @@ int main(void) {
   RUN(ugridex_mixed_cells_and_point_scalars);
   RUN(every_volume_cell_faces_out_even_inverted);
   RUN(second_order_cells_give_face_nodes);
+  RUN(second_order_node_on_a_corner_is_degenerate);
   RUN(second_order_surface_cells);
   RUN(truncated_file_refused);
   RUN(declared_counts_that_disagree_refused);
