@@ -258,6 +258,29 @@ TEST(ugridex_mixed_cells_and_point_scalars) {
   CHECK(counts);
 }
 
+/* Files VTK's own writers made (tests/data/vtk, SOURCES.md section 3): METADATA, bit and string
+ * arrays, structured points and rectilinear grids must pass the pre-flight scan. */
+TEST(files_vtk_writes_import) {
+  static const struct {
+    const char* file;
+    uint32_t vertices, quads;
+  } k[] = {{"w_ascii.vtk", 8, 6},
+           {"w_bin.vtk", 8, 6},
+           {"w42_bin.vtk", 8, 6},
+           {"sp_bin.vtk", 26, 24},
+           {"rg_ascii.vtk", 12, 10}};
+  for (size_t i = 0; i < sizeof k / sizeof k[0]; ++i) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/vtk/%s", TLOD_TEST_DATA_DIR, k[i].file);
+    tlod_import_result* r = NULL;
+    CHECK_MSG(import_path(path, &r) == TLOD_SUCCESS, "%s", g_err);
+    const int ok = r->vertex_count == k[i].vertices && r->face_count == k[i].quads && count_quads(r) == k[i].quads;
+    const int fields = i > 2 || r->field_count >= 3; /* temp, velocity, flag (bit), mat (cell) */
+    tlod_import_free(r);
+    CHECK_MSG(ok && fields, "%s", k[i].file);
+  }
+}
+
 /* ---- single cells of every volume type, upright and mirrored ---- */
 
 /* A legacy ASCII file of one cell: points (n x 3), its type. mirror: x -> -x (inverts the cell). */
@@ -741,6 +764,7 @@ int main(void) {
   RUN(sfepy_hsphere_boundary_quads_kept);
   RUN(hexahedron_vtu_boundary);
   RUN(ugridex_mixed_cells_and_point_scalars);
+  RUN(files_vtk_writes_import);
   RUN(every_volume_cell_faces_out_even_inverted);
   RUN(second_order_cells_give_face_nodes);
   RUN(second_order_node_on_a_corner_is_degenerate);

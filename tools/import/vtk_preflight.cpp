@@ -71,33 +71,15 @@ size_t type_size(const std::string& t) {
   static const struct {
     const char* name;
     size_t size;
-  } kTypes[] = {{"bit", 1},
-                {"unsigned_char", 1},
-                {"char", 1},
-                {"unsigned_short", 2},
-                {"short", 2},
-                {"unsigned_int", 4},
-                {"int", 4},
-                {"unsigned_long", 8},
-                {"long", 8},
-                {"float", 4},
-                {"double", 8},
-                {"vtkidtype", 4},
-                {"vtktypeint64", 8},
-                {"vtktypeuint64", 8},
-                {"vtktypeint32", 4},
-                {"vtktypeuint32", 4},
-                {"vtktypeint8", 1},
-                {"vtktypeuint8", 1},
-                {"vtktypeint16", 2},
-                {"vtktypeuint16", 2},
-                {"vtktypefloat32", 4},
-                {"vtktypefloat64", 8},
-                {"signed_char", 1},
-                {"string", 1}};
+  } kTypes[] = {{"unsigned_char", 1},  {"char", 1},         {"unsigned_short", 2}, {"short", 2},
+                {"unsigned_int", 4},   {"int", 4},          {"unsigned_long", 8},  {"long", 8},
+                {"float", 4},          {"double", 8},       {"vtkidtype", 4},      {"vtktypeint64", 8},
+                {"vtktypeuint64", 8},  {"vtktypeint32", 4}, {"vtktypeuint32", 4},  {"vtktypeint8", 1},
+                {"vtktypeuint8", 1},   {"vtktypeint16", 2}, {"vtktypeuint16", 2},  {"vtktypefloat32", 4},
+                {"vtktypefloat64", 8}, {"signed_char", 1}};
   for (const auto& k : kTypes)
     if (t == k.name) return k.size;
-  return 0;
+  return 0; // also "bit" (packed) and "string" (variable): no fixed width
 }
 
 class Legacy {
@@ -123,9 +105,12 @@ public:
     *dataset = words_.word();
   }
 
+  // Sections in order; in strict mode every word between them must be a keyword VTK knows: VTK's
+  // legacy readers leak what they read so far on "Unrecognized keyword" (LeakSanitizer).
   void body() {
     for (std::string w = words_.word(); !w.empty(); w = words_.word())
-      keyword(w);
+      if (!keyword(w) && strict_)
+        fail(TLOD_ERROR_PARSE, format("unknown keyword '%.24s' where a section should start", w.c_str()));
   }
 
 private:
@@ -133,6 +118,10 @@ private:
   Words words_;
   size_t room_;
   bool binary_ = false;
+  // Each section's data is consumed exactly (ASCII: parsed; binary: skipped), so the next word
+  // is a keyword. Off for the rest of a file once a section's size is not known (bit and string
+  // arrays): the counts are still checked, unknown words no longer are.
+  bool strict_ = true;
   uint64_t tuples_ = 0; // of the current POINT_DATA / CELL_DATA section
   bool offsets_layout_ = false;
   uint64_t offsets_ = 0, connectivity_ = 0;           // 5.x: the values of the OFFSETS and CONNECTIVITY blocks
@@ -149,7 +138,7 @@ private:
   void need(const std::string& what, uint64_t count, uint64_t per, size_t width) {
     uint64_t values, bytes, mem;
     const uint64_t left = uint64_t(words_.end - words_.p);
-    const uint64_t w = binary_ ? (width ? width : 1) : 2;
+    const uint64_t w = binary_ ? width : 2; // width 0 (bit, string): no size known
     if (__builtin_mul_overflow(count, per, &values) || __builtin_mul_overflow(values, w, &bytes) ||
         (bytes > 0 && bytes - (binary_ ? 0 : 1) > left))
       fail(TLOD_ERROR_PARSE,
@@ -168,7 +157,7 @@ private:
     if (upper == "CELL_TYPES") agree("CELL_TYPES", n, "the cell count of CELLS", cells_);
     const size_t width = typed ? type_size(words_.word()) : 4;
     need(upper, n, per, width);
-    numbers(upper, n * per);
+    consume(upper, n * per, width);
   }
 
   void cells(const std::string& upper) {
@@ -211,7 +200,7 @@ private:
   void block(const char* upper, uint64_t count) {
     const size_t width = type_size(words_.word());
     need(upper, count, 1, width);
-    if (binary_) return;
+    if (binary_) return consume(upper, count, width);
     for (uint64_t i = 0; i < count; ++i) {
       uint64_t v;
       if (!words_.number(&v))
@@ -244,7 +233,7 @@ private:
         words_.p = before;
     }
     need(upper, tuples_, per * comps, width);
-    numbers(upper, tuples_ * per * comps);
+    consume(upper, tuples_ * per * comps, width);
   }
 
   // FIELD NAME N, then N times: ARRAYNAME NCOMP NTUPLES TYPE followed by the data. The data is
@@ -262,15 +251,30 @@ private:
       if (!words_.number(&comps) || !words_.number(&count)) return;
       const size_t width = type_size(words_.word());
       need("FIELD array '" + name + "'", count, comps, width);
-      if (binary_) return; // data follows as bytes: the scan continues word by word
-      numbers("FIELD array '" + name + "'", comps * count);
+      consume("FIELD array '" + name + "'", comps * count, width);
     }
+  }
+
+  // The data of a section: n values of width bytes (binary: skipped after the header line's end;
+  // width 0: unknown, strict mode ends), or n ASCII numbers (parsed).
+  void consume(const std::string& what, uint64_t n, size_t width) {
+    if (!binary_) return width || n == 0 ? numbers(what, n) : void(strict_ = false);
+    if (width == 0) {
+      strict_ = false;
+      return;
+    }
+    const char* nl = static_cast<const char*>(memchr(words_.p, '\n', size_t(words_.end - words_.p)));
+    const uint64_t left = nl ? uint64_t(words_.end - nl - 1) : 0;
+    if (!nl || n > left / width)
+      fail(TLOD_ERROR_PARSE, format("%s: its %llu values of %zu bytes run past the end of the file", what.c_str(),
+                                    (unsigned long long)n, width));
+    words_.p = nl + 1 + n * width;
   }
 
   // ASCII: the next n words must be finite numbers. VTK's legacy reader leaks its arrays when
   // a value does not parse (LeakSanitizer under fuzz_vtk), so it never gets such a file.
-  void numbers(const std::string& what, uint64_t n) {
-    if (binary_) return;
+  void numbers(const std::string& what, uint64_t n, bool text = false) {
+    if (binary_ && !text) return;
     char buf[64];
     for (uint64_t i = 0; i < n; ++i) {
       const char* w;
@@ -307,60 +311,94 @@ private:
                   (unsigned long long)d[0], (unsigned long long)d[1], (unsigned long long)d[2], room_));
   }
 
-  void keyword(const std::string& w) {
-    if (!strchr("pctlvxyzdsngfo", w[0])) return; // no keyword starts otherwise (most words of data)
-    if (starts_with(w, "points")) return counted("POINTS", 3, true);
-    if (starts_with(w, "cells")) return cells("CELLS");
-    if (starts_with(w, "polygons")) return cells("POLYGONS");
-    if (starts_with(w, "triangle_strips")) return cells("TRIANGLE_STRIPS");
-    if (starts_with(w, "lines")) return cells("LINES");
-    if (starts_with(w, "vertices")) return cells("VERTICES");
-    if (starts_with(w, "cell_types")) return counted("CELL_TYPES", 1, false);
-    if (offsets_layout_ && starts_with(w, "offsets")) return block("OFFSETS", offsets_);
-    if (offsets_layout_ && starts_with(w, "connectivity")) return block("CONNECTIVITY", connectivity_);
+  // Reads one section from its keyword w; false when w is not a keyword VTK knows.
+  bool keyword(const std::string& w) {
+    if (!strchr("pctlvxyzdsngfoam", w[0])) return false; // no keyword starts otherwise (most words of data)
+    if (starts_with(w, "points")) return counted("POINTS", 3, true), true;
+    for (const char* k : {"cells", "polygons", "triangle_strips", "lines", "vertices"})
+      if (starts_with(w, k)) return cells(upper(k)), true;
+    if (starts_with(w, "cell_types")) return counted("CELL_TYPES", 1, false), true;
+    if (offsets_layout_ && starts_with(w, "offsets")) return block("OFFSETS", offsets_), true;
+    if (offsets_layout_ && starts_with(w, "connectivity")) return block("CONNECTIVITY", connectivity_), true;
     if (starts_with(w, "x_coordinates") || starts_with(w, "y_coordinates") || starts_with(w, "z_coordinates"))
-      return counted("COORDINATES", 1, true);
-    if (starts_with(w, "dimensions")) return dimensions();
-    if (starts_with(w, "point_data") || starts_with(w, "cell_data")) {
-      if (!words_.number(&tuples_)) tuples_ = 0;
-      if (w[0] == 'p')
-        agree("POINT_DATA", tuples_, "POINTS", points_);
-      else
-        agree("CELL_DATA", tuples_, "the cell count of CELLS", cells_);
-      return;
-    }
-    if (starts_with(w, "color_scalars")) {
-      words_.word();
-      uint64_t n;
-      if (words_.number(&n)) need("COLOR_SCALARS", tuples_, n, 1), numbers("COLOR_SCALARS", tuples_ * n);
-      return;
-    }
-    if (starts_with(w, "scalars")) return array("SCALARS", 1);
-    if (starts_with(w, "vectors")) return array("VECTORS", 3);
-    if (starts_with(w, "normals")) return array("NORMALS", 3);
-    if (starts_with(w, "tensors6")) return array("TENSORS6", 6);
-    if (starts_with(w, "tensors")) return array("TENSORS", 9);
-    if (starts_with(w, "global_ids") || starts_with(w, "pedigree_ids")) return array("IDS", 1);
-    if (starts_with(w, "texture_coordinates")) {
-      words_.word();
-      uint64_t dim;
-      if (words_.number(&dim)) {
-        need("TEXTURE_COORDINATES", tuples_, dim, type_size(words_.word()));
-        numbers("TEXTURE_COORDINATES", tuples_ * dim);
+      return counted("COORDINATES", 1, true), true;
+    if (starts_with(w, "dimensions")) return dimensions(), true;
+    if (starts_with(w, "origin") || starts_with(w, "spacing") || starts_with(w, "aspect_ratio"))
+      return numbers(upper(w.c_str()), 3, true), true; // text even in binary files
+    if (starts_with(w, "point_data") || starts_with(w, "cell_data")) return data_section(w), true;
+    if (starts_with(w, "color_scalars")) return color_scalars(), true;
+    static const struct {
+      const char* word;
+      const char* name;
+      uint64_t per;
+    } kArrays[] = {{"scalars", "SCALARS", 1},   {"vectors", "VECTORS", 3},      {"normals", "NORMALS", 3},
+                   {"tensors6", "TENSORS6", 6}, {"tensors", "TENSORS", 9},      {"global_ids", "IDS", 1},
+                   {"pedigree_ids", "IDS", 1},  {"edge_flags", "EDGE_FLAGS", 1}};
+    for (const auto& a : kArrays)
+      if (starts_with(w, a.word)) return array(a.name, a.per), true;
+    if (starts_with(w, "texture_coordinates")) return texture_coordinates(), true;
+    if (starts_with(w, "lookup_table")) return lookup_table(), true;
+    if (starts_with(w, "field")) return field(), true;
+    if (starts_with(w, "metadata")) return metadata(), true;
+    return false;
+  }
+
+  static std::string upper(const char* k) {
+    std::string u(k);
+    for (char& c : u)
+      c = char(std::toupper(static_cast<unsigned char>(c)));
+    return u;
+  }
+
+  void data_section(const std::string& w) {
+    if (!words_.number(&tuples_)) tuples_ = 0;
+    if (w[0] == 'p')
+      agree("POINT_DATA", tuples_, "POINTS", points_);
+    else
+      agree("CELL_DATA", tuples_, "the cell count of CELLS", cells_);
+  }
+
+  void color_scalars() {
+    words_.word();
+    uint64_t n;
+    if (!words_.number(&n)) return;
+    need("COLOR_SCALARS", tuples_, n, 1);
+    consume("COLOR_SCALARS", tuples_ * n, binary_ ? 1 : 4);
+  }
+
+  void texture_coordinates() {
+    words_.word();
+    uint64_t dim;
+    if (!words_.number(&dim)) return;
+    const size_t width = type_size(words_.word());
+    need("TEXTURE_COORDINATES", tuples_, dim, width);
+    consume("TEXTURE_COORDINATES", tuples_ * dim, width);
+  }
+
+  // A standalone table: LOOKUP_TABLE NAME N, then N RGBA entries (bytes in binary).
+  void lookup_table() {
+    words_.word();
+    uint64_t n;
+    if (!words_.number(&n)) return;
+    need("LOOKUP_TABLE", n, 4, 1);
+    consume("LOOKUP_TABLE", 4 * n, binary_ ? 1 : 4);
+  }
+
+  // METADATA: lines up to an empty one (vtkDataReader::ReadMetaData).
+  void metadata() {
+    for (const char* p = words_.p; p < words_.end; ++p) {
+      const char* nl = static_cast<const char*>(memchr(p, '\n', size_t(words_.end - p)));
+      if (!nl) break;
+      const char* q = nl + 1;
+      while (q < words_.end && (*q == ' ' || *q == '\t' || *q == '\r'))
+        ++q;
+      if (q < words_.end && *q == '\n' && p != words_.p) {
+        words_.p = q + 1;
+        return;
       }
-      return;
+      p = nl;
     }
-    if (starts_with(w, "lookup_table")) {
-      words_.word();
-      const char* save = words_.p;
-      uint64_t n;
-      if (words_.number(&n))
-        need("LOOKUP_TABLE", n, 4, 1);
-      else
-        words_.p = save;
-      return;
-    }
-    if (starts_with(w, "field")) return field();
+    words_.p = words_.end;
   }
 };
 
