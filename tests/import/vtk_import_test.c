@@ -504,6 +504,10 @@ TEST(declared_counts_that_disagree_refused) {
   /* Fewer values than declared: our own scan of the ASCII data names the value. */
   snprintf(t, sizeof t, "%sPOINTS 4 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("short.vtk", t, strlen(t), TLOD_ERROR_PARSE, "POINTS: value 9 'CELLS' is not a finite number"));
+  /* A garbled keyword: VTK's reader leaked what it had read (fuzz_vtk: unknown_keyword_after_cells.vtk). */
+  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TY:PES 1\n5\n", k_head);
+  CALL(check_refused("garbled.vtk", t, strlen(t), TLOD_ERROR_PARSE,
+                     "unknown keyword 'cell_ty:pes' where a section should start"));
   /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
   snprintf(t, sizeof t,
            "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"
