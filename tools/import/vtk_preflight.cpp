@@ -66,7 +66,10 @@ struct Words {
 
 bool starts_with(const std::string& s, const char* prefix) { return s.compare(0, strlen(prefix), prefix) == 0; }
 
-// Bytes per value of a legacy type name in a binary file; 0: not a type name.
+// Widths that are not a byte count: bits packed 8 a byte; strings, each with its length first.
+constexpr size_t kBit = SIZE_MAX - 1, kString = SIZE_MAX - 2;
+
+// Bytes per value of a legacy type name in a binary file (or kBit, kString); 0: not a type name.
 size_t type_size(const std::string& t) {
   static const struct {
     const char* name;
@@ -79,7 +82,9 @@ size_t type_size(const std::string& t) {
                 {"vtktypefloat64", 8}, {"signed_char", 1}};
   for (const auto& k : kTypes)
     if (t == k.name) return k.size;
-  return 0; // also "bit" (packed) and "string" (variable): no fixed width
+  if (t == "bit") return kBit;
+  if (t == "string" || t == "utf8_string") return kString;
+  return 0; // not a type VTK reads
 }
 
 class Legacy {
@@ -105,11 +110,12 @@ public:
     *dataset = words_.word();
   }
 
-  // Sections in order; in strict mode every word between them must be a keyword VTK knows: VTK's
+  // Sections in order; each section's data is consumed exactly (ASCII: parsed; binary: skipped),
+  // so every word between them must be a keyword VTK knows: VTK's
   // legacy readers leak what they read so far on "Unrecognized keyword" (LeakSanitizer).
   void body() {
     for (std::string w = words_.word(); !w.empty(); w = words_.word())
-      if (!keyword(w) && strict_)
+      if (!keyword(w))
         fail(TLOD_ERROR_PARSE, format("unknown keyword '%.24s' where a section should start", w.c_str()));
   }
 
@@ -118,10 +124,6 @@ private:
   Words words_;
   size_t room_;
   bool binary_ = false;
-  // Each section's data is consumed exactly (ASCII: parsed; binary: skipped), so the next word
-  // is a keyword. Off for the rest of a file once a section's size is not known (bit and string
-  // arrays): the counts are still checked, unknown words no longer are.
-  bool strict_ = true;
   uint64_t tuples_ = 0; // of the current POINT_DATA / CELL_DATA section
   bool offsets_layout_ = false;
   uint64_t offsets_ = 0, connectivity_ = 0;           // 5.x: the values of the OFFSETS and CONNECTIVITY blocks
@@ -138,7 +140,7 @@ private:
   void need(const std::string& what, uint64_t count, uint64_t per, size_t width) {
     uint64_t values, bytes, mem;
     const uint64_t left = uint64_t(words_.end - words_.p);
-    const uint64_t w = binary_ ? width : 2; // width 0 (bit, string): no size known
+    const uint64_t w = !binary_ ? 2 : width == kBit || width == kString ? 0 : width; // 0: checked by consume()
     if (__builtin_mul_overflow(count, per, &values) || __builtin_mul_overflow(values, w, &bytes) ||
         (bytes > 0 && bytes - (binary_ ? 0 : 1) > left))
       fail(TLOD_ERROR_PARSE,
@@ -252,23 +254,51 @@ private:
       const size_t width = type_size(words_.word());
       need("FIELD array '" + name + "'", count, comps, width);
       consume("FIELD array '" + name + "'", comps * count, width);
+      const char* after = words_.p; // an array may be followed by its METADATA (VTK reads it there)
+      if (starts_with(words_.word(), "metadata"))
+        metadata();
+      else
+        words_.p = after;
     }
   }
 
   // The data of a section: n values of width bytes (binary: skipped after the header line's end;
   // width 0: unknown, strict mode ends), or n ASCII numbers (parsed).
   void consume(const std::string& what, uint64_t n, size_t width) {
-    if (!binary_) return width || n == 0 ? numbers(what, n) : void(strict_ = false);
-    if (width == 0) {
-      strict_ = false;
-      return;
-    }
+    if (width == 0 && n > 0) fail(TLOD_ERROR_PARSE, what + ": not a type VTK reads");
+    if (!binary_) return width == kString ? skip_values(n) : numbers(what, n);
     const char* nl = static_cast<const char*>(memchr(words_.p, '\n', size_t(words_.end - words_.p)));
-    const uint64_t left = nl ? uint64_t(words_.end - nl - 1) : 0;
-    if (!nl || n > left / width)
-      fail(TLOD_ERROR_PARSE, format("%s: its %llu values of %zu bytes run past the end of the file", what.c_str(),
-                                    (unsigned long long)n, width));
-    words_.p = nl + 1 + n * width;
+    if (!nl) fail(TLOD_ERROR_PARSE, what + ": no data");
+    words_.p = nl + 1;
+    if (width == kString) return strings(what, n);
+    const uint64_t bytes = width == kBit ? (n + 7) / 8 : n, size = width == kBit ? 1 : width;
+    if (bytes > uint64_t(words_.end - words_.p) / size)
+      fail(TLOD_ERROR_PARSE,
+           format("%s: its %llu values run past the end of the file", what.c_str(), (unsigned long long)n));
+    words_.p += bytes * size;
+  }
+
+  // Binary strings as vtkDataWriter writes them: a length (its top two bits give its size: 11 one
+  // byte, 10 two, 01 four, 00 eight, big-endian) and the bytes.
+  void strings(const std::string& what, uint64_t n) {
+    const unsigned char* q = reinterpret_cast<const unsigned char*>(words_.p);
+    const unsigned char* end = reinterpret_cast<const unsigned char*>(words_.end);
+    for (uint64_t i = 0; i < n; ++i) {
+      if (q >= end) fail(TLOD_ERROR_PARSE, format("%s: string %llu past the end", what.c_str(), (unsigned long long)i));
+      const int tag = q[0] >> 6;
+      const size_t k = tag == 3 ? 1 : tag == 2 ? 2 : tag == 1 ? 4 : 8;
+      if (size_t(end - q) < k)
+        fail(TLOD_ERROR_PARSE, format("%s: string %llu past the end", what.c_str(), (unsigned long long)i));
+      uint64_t len = k == 8 ? 0 : q[0] & 0x3f;
+      for (size_t b = 1; b < k; ++b)
+        len = len << 8 | q[b];
+      q += k;
+      if (len > uint64_t(end - q))
+        fail(TLOD_ERROR_PARSE,
+             format("%s: string %llu runs past the end of the file", what.c_str(), (unsigned long long)i));
+      q += len;
+    }
+    words_.p = reinterpret_cast<const char*>(q);
   }
 
   // ASCII: the next n words must be finite numbers. VTK's legacy reader leaks its arrays when
