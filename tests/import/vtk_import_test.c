@@ -508,6 +508,13 @@ TEST(declared_counts_that_disagree_refused) {
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TY:PES 1\n5\n", k_head);
   CALL(check_refused("garbled.vtk", t, strlen(t), TLOD_ERROR_PARSE,
                      "unknown keyword 'cell_ty:pes' where a section should start"));
+  /* An empty binary array of a type VTK does not know: our scan divided by its width 0 (SIGFPE;
+   * fuzz_vtk: empty_array_unknown_type.vtk). */
+  snprintf(t, sizeof t,
+           "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 0 float\nCELLS 0 0\n"
+           "CELL_TYPES 0\nPOINT_DATA 0\nSCALARS s flaot 1\nLOOKUP_TABLE default\n");
+  tlod_import_result* r0 = NULL;
+  CHECK(import_text("empty.vtk", t, &r0) != TLOD_SUCCESS && r0 == NULL && strstr(g_err, "empty.vtk: "));
   /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
   snprintf(t, sizeof t,
            "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"

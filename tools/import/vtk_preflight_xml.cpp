@@ -57,8 +57,9 @@ private:
   size_t room_;
   size_t word_ = 4;
   bool big_endian_ = false, compressed_ = false, appended_base64_ = false;
-  const char* appended_ = nullptr; // first byte after the '_' of <AppendedData>
-  uint64_t index_ = 0;             // DataArray number, for messages
+  const char* appended_ = nullptr;     // first byte after the '_' of <AppendedData>
+  uint64_t index_ = 0;                 // DataArray number, for messages
+  uint64_t connectivity_ = UINT64_MAX; // ids of the last connectivity array (UINT64_MAX: none pending)
 
   void file_attributes() {
     xml_tags(data_, size_t(end_ - data_), "VTKFile", [this](const char* b, const char* e) {
@@ -115,6 +116,32 @@ private:
     if (h.size() < words * word_)
       fail(TLOD_ERROR_PARSE, format("DataArray %llu: its data header runs past the file", (unsigned long long)i));
     check(i, h, p, base64);
+    if (!compressed_) cells(i, b, e, word(h, 0), p, base64);
+  }
+
+  // VTK sizes a cell array's connectivity by its last offset before reading the connectivity: a
+  // last offset past the connectivity's own size (its header) would make VTK allocate it. Checked
+  // where the data is not compressed (the values can be read without inflating).
+  void cells(uint64_t i, const char* b, const char* e, uint64_t bytes, const char* p, bool base64) {
+    std::string name, type;
+    if (!xml_attribute(b, e, "Name", &name) || (name != "offsets" && name != "connectivity")) return;
+    xml_attribute(b, e, "type", &type);
+    const size_t size = type == "Int64" || type == "UInt64" ? 8 : type == "Int32" || type == "UInt32" ? 4 : 0;
+    if (size == 0 || bytes < size) return;
+    if (name == "connectivity") {
+      connectivity_ = bytes / size;
+      return;
+    }
+    const std::string all = base64 ? base64_prefix(p, end_, word_ + bytes) : std::string();
+    const char* last = base64 ? all.data() + word_ + bytes - size : p + word_ + bytes - size;
+    if ((base64 && all.size() < word_ + bytes) || connectivity_ == UINT64_MAX) return;
+    uint64_t v = 0;
+    for (size_t k = 0; k < size; ++k)
+      v = v << 8 | static_cast<unsigned char>(last[big_endian_ ? k : size - 1 - k]);
+    if (v > connectivity_)
+      fail(TLOD_ERROR_PARSE, format("DataArray %llu (offsets): the last offset %llu is past the %llu connectivity ids",
+                                    (unsigned long long)i, (unsigned long long)v, (unsigned long long)connectivity_));
+    connectivity_ = UINT64_MAX;
   }
 
   void check(uint64_t i, const std::string& h, const char* p, bool base64) {
