@@ -515,6 +515,9 @@ TEST(declared_counts_that_disagree_refused) {
            "CELL_TYPES 0\nPOINT_DATA 0\nSCALARS s flaot 1\nLOOKUP_TABLE default\n");
   tlod_import_result* r0 = NULL;
   CHECK(import_text("empty.vtk", t, &r0) != TLOD_SUCCESS && r0 == NULL && strstr(g_err, "empty.vtk: "));
+  /* A cell type VTK's stream reader cannot take whole (fuzz_vtk: cell_type_with_nul_bytes.vtk). */
+  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5.5\n", k_head);
+  CALL(check_refused("type.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CELL_TYPES: value 0 '5.5' is not a finite integer"));
   /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
   snprintf(t, sizeof t,
            "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"

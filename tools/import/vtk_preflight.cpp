@@ -124,10 +124,19 @@ private:
   Words words_;
   size_t room_;
   bool binary_ = false;
-  uint64_t tuples_ = 0; // of the current POINT_DATA / CELL_DATA section
+  bool integer_ = false; // the section being read holds integers (its type, or CELL_TYPES)
+  uint64_t tuples_ = 0;  // of the current POINT_DATA / CELL_DATA section
   bool offsets_layout_ = false;
   uint64_t offsets_ = 0, connectivity_ = 0;           // 5.x: the values of the OFFSETS and CONNECTIVITY blocks
   uint64_t points_ = UINT64_MAX, cells_ = UINT64_MAX; // as declared; UINT64_MAX: not yet
+
+  // type_size() of a type name; also notes whether the type holds integers (ASCII check).
+  size_t type(const std::string& t) {
+    integer_ = t.find("int") != std::string::npos || t.find("char") != std::string::npos ||
+               t.find("short") != std::string::npos || t.find("long") != std::string::npos || t == "vtkidtype" ||
+               t == "bit";
+    return type_size(t);
+  }
 
   // VTK sizes one array by one declaration and fills it by another: they must agree.
   void agree(const char* what, uint64_t n, const char* other, uint64_t m) {
@@ -157,7 +166,7 @@ private:
     if (!words_.number(&n)) return;
     if (upper == "POINTS") points_ = n;
     if (upper == "CELL_TYPES") agree("CELL_TYPES", n, "the cell count of CELLS", cells_);
-    const size_t width = typed ? type_size(words_.word()) : 4;
+    const size_t width = typed ? type(words_.word()) : (integer_ = true, 4);
     need(upper, n, per, width);
     consume(upper, n * per, width);
   }
@@ -200,7 +209,7 @@ private:
   // 5.x: OFFSETS type / CONNECTIVITY type, then count values. In ASCII each must be an integer:
   // VTK's reader leaks its cell array when one is not (LeakSanitizer under fuzz_vtk).
   void block(const char* upper, uint64_t count) {
-    const size_t width = type_size(words_.word());
+    const size_t width = type(words_.word());
     need(upper, count, 1, width);
     if (binary_) return consume(upper, count, width);
     for (uint64_t i = 0; i < count; ++i) {
@@ -223,7 +232,7 @@ private:
   // NAME TYPE (per tuple: per values) for SCALARS (NAME TYPE [NCOMP]), VECTORS, TENSORS ...
   void array(const std::string& upper, uint64_t per) {
     words_.word(); // name
-    const size_t width = type_size(words_.word());
+    const size_t width = type(words_.word());
     uint64_t comps = 1;
     if (upper == "SCALARS") {
       const char* save = words_.p;
@@ -251,7 +260,7 @@ private:
       const std::string name(w, std::min<size_t>(len, 64));
       uint64_t comps, count;
       if (!words_.number(&comps) || !words_.number(&count)) return;
-      const size_t width = type_size(words_.word());
+      const size_t width = type(words_.word());
       need("FIELD array '" + name + "'", count, comps, width);
       consume("FIELD array '" + name + "'", comps * count, width);
       const char* after = words_.p; // an array may be followed by its METADATA (VTK reads it there)
@@ -319,10 +328,12 @@ private:
       const size_t k = std::min(len, sizeof buf - 1);
       memcpy(buf, w, k);
       buf[k] = 0;
+      // As C++ streams read them (VTK does): decimal only, the whole word, integers for integer types.
+      const bool digits = strspn(buf, integer_ ? "0123456789+-" : "0123456789+-.eE") == len;
       const double v = strtod(buf, &stop);
-      if (len >= sizeof buf || *stop || stop == buf || !std::isfinite(v))
-        fail(TLOD_ERROR_PARSE,
-             format("%s: value %llu '%.24s' is not a finite number", what.c_str(), (unsigned long long)i, buf));
+      if (len >= sizeof buf || !digits || stop != buf + len || len == 0 || !std::isfinite(v))
+        fail(TLOD_ERROR_PARSE, format("%s: value %llu '%.24s' is not a finite %s", what.c_str(), (unsigned long long)i,
+                                      buf, integer_ ? "integer" : "number"));
     }
   }
 
@@ -357,7 +368,7 @@ private:
       return counted("COORDINATES", 1, true), true;
     if (starts_with(w, "dimensions")) return dimensions(), true;
     if (starts_with(w, "origin") || starts_with(w, "spacing") || starts_with(w, "aspect_ratio"))
-      return numbers(upper(w.c_str()), 3, true), true; // text even in binary files
+      return integer_ = false, numbers(upper(w.c_str()), 3, true), true; // text even in binary files
     if (starts_with(w, "point_data") || starts_with(w, "cell_data")) return data_section(w), true;
     if (starts_with(w, "color_scalars")) return color_scalars(), true;
     static const struct {
@@ -392,6 +403,7 @@ private:
   }
 
   void color_scalars() {
+    integer_ = false; // floats 0..1 in ASCII
     words_.word();
     uint64_t n;
     if (!words_.number(&n)) return;
@@ -403,13 +415,14 @@ private:
     words_.word();
     uint64_t dim;
     if (!words_.number(&dim)) return;
-    const size_t width = type_size(words_.word());
+    const size_t width = type(words_.word());
     need("TEXTURE_COORDINATES", tuples_, dim, width);
     consume("TEXTURE_COORDINATES", tuples_ * dim, width);
   }
 
   // A standalone table: LOOKUP_TABLE NAME N, then N RGBA entries (bytes in binary).
   void lookup_table() {
+    integer_ = false;
     words_.word();
     uint64_t n;
     if (!words_.number(&n)) return;
