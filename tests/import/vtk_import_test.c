@@ -741,6 +741,14 @@ TEST(stl_merged) {
   const int ok = r->face_count == 4 && r->vertex_count == 4 && fabs(surface_volume(r) - 1.0 / 6) < 1e-6;
   tlod_import_free(r);
   CHECK(ok);
+  /* "solid" but a byte above 127 in its header: VTK reads it as binary and believed its count
+   * (13.9 GB asked; fuzz_vtk: stl_solid_but_binary.stl). */
+  unsigned char bin[100] = "solid x";
+  bin[20] = 0xff;
+  memcpy(bin + 80, "\xff\xff\xff\x0f", 4);
+  CHECK(write_file("fake.stl", bin, sizeof bin));
+  CHECK(import_path("fake.stl", &r) == TLOD_ERROR_PARSE && r == NULL);
+  CHECK_MSG(strstr(g_err, "fake.stl: binary STL: declares 268435455 triangles"), "%s", g_err);
 }
 
 /* ---- progress ---- */

@@ -552,7 +552,12 @@ void preflight_xml(const char* data, size_t size, size_t room) {
 }
 
 void preflight_stl(const char* data, size_t size) {
-  const bool ascii = size >= 5 && strncasecmp(data, "solid", 5) == 0 && memchr(data, 0, size) == nullptr;
+  // vtkSTLReader calls a file binary when one of its first 256 bytes is above 127, whatever it
+  // starts with; ours is stricter (a NUL, or no "solid", is binary too), so VTK never reads a file
+  // as binary that we let through as ASCII.
+  bool ascii = size >= 5 && strncasecmp(data, "solid", 5) == 0;
+  for (size_t i = 0; ascii && i < std::min<size_t>(size, 256); ++i)
+    ascii = data[i] != 0 && static_cast<unsigned char>(data[i]) <= 127;
   if (ascii) return;
   if (size < 84) fail(TLOD_ERROR_PARSE, format("binary STL: %zu bytes, shorter than its 84-byte header", size));
   uint32_t n;
