@@ -518,6 +518,12 @@ TEST(declared_counts_that_disagree_refused) {
   /* A cell type VTK's stream reader cannot take whole (fuzz_vtk: cell_type_with_nul_bytes.vtk). */
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5.5\n", k_head);
   CALL(check_refused("type.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CELL_TYPES: value 0 '5.5' is not a finite integer"));
+  /* A rectilinear grid without Y coordinates: VTK's GetPoint read a null array (fuzz_vtk:
+   * rectilinear_without_y.vtk). */
+  snprintf(t, sizeof t,
+           "# vtk DataFile Version 3.0\nt\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 2 2\n"
+           "X_COORDINATES 2 float\n0 1\nZ_COORDINATES 2 float\n0 1\n");
+  CALL(check_refused("rect.vtk", t, strlen(t), TLOD_ERROR_PARSE, "Y coordinates: 0 values for dimension 2"));
   /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
   snprintf(t, sizeof t,
            "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"

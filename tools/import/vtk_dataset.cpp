@@ -12,6 +12,7 @@
 #include <vtkPointSet.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkRectilinearGrid.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -23,7 +24,22 @@ namespace {
 // Ids fit our uint32 indices; more than this many points or cells is past the output limits anyway.
 constexpr uint64_t kMaxCount = uint64_t(1) << 31;
 
+// VTK's rectilinear grid computes its points from three coordinate arrays without checking that
+// they exist or match its dimensions (a file without X_COORDINATES crashed in GetPoint).
+void check_rectilinear(vtkRectilinearGrid* g) {
+  int dims[3];
+  g->GetDimensions(dims);
+  vtkDataArray* c[3] = {g->GetXCoordinates(), g->GetYCoordinates(), g->GetZCoordinates()};
+  for (int k = 0; k < 3; ++k)
+    if (!c[k] || c[k]->GetNumberOfTuples() != dims[k])
+      fail(TLOD_ERROR_PARSE, format("%c coordinates: %lld values for dimension %d", "XYZ"[k],
+                                    (long long)(c[k] ? c[k]->GetNumberOfTuples() : 0), dims[k]));
+}
+
 void read_points(vtkDataSet* ds, const DatasetHooks& hooks, Dataset& out) {
+  if (vtkRectilinearGrid* g = vtkRectilinearGrid::SafeDownCast(ds)) check_rectilinear(g);
+  vtkPointSet* set = vtkPointSet::SafeDownCast(ds);
+  if (set && ds->GetNumberOfCells() > 0 && !set->GetPoints()) fail(TLOD_ERROR_PARSE, "cells but no POINTS");
   const vtkIdType n = ds->GetNumberOfPoints();
   if (n < 0 || uint64_t(n) > kMaxCount)
     fail(TLOD_ERROR_UNSUPPORTED, format("%lld points (at most 2^31)", (long long)n));
