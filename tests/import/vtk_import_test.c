@@ -524,6 +524,10 @@ TEST(declared_counts_that_disagree_refused) {
            "# vtk DataFile Version 3.0\nt\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 2 2\n"
            "X_COORDINATES 2 float\n0 1\nZ_COORDINATES 2 float\n0 1\n");
   CALL(check_refused("rect.vtk", t, strlen(t), TLOD_ERROR_PARSE, "Y coordinates: 0 values for dimension 2"));
+  /* A FIELD without its array: VTK's legacy reader crashed (fuzz_vtk: field_without_arrays.vtk). */
+  snprintf(t, sizeof t, "%sFIELD f 1\n", k_head);
+  CALL(check_refused("field.vtk", t, strlen(t), TLOD_ERROR_PARSE,
+                     "FIELD array 0: expected NAME COMPONENTS TUPLES TYPE"));
   /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
   snprintf(t, sizeof t,
            "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"

@@ -249,17 +249,20 @@ private:
 
   // FIELD NAME N, then N times: ARRAYNAME NCOMP NTUPLES TYPE followed by the data. The data is
   // skipped word by word in ASCII; in binary, the arrays' headers are found as the words follow.
+  // VTK's legacy reader crashes (null read in ReadMeshSimple) on a FIELD it cannot read: every
+  // array header must be there and well formed.
   void field() {
     words_.word();
     uint64_t n;
-    if (!words_.number(&n)) return;
+    if (!words_.number(&n)) fail(TLOD_ERROR_PARSE, "FIELD: expected its name and array count");
     for (uint64_t i = 0; i < n; ++i) {
-      const char* w;
-      size_t len;
-      if (!words_.next(&w, &len)) return;
-      const std::string name(w, std::min<size_t>(len, 64));
+      const char* w = nullptr;
+      size_t len = 0;
       uint64_t comps, count;
-      if (!words_.number(&comps) || !words_.number(&count)) return;
+      if (words_.next(&w, &len) && len == 10 && memcmp(w, "NULL_ARRAY", 10) == 0) continue; // vtkDataWriter's
+      if (!len || !words_.number(&comps) || !words_.number(&count))
+        fail(TLOD_ERROR_PARSE, format("FIELD array %llu: expected NAME COMPONENTS TUPLES TYPE", (unsigned long long)i));
+      const std::string name(w, std::min<size_t>(len, 64));
       const size_t width = type(words_.word());
       need("FIELD array '" + name + "'", count, comps, width);
       consume("FIELD array '" + name + "'", comps * count, width);
