@@ -555,12 +555,16 @@ void preflight_xml(const char* data, size_t size, size_t room) {
 }
 
 void preflight_stl(const char* data, size_t size) {
-  // vtkSTLReader calls a file binary when one of its first 256 bytes is above 127, whatever it
-  // starts with; ours is stricter (a NUL, or no "solid", is binary too), so VTK never reads a file
-  // as binary that we let through as ASCII.
-  bool ascii = size >= 5 && strncasecmp(data, "solid", 5) == 0;
-  for (size_t i = 0; ascii && i < std::min<size_t>(size, 256); ++i)
-    ascii = data[i] != 0 && static_cast<unsigned char>(data[i]) <= 127;
+  // vtkSTLReader decides by kwsys's DetectFileType: of the first 256 bytes, 5 % or more that are
+  // not text (0x20..0x7f, tab, newline, return) make the file binary; an empty one is binary too.
+  // The same rule here, so the count is checked whenever VTK will believe it.
+  const size_t head = std::min<size_t>(size, 256);
+  size_t text = 0;
+  for (size_t i = 0; i < head; ++i) {
+    const unsigned char c = static_cast<unsigned char>(data[i]);
+    text += (c >= 0x20 && c <= 0x7f) || c == '\n' || c == '\r' || c == '\t';
+  }
+  const bool ascii = head > 0 && double(head - text) / double(head) < 0.05;
   if (ascii) return;
   if (size < 84) fail(TLOD_ERROR_PARSE, format("binary STL: %zu bytes, shorter than its 84-byte header", size));
   uint32_t n;
