@@ -198,7 +198,12 @@ private:
         fail(TLOD_ERROR_PARSE, format("%s: cell %llu: its point count runs past the %llu values declared",
                                       upper.c_str(), (unsigned long long)c, (unsigned long long)size));
       at += 1 + count;
-      if (!bin) skip_values(count);
+      for (uint64_t k = 0; !bin && k < count; ++k) { // ids, whole decimal words (as VTK's stream reads them)
+        uint64_t id;
+        if (!words_.number(&id))
+          fail(TLOD_ERROR_PARSE, format("%s: cell %llu: point id %llu is not a non-negative integer", upper.c_str(),
+                                        (unsigned long long)c, (unsigned long long)k));
+      }
     }
     if (at != size)
       fail(TLOD_ERROR_PARSE, format("%s: %llu cells use %llu of the %llu values declared", upper.c_str(),
