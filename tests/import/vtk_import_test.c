@@ -528,6 +528,10 @@ TEST(declared_counts_that_disagree_refused) {
   snprintf(t, sizeof t, "%sFIELD f 1\n", k_head);
   CALL(check_refused("field.vtk", t, strlen(t), TLOD_ERROR_PARSE,
                      "FIELD array 0: expected NAME COMPONENTS TUPLES TYPE"));
+  /* A point id with a stray byte: VTK's stream stopped on it (fuzz_vtk: cell_id_with_high_byte.vtk). */
+  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2x\nCELL_TYPES 1\n5\n", k_head);
+  CALL(check_refused("id.vtk", t, strlen(t), TLOD_ERROR_PARSE,
+                     "CELLS: cell 0: point id 2 is not a non-negative integer"));
   /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
   snprintf(t, sizeof t,
            "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"
