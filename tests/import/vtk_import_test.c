@@ -532,6 +532,11 @@ TEST(declared_counts_that_disagree_refused) {
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2x\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("id.vtk", t, strlen(t), TLOD_ERROR_PARSE,
                      "CELLS: cell 0: point id 2 is not a non-negative integer"));
+  /* An unreadable version: VTK reads the classic CELLS layout, so must we (fuzz_vtk: version_unreadable.vtk). */
+  snprintf(t, sizeof t,
+           "# vtk DataFile Version? 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+           "CELLS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1 2\nCELL_TYPES 1\n5\n");
+  CALL(check_refused("version.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CELLS: cell 0: its point count runs past"));
   /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
   snprintf(t, sizeof t,
            "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <strings.h>
@@ -93,16 +94,18 @@ public:
 
   void header(std::string* dataset) {
     const char* nl = static_cast<const char*>(memchr(begin_, '\n', size_t(words_.end - begin_)));
-    if (size_t(words_.end - begin_) < 14 || strncasecmp(begin_, "# vtk DataFile", 14) != 0)
+    if (size_t(words_.end - begin_) < 22 || strncmp(begin_, "# vtk DataFile Version", 22) != 0)
       fail(TLOD_ERROR_PARSE, "not a legacy VTK file (the first line must be '# vtk DataFile Version x.y')");
     const char* title = nl ? nl + 1 : words_.end;
     const char* tnl = static_cast<const char*>(memchr(title, '\n', size_t(words_.end - title)));
     if (!tnl) fail(TLOD_ERROR_PARSE, "truncated header (no title line)");
     words_.p = tnl + 1;
-    const char* v = begin_ + 14;
-    while (v < nl && !(*v >= '0' && *v <= '9'))
-      ++v;
-    offsets_layout_ = v < nl && atoi(v) >= 5; // 5.x: CELLS n m counts n = cells + 1 offsets
+    // The version as vtkDataReader reads it: sscanf "%d.%d" after the 22-character prefix; when
+    // that fails VTK takes version 0 (the classic layout), and so do we.
+    char line[64] = {0};
+    memcpy(line, begin_ + 22, std::min<size_t>(size_t((nl ? nl : words_.end) - begin_) - 22, sizeof line - 1));
+    int major = 0, minor = 0;
+    offsets_layout_ = sscanf(line, "%d.%d", &major, &minor) == 2 && major >= 5; // 5.x: CELLS n m, n = cells + 1
     const std::string mode = words_.word();
     if (mode != "ascii" && mode != "binary") fail(TLOD_ERROR_PARSE, "line 3: expected ASCII or BINARY");
     binary_ = mode == "binary";
