@@ -31,7 +31,7 @@ struct Words {
       ++p;
     if (p == end) return false;
     *w = p;
-    while (p < end && !is_space(*p))
+    while (p < end && !is_space(*p) && p - *w < 255) // vtkDataReader::ReadString stops at 255 characters
       ++p;
     *n = size_t(p - *w);
     return true;
