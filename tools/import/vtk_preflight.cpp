@@ -285,10 +285,8 @@ private:
   // The data of a section: n values of width bytes (binary: skipped after the header line's end;
   // width 0: unknown, strict mode ends), or n ASCII numbers (parsed).
   void consume(const std::string& what, uint64_t n, size_t width) {
-    if (width == 0) {
-      if (n > 0) fail(TLOD_ERROR_PARSE, what + ": not a type VTK reads");
-      return; // nothing to read (VTK still reads the section's header line)
-    }
+    // An unknown type, even of an empty array: VTK's FIELD reader dereferences the null array it gets.
+    if (width == 0) fail(TLOD_ERROR_PARSE, what + ": not a type VTK reads");
     if (!binary_) return width == kString ? skip_values(n) : numbers(what, n);
     const char* nl = static_cast<const char*>(memchr(words_.p, '\n', size_t(words_.end - words_.p)));
     if (!nl) fail(TLOD_ERROR_PARSE, what + ": no data");
