@@ -491,23 +491,78 @@ TEST(truncated_file_refused) {
   free(text);
 }
 
-TEST(declared_counts_that_disagree_refused) {
+/* Hostile legacy and XML files, each refused with the message naming what is at fault. head: the
+ * text follows k_head (an ASCII unstructured-grid header). */
+static const struct hostile_case {
+  const char* name;
+  int head;
+  const char* text;
+  tlod_result code;
+  const char* needle;
+} k_hostile[] = {
+    {"points.vtk", 1, "POINTS 100000000 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n",
+     TLOD_ERROR_PARSE, "POINTS: declares 100000000 x 3 values"},
+    {"cells.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4000000\n3 0 1 2\nCELL_TYPES 1\n5\n", TLOD_ERROR_PARSE,
+     "CELLS: declares 4000000"},
+    /* Within the file size but more cells than types (VTK would leave a type uninitialised). */
+    {"types.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 8\n3 0 1 2\n3 0 1 2\nCELL_TYPES 1\n5\n",
+     TLOD_ERROR_PARSE, "CELL_TYPES 1 disagrees with the cell count of CELLS 2"},
+    /* Fewer values than declared: our own scan of the ASCII data names the value. */
+    {"short.vtk", 1, "POINTS 4 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", TLOD_ERROR_PARSE,
+     "POINTS: value 9 'CELLS' is not a finite number"},
+    /* A garbled keyword: VTK's reader leaked what it had read (fuzz_vtk: unknown_keyword_after_cells.vtk). */
+    {"garbled.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TY:PES 1\n5\n", TLOD_ERROR_PARSE,
+     "unknown keyword 'cell_ty:pes' where a section should start"},
+    /* A cell type VTK's stream reader cannot take whole (fuzz_vtk: cell_type_with_nul_bytes.vtk). */
+    {"type.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5.5\n", TLOD_ERROR_PARSE,
+     "CELL_TYPES: value 0 '5.5' is not a finite integer"},
+    /* A rectilinear grid without Y coordinates: VTK's GetPoint read a null array (fuzz_vtk:
+     * rectilinear_without_y.vtk). */
+    {"rect.vtk", 0,
+     "# vtk DataFile Version 3.0\nt\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 2 2\n"
+     "X_COORDINATES 2 float\n0 1\nZ_COORDINATES 2 float\n0 1\n",
+     TLOD_ERROR_PARSE, "Y coordinates: 0 values for dimension 2"},
+    /* A FIELD without its array: VTK's legacy reader crashed (fuzz_vtk: field_without_arrays.vtk). */
+    {"field.vtk", 1, "FIELD f 1\n", TLOD_ERROR_PARSE, "FIELD array 0: expected NAME COMPONENTS TUPLES TYPE"},
+    /* A point id with a stray byte: VTK's stream stopped on it (fuzz_vtk: cell_id_with_high_byte.vtk). */
+    {"id.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2x\nCELL_TYPES 1\n5\n", TLOD_ERROR_PARSE,
+     "CELLS: cell 0: point id 2 is not a non-negative integer"},
+    /* An unreadable version: VTK reads the classic CELLS layout, so must we (fuzz_vtk: version_unreadable.vtk). */
+    {"version.vtk", 0,
+     "# vtk DataFile Version? 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+     "CELLS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1 2\nCELL_TYPES 1\n5\n",
+     TLOD_ERROR_PARSE, "CELLS: cell 0: its point count runs past"},
+    /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
+    {"xy.vtu", 0,
+     "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"
+     "<Points><DataArray type=\"Float32\" NumberOfComponents=\"2\" format=\"ascii\">0 0</DataArray></Points>"
+     "</Piece></UnstructuredGrid></VTKFile>",
+     TLOD_ERROR_PARSE, "Piece 0: Points: NumberOfComponents 2 (must be 3)"},
+    /* Malformed XML: VTK's own message (its XML parser's), captured into ours. */
+    {"open.vtu", 0, "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"3\">",
+     TLOD_ERROR_PARSE, "open.vtu: VTK: vtkXMLDataParser: "},
+    /* 5.x layout, a connectivity value that is not a number: VTK's reader leaked its cell array
+     * (LeakSanitizer, fuzz_vtk: tests/data/fuzz/fuzz_vtk/connectivity_not_a_number.vtk). */
+    {"conn.vtk", 0,
+     "# vtk DataFile Version 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+     "CELLS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1x 2\nCELL_TYPES 1\n5\n",
+     TLOD_ERROR_PARSE, "CONNECTIVITY: value 1 is not a non-negative integer"},
+    /* A cell's point count past the declared size: VTK's vtkCellArray::AppendLegacyFormat read past
+     * its buffer (fuzz_vtk, tests/data/fuzz/fuzz_vtk/cell_count_past_size.vtk). */
+    {"count.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 5\n3 0 1 2\n900 0\nCELL_TYPES 2\n5\n5\n",
+     TLOD_ERROR_PARSE, "CELLS: cell 1: its point count runs past the 5 values declared"},
+    {"ids.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 7\nCELL_TYPES 1\n5\n", TLOD_ERROR_INVALID_MESH,
+     "cell 0: point id 7 out of range (3 points)"},
+};
+
+TEST(hostile_files_refused_naming_the_fault) {
   char t[1024];
-  snprintf(t, sizeof t, "%sPOINTS 100000000 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
-  CALL(check_refused("points.vtk", t, strlen(t), TLOD_ERROR_PARSE, "POINTS: declares 100000000 x 3 values"));
-  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4000000\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
-  CALL(check_refused("cells.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CELLS: declares 4000000"));
-  /* Within the file size but more cells than types (VTK would leave a type uninitialised). */
-  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 8\n3 0 1 2\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
-  CALL(check_refused("types.vtk", t, strlen(t), TLOD_ERROR_PARSE,
-                     "CELL_TYPES 1 disagrees with the cell count of CELLS 2"));
-  /* Fewer values than declared: our own scan of the ASCII data names the value. */
-  snprintf(t, sizeof t, "%sPOINTS 4 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
-  CALL(check_refused("short.vtk", t, strlen(t), TLOD_ERROR_PARSE, "POINTS: value 9 'CELLS' is not a finite number"));
-  /* A garbled keyword: VTK's reader leaked what it had read (fuzz_vtk: unknown_keyword_after_cells.vtk). */
-  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TY:PES 1\n5\n", k_head);
-  CALL(check_refused("garbled.vtk", t, strlen(t), TLOD_ERROR_PARSE,
-                     "unknown keyword 'cell_ty:pes' where a section should start"));
+  for (size_t i = 0; i < sizeof k_hostile / sizeof k_hostile[0]; ++i) {
+    const struct hostile_case* c = &k_hostile[i];
+    snprintf(t, sizeof t, "%s%s", c->head ? k_head : "", c->text);
+    CALL(check_refused(c->name, t, strlen(t), c->code, c->needle));
+  }
+
   /* An empty binary array of a type VTK does not know: our scan divided by its width 0 (SIGFPE;
    * fuzz_vtk: empty_array_unknown_type.vtk). */
   snprintf(t, sizeof t,
@@ -515,51 +570,6 @@ TEST(declared_counts_that_disagree_refused) {
            "CELL_TYPES 0\nPOINT_DATA 0\nSCALARS s flaot 1\nLOOKUP_TABLE default\n");
   tlod_import_result* r0 = NULL;
   CHECK(import_text("empty.vtk", t, &r0) != TLOD_SUCCESS && r0 == NULL && strstr(g_err, "empty.vtk: "));
-  /* A cell type VTK's stream reader cannot take whole (fuzz_vtk: cell_type_with_nul_bytes.vtk). */
-  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5.5\n", k_head);
-  CALL(check_refused("type.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CELL_TYPES: value 0 '5.5' is not a finite integer"));
-  /* A rectilinear grid without Y coordinates: VTK's GetPoint read a null array (fuzz_vtk:
-   * rectilinear_without_y.vtk). */
-  snprintf(t, sizeof t,
-           "# vtk DataFile Version 3.0\nt\nASCII\nDATASET RECTILINEAR_GRID\nDIMENSIONS 2 2 2\n"
-           "X_COORDINATES 2 float\n0 1\nZ_COORDINATES 2 float\n0 1\n");
-  CALL(check_refused("rect.vtk", t, strlen(t), TLOD_ERROR_PARSE, "Y coordinates: 0 values for dimension 2"));
-  /* A FIELD without its array: VTK's legacy reader crashed (fuzz_vtk: field_without_arrays.vtk). */
-  snprintf(t, sizeof t, "%sFIELD f 1\n", k_head);
-  CALL(check_refused("field.vtk", t, strlen(t), TLOD_ERROR_PARSE,
-                     "FIELD array 0: expected NAME COMPONENTS TUPLES TYPE"));
-  /* A point id with a stray byte: VTK's stream stopped on it (fuzz_vtk: cell_id_with_high_byte.vtk). */
-  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2x\nCELL_TYPES 1\n5\n", k_head);
-  CALL(check_refused("id.vtk", t, strlen(t), TLOD_ERROR_PARSE,
-                     "CELLS: cell 0: point id 2 is not a non-negative integer"));
-  /* An unreadable version: VTK reads the classic CELLS layout, so must we (fuzz_vtk: version_unreadable.vtk). */
-  snprintf(t, sizeof t,
-           "# vtk DataFile Version? 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
-           "CELLS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1 2\nCELL_TYPES 1\n5\n");
-  CALL(check_refused("version.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CELLS: cell 0: its point count runs past"));
-  /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
-  snprintf(t, sizeof t,
-           "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"
-           "<Points><DataArray type=\"Float32\" NumberOfComponents=\"2\" format=\"ascii\">0 0</DataArray></Points>"
-           "</Piece></UnstructuredGrid></VTKFile>");
-  CALL(check_refused("xy.vtu", t, strlen(t), TLOD_ERROR_PARSE, "Piece 0: Points: NumberOfComponents 2 (must be 3)"));
-  /* Malformed XML: VTK's own message (its XML parser's), captured into ours. */
-  snprintf(t, sizeof t, "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"3\">");
-  CALL(check_refused("open.vtu", t, strlen(t), TLOD_ERROR_PARSE, "open.vtu: VTK: vtkXMLDataParser: "));
-  /* 5.x layout, a connectivity value that is not a number: VTK's reader leaked its cell array
-   * (LeakSanitizer, fuzz_vtk: tests/data/fuzz/fuzz_vtk/connectivity_not_a_number.vtk). */
-  snprintf(t, sizeof t,
-           "# vtk DataFile Version 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
-           "CELLS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1x 2\nCELL_TYPES 1\n5\n");
-  CALL(
-      check_refused("conn.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CONNECTIVITY: value 1 is not a non-negative integer"));
-  /* A cell's point count past the declared size: VTK's vtkCellArray::AppendLegacyFormat read past
-   * its buffer (fuzz_vtk, tests/data/fuzz/fuzz_vtk/cell_count_past_size.vtk). */
-  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 5\n3 0 1 2\n900 0\nCELL_TYPES 2\n5\n5\n", k_head);
-  CALL(check_refused("count.vtk", t, strlen(t), TLOD_ERROR_PARSE,
-                     "CELLS: cell 1: its point count runs past the 5 values declared"));
-  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 7\nCELL_TYPES 1\n5\n", k_head);
-  CALL(check_refused("ids.vtk", t, strlen(t), TLOD_ERROR_INVALID_MESH, "cell 0: point id 7 out of range (3 points)"));
 }
 
 /* An appended array whose raw header announces 4 GB: VTK allocated what the header says
@@ -811,7 +821,7 @@ int main(void) {
   RUN(second_order_node_on_a_corner_is_degenerate);
   RUN(second_order_surface_cells);
   RUN(truncated_file_refused);
-  RUN(declared_counts_that_disagree_refused);
+  RUN(hostile_files_refused_naming_the_fault);
   RUN(xml_array_header_past_the_file_refused);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
