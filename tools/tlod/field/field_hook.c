@@ -1,0 +1,38 @@
+/* tlod -- the GLSL of a field's colour map, generated per run: the range
+ * and the table are constants of the program (no uniforms or buffers the
+ * device does not know of). */
+#include "field_hook.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+/* 256 "vec3(r,g,b)," of ~40 characters plus the fixed text. */
+enum { HOOK_SIZE = 256 * 48 + 2048 };
+
+static size_t put_table(char* out, size_t size, colormap_kind k) {
+  float rgb[COLORMAP_SIZE][3];
+  colormap_table(k, rgb);
+  size_t n = (size_t)snprintf(out, size, "const vec3 tlod_field_map[%d] = vec3[%d](\n", COLORMAP_SIZE, COLORMAP_SIZE);
+  for (int i = 0; i < COLORMAP_SIZE && n < size; i++)
+    n += (size_t)snprintf(out + n, size - n, "  vec3(%.6f, %.6f, %.6f)%s\n", (double)rgb[i][0], (double)rgb[i][1],
+                          (double)rgb[i][2], i + 1 < COLORMAP_SIZE ? "," : ");");
+  return n;
+}
+
+char* field_hook_glsl(const field_selection* f, uint32_t attribute) {
+  char* out = malloc(HOOK_SIZE);
+  if (!out) return NULL;
+  size_t n = put_table(out, HOOK_SIZE, f->colormap);
+  /* The midpoint form keeps a constant field (hi == lo) at the map's centre. */
+  double mid = 0.5 * ((double)f->lo + f->hi), inv = f->hi > f->lo ? 1.0 / ((double)f->hi - f->lo) : 0.0;
+  snprintf(out + n, HOOK_SIZE - n,
+           "// The field's range [%.9g, %.9g] onto the colour map, lit as the built-in material.\n"
+           "vec4 tlod_shade(tlod_fragment f) {\n"
+           "  float t = clamp(0.5 + (f.attributes[%u].x - (%.9g)) * (%.9g), 0.0, 1.0);\n"
+           "  vec3 base = tlod_field_map[min(int(t * %d.0), %d)];\n"
+           "  float lambert = 0.15 + 0.85 * max(dot(f.normal, f.light_dir), 0.0);\n"
+           "  return vec4(base * lambert, 1.0);\n"
+           "}\n",
+           (double)f->lo, (double)f->hi, attribute, mid, inv, COLORMAP_SIZE, COLORMAP_SIZE - 1);
+  return out;
+}
