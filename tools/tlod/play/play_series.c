@@ -46,13 +46,11 @@ uint32_t play_series_step(const tlod_import_result* r, double t, bool loop) {
   return step;
 }
 
-#define TLOD_PENDING_UPDATE_ATTRIBUTE(m, a, d, st)                                                                     \
-  ((void)(m), (void)(a), (void)(d), (void)(st), TLOD_SUCCESS) /* PENDING q-core */
 /* Step k's field values into the mesh's field attribute. */
 static int update_field(play_scene* s, play_surface* sf, uint32_t k) {
   if (!s->field.on) return CLI_OK;
   field_scalars(sf->setup.in.source, &s->field.sel, k, s->series.scalars);
-  if (TLOD_PENDING_UPDATE_ATTRIBUTE(sf->setup.mesh, s->field.attribute, s->series.scalars, 0) != TLOD_SUCCESS)
+  if (tlod_mesh_update_attribute(sf->setup.mesh, s->field.attribute, s->series.scalars, 0) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "%s: step %u: %s", s->name, k, tlod_context_last_error(s->ctx));
   return CLI_OK;
 }
