@@ -119,7 +119,8 @@ def play_shot(name, mesh, backend, *extra):
     out = os.path.join(WORK, name)
     rc, so, se = run("play", mesh, "--backend", backend, "--path", camera_path(os.path.join(WORK, "path.json")),
                      "--frames", "1", "--size", "%dx%d" % (SIZE, SIZE), "--screenshot-every", "1", "--out", out,
-                     "-q", *extra, timeout=120)
+                     "-q", *(["--shader-cache", os.path.join(WORK, "shaders")] if backend == "vulkan" else []), *extra,
+                     timeout=120)
     check(name + ": plays", rc == 0, se)
     shot = os.path.join(out, "screenshots", "frame_00000.png")
     return (png_rows(shot) if os.path.exists(shot) else None), load_json(os.path.join(out, "summary.json"))
@@ -181,6 +182,10 @@ def rendered(backend):
           and f.get("colormap") == "viridis" and f.get("from_cells") is False, summary)
     check(tag + ": a linear VTK mesh plays phong under --surface auto",
           isinstance(summary, dict) and summary.get("surface") == "phong", summary)
+    page = os.path.join(WORK, tag + "-page.html")
+    rc, so, se = run("dashboard", os.path.join(WORK, tag + "-viridis"), "-o", page)
+    html = open(page).read() if rc == 0 and os.path.exists(page) else ""
+    check(tag + ": the dashboard shows the field", "temperature [K] -0.5..0.5 viridis" in html, se)
     if backend != "gl":
         return
     # The default range is the field's (x in [-1, 1]); the diverging map's centre is its neutral grey.

@@ -6,16 +6,22 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-/* 256 "vec3(r,g,b)," of ~40 characters plus the fixed text. */
-enum { HOOK_SIZE = 256 * 48 + 2048 };
+/* 256 "0xRRGGBBu," of 11 characters, 8 a line, plus the fixed text. */
+enum { HOOK_SIZE = 256 * 12 + 2048 };
 
+static uint32_t byte_of(float c) { return (uint32_t)(c * 255.0f + 0.5f); }
+
+/* The table as 8-bit RGB packed in uints: the framebuffer's precision, and
+ * a quarter of the literals of vec3s (glslang, Vulkan's compiler, takes
+ * seconds over 256 vec3 constructors on every stage variant). */
 static size_t put_table(char* out, size_t size, colormap_kind k) {
   float rgb[COLORMAP_SIZE][3];
   colormap_table(k, rgb);
-  size_t n = (size_t)snprintf(out, size, "const vec3 tlod_field_map[%d] = vec3[%d](\n", COLORMAP_SIZE, COLORMAP_SIZE);
+  size_t n = (size_t)snprintf(out, size, "const uint tlod_field_map[%d] = uint[%d](", COLORMAP_SIZE, COLORMAP_SIZE);
   for (int i = 0; i < COLORMAP_SIZE && n < size; i++)
-    n += (size_t)snprintf(out + n, size - n, "  vec3(%.6f, %.6f, %.6f)%s\n", (double)rgb[i][0], (double)rgb[i][1],
-                          (double)rgb[i][2], i + 1 < COLORMAP_SIZE ? "," : ");");
+    n += (size_t)snprintf(out + n, size - n, "%s0x%06Xu%s", i % 8 ? " " : "\n  ",
+                          byte_of(rgb[i][0]) << 16 | byte_of(rgb[i][1]) << 8 | byte_of(rgb[i][2]),
+                          i + 1 < COLORMAP_SIZE ? "," : ");\n");
   return n;
 }
 
@@ -29,7 +35,8 @@ char* field_hook_glsl(const field_selection* f, uint32_t attribute) {
            "// The field's range [%.9g, %.9g] onto the colour map, lit as the built-in material.\n"
            "vec4 tlod_shade(tlod_fragment f) {\n"
            "  float t = clamp(0.5 + (f.attributes[%u].x - (%.9g)) * (%.9g), 0.0, 1.0);\n"
-           "  vec3 base = tlod_field_map[min(int(t * %d.0), %d)];\n"
+           "  uint c = tlod_field_map[min(int(t * %d.0), %d)];\n"
+           "  vec3 base = vec3(float(c >> 16u), float((c >> 8u) & 255u), float(c & 255u)) / 255.0;\n"
            "  float lambert = 0.15 + 0.85 * max(dot(f.normal, f.light_dir), 0.0);\n"
            "  return vec4(base * lambert, 1.0);\n"
            "}\n",
