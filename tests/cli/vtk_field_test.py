@@ -67,11 +67,11 @@ def vtu(path, points, cells, point_data=(), cell_data=()):
 
 
 def flat_quad(path):
-    """One quad (VTK_QUAD) x, y in [-1, 1] at z = 0 facing +z; temperature [K] = x, velocity = (x, 2, 0)."""
+    """One quad (VTK_QUAD) x, y in [-1, 1] at z = 0 facing +z; temperature [K] = x, velocity = (x + 1, 2, 0)."""
     pts = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
     return vtu(path, pts, [(9, [0, 1, 2, 3])],
                point_data=[("temperature [K]", 1, [p[0] for p in pts]),
-                           ("velocity", 3, [c for p in pts for c in (p[0], 2.0, 0.0)])])
+                           ("velocity", 3, [c for p in pts for c in (p[0] + 1.0, 2.0, 0.0)])])
 
 
 def hex_pair(path):
@@ -195,12 +195,13 @@ def rendered(backend):
         check_legend("gl diverging", img, [(0.0, COOL_WARM[0.0]), (1.0, COOL_WARM[1.0])])
     f = summary.get("field", {}) if isinstance(summary, dict) else {}
     check("default --range is the field's range", f.get("min") == -1.0 and f.get("max") == 1.0, f)
-    # A vector's magnitude: |(x, 2, 0)| from 2 (x = 0) to sqrt(5); component 1 is 2 everywhere (the map's middle).
+    # A vector's magnitude at the corners: |(x + 1, 2, 0)| is 2 (x = -1) and sqrt(8) (x = 1); component y is 2
+    # everywhere (the map's middle with --range 0,4).
     _, summary = play_shot("gl-magnitude", quad, backend, "--field", "velocity")
     f = summary.get("field", {}) if isinstance(summary, dict) else {}
     check("a vector field defaults to its magnitude",
           f.get("component") == "magnitude" and abs(f.get("min", 0) - 2.0) < 1e-5
-          and abs(f.get("max", 0) - math.sqrt(5)) < 1e-5, f)
+          and abs(f.get("max", 0) - math.sqrt(8)) < 1e-5, f)
     img, _ = play_shot("gl-component", quad, backend, "--field", "velocity:y", "--range", "0,4")
     if img:
         check_field_pixels("gl velocity:y", img, [(-0.5, rgb(VIRIDIS[0.5])), (0.5, rgb(VIRIDIS[0.5]))])
