@@ -295,6 +295,11 @@ def info():
     rc, so, se = run("tessellate", q, "-o", os.path.join(WORK, "hex20.obj"))
     check("tessellate --surface auto picks quadratic for a quadratic file", rc == 0 and "-> quadratic" in so,
           (so, se))
+    out = os.path.join(WORK, "hex20-play")
+    rc, so, se = run("play", q, "--backend", "gl" if HAS_GL else "null", "--frames", "2", "--out", out, "-q")
+    s = load_json(os.path.join(out, "summary.json"))
+    check("play --surface auto plays quadratic for a quadratic file",
+          rc == 0 and isinstance(s, dict) and s.get("surface") == "quadratic", (se, s))
     rc, so, se = run("tessellate", q, "-o", os.path.join(WORK, "hex20p.obj"), "--surface", "phong")
     check("tessellate --surface phong overrides auto", rc == 0 and "-> phong" in so, (so, se))
 
