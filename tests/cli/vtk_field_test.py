@@ -285,6 +285,13 @@ def info():
           re.search(r"height: 1 component, point data, range \[0, 1\]", so) is not None, so)
     check("info hex pair: the cell field, averaged", re.search(r"pressure: 1 component, cell", so) is not None, so)
     check("info hex pair: auto draws phong", "auto draws phong" in so, so)
+    # The 2x1x1 box's 16 edge segments (8 along x, 8 along y and z) are sharp under the VTK default of 40 degrees;
+    # the 4 seams between the hexes' coplanar faces are not.
+    check("info hex pair: the VTK crease default splits the box's 16 edges",
+          re.search(r"0 non-manifold, 16 crease edges", so) is not None, so)
+    rc, so0, se = run("info", os.path.join(WORK, "hex2.vtu"), "--crease", "0")
+    check("info hex pair: --crease 0 turns the default off", re.search(r"0 non-manifold, 0 crease edges", so0) is not None,
+          so0)
     check("info hex pair: the import's timings", re.search(r"vtk time:\s+read [0-9.]+ ms", so) is not None, so)
     q = quadratic_hex(os.path.join(WORK, "hex20.vtu"))
     rc, so, se = run("info", q)
