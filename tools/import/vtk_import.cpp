@@ -170,6 +170,7 @@ private:
     VtkFormat format_id;
     if (!vtk_format_of(name, &format_id))
       fail(TLOD_ERROR_UNSUPPORTED, "not a file VTK reads here (.vtk, .vtu, .vtp, .stl)");
+    take(b.size, "VTK's copy of the file"); // its readers copy the bytes they are given
     const VtkSource src{name, format_id, reinterpret_cast<const char*>(b.data.get()), b.size,
                         path.empty() ? nullptr : path.c_str()};
     vtkSmartPointer<vtkDataSet> ds = read_vtk(
@@ -355,6 +356,7 @@ private:
       take(v * k * 4, "fields");
       for (size_t j = 0; j < v; ++j)
         fields_[i].data.insert(fields_[i].data.end(), &f->values[used_[j] * k], &f->values[used_[j] * k] + k);
+      if (step == 0) progress("fields", double(i + 1) / double(fields_.size()));
     }
     info_.fields_ms += ms_since(t0);
   }
