@@ -1,0 +1,99 @@
+/*
+ * vtk_import_bench.c -- the scale measurement of VTK input (issue 14, BENCHMARKS.md) and its
+ * small-size check.
+ *   vtk_import_bench gen N FILE     writes an N x N x N hexahedron block (unit cube, legacy binary
+ *                                   .vtk, or .vtu by extension; point fields temperature and
+ *                                   displacement, cell field pressure; every fifth cell inverted)
+ *   vtk_import_bench import FILE    imports it once and prints wall seconds, the importer's stage
+ *                                   times (tlod_import_vtk_info), the boundary counts and the peak RSS
+ *   vtk_import_bench check N WORK   gen + import in one run, exit 1 unless the boundary has 6 N^2
+ *                                   quads, 0 triangles, N^3 / 5 cells reoriented and every progress
+ *                                   report is a named stage with a fraction in [0, 1]
+ * gen and import are separate processes so that the import's peak RSS is the import's own.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+
+#include "tlod_import.h"
+#include "vtk_model.h"
+
+typedef struct progress_log {
+  uint32_t calls, bad;
+  double last;
+  char stage[64];
+} progress_log;
+
+static void on_progress(void* user, const char* stage, double fraction) {
+  progress_log* p = user;
+  p->calls++;
+  p->bad += !stage || !stage[0] || !(fraction >= 0 && fraction <= 1);
+  p->last = fraction;
+  snprintf(p->stage, sizeof p->stage, "%s", stage ? stage : "(null)");
+}
+
+static int gen(uint32_t n, const char* path) {
+  vtk_model m;
+  vtk_build_box(&m, n, n, n, 1, 1, 1);
+  size_t len = strlen(path);
+  bool xml = len > 4 && strcmp(path + len - 4, ".vtu") == 0;
+  bool ok = vtk_model_write(&m, path, xml ? VTK_XML_ASCII : VTK_LEGACY_BINARY);
+  printf("%s: %u cells, %u points, %u inverted\n", path, m.cell_count, m.point_count, m.inverted);
+  vtk_model_free(&m);
+  return ok ? 0 : 1;
+}
+
+static tlod_import_result* import(const char* path, progress_log* log) {
+  char err[512];
+  tlod_import_result* r = NULL;
+  tlod_import_desc d = {.progress = on_progress, .progress_user = log};
+  double t0 = tlod_now_ms();
+  tlod_result res = tlod_import_file_desc(path, &d, &r, err, sizeof err);
+  double t1 = tlod_now_ms();
+  if (res != TLOD_SUCCESS) {
+    fprintf(stderr, "%s: %s\n", tlod_result_string(res), err);
+    return NULL;
+  }
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  const tlod_import_vtk_info* v = r->vtk;
+  printf("import %s: %.2f s wall, peak RSS %.0f MiB\n", path, (t1 - t0) / 1000, ru.ru_maxrss / 1024.0);
+  if (v)
+    printf("  %llu cells, %llu points -> %llu boundary quads, %llu triangles, %llu interior faces, %llu reoriented\n"
+           "  stages: read %.0f ms, boundary %.0f ms (%.0f%%), fields %.0f ms; %u progress reports (last '%s' %.2f)\n",
+           (unsigned long long)v->cells, (unsigned long long)v->points, (unsigned long long)v->boundary_quads,
+           (unsigned long long)v->boundary_triangles, (unsigned long long)v->interior_faces,
+           (unsigned long long)v->cells_reoriented, v->read_ms, v->boundary_ms, 100 * v->boundary_ms / (t1 - t0),
+           v->fields_ms, log->calls, log->stage, log->last);
+  return r;
+}
+
+static int check(uint32_t n, const char* work) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/block%u.vtk", work, n);
+  if (gen(n, path)) return 1;
+  progress_log log = {0};
+  tlod_import_result* r = import(path, &log);
+  if (!r) return 1;
+  const tlod_import_vtk_info* v = r->vtk;
+  uint64_t cells = (uint64_t)n * n * n;
+  bool ok = v && v->cells == cells && v->boundary_quads == 6ull * n * n && v->boundary_triangles == 0 &&
+            v->cells_reoriented == cells / 5 && v->interior_faces == (6 * cells - 6ull * n * n) / 2 && log.bad == 0;
+  tlod_import_free(r);
+  printf("%s\n", ok ? "ok   block counts and progress" : "FAIL block counts or progress (see above)");
+  return ok ? 0 : 1;
+}
+
+int main(int argc, char** argv) {
+  if (argc == 4 && strcmp(argv[1], "gen") == 0) return gen((uint32_t)atoi(argv[2]), argv[3]);
+  if (argc == 3 && strcmp(argv[1], "import") == 0) {
+    progress_log log = {0};
+    tlod_import_result* r = import(argv[2], &log);
+    tlod_import_free(r);
+    return r ? 0 : 1;
+  }
+  if (argc == 4 && strcmp(argv[1], "check") == 0) return check((uint32_t)atoi(argv[2]), argv[3]);
+  fprintf(stderr, "usage: vtk_import_bench gen N FILE | import FILE | check N WORK_DIR\n");
+  return 2;
+}
