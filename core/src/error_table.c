@@ -380,6 +380,16 @@ static void cubic_table(const double (*net)[3], const _tlod_corners* c, const do
 /* Quadratic triangles, quads                                               */
 /* ------------------------------------------------------------------------ */
 
+/* A quadratic deviation from the flat triangle with constant Hessian (A, B;
+ * B, C) in (u, v): every level-l cell errs by exactly 4^-l times level 0. */
+static void hessian_tri_table(const double* A, const double* B, const double* C, double cap, double slack,
+                              tlod_patch_info* info) {
+  double e0 = dmin(quad_shape_max(A, B, C), cap), e[K + 1];
+  for (int l = 0; l <= K; l++)
+    e[l] = e0 * k_pow4[l];
+  finish(info, e, e0, slack);
+}
+
 /* S - flat = alpha Q, Q = 2 (uv d_ij + vw d_jk + wu d_ki): Hessian in (u, v)
  * Q_uu = -4 d_ki, Q_uv = 2 (d_ij - d_jk - d_ki), Q_vv = -4 d_jk. */
 static void phong_tri_table(const _tlod_corners* c, tlod_patch_info* info) {
@@ -396,10 +406,21 @@ static void phong_tri_table(const _tlod_corners* c, tlod_patch_info* info) {
     B[k] = 2.0 * a * (d[0][k] - d[1][k] - d[2][k]);
     C[k] = -4.0 * a * d[1][k];
   }
-  double e0 = quad_shape_max(A, B, C), e[K + 1];
-  for (int l = 0; l <= K; l++)
-    e[l] = e0 * k_pow4[l];
-  finish(info, e, e0, eval_slack(c, NULL, 0));
+  hessian_tri_table(A, B, C, INFINITY, eval_slack(c, NULL, 0), info);
+}
+
+/* A quadratic triangle: S - flat = 2 (uv dev_ij + vw dev_jk + wu dev_ki),
+ * dev = 2 (M - mid), the Phong form above with alpha d -> dev; capped by
+ * the closed form (2/3) max |dev| (error_bound), so the measured table is
+ * never above the closed-form one. */
+static void quadratic_tri_table(const double (*dev)[3], double slack, tlod_patch_info* info) {
+  double A[3], B[3], C[3];
+  for (int k = 0; k < 3; k++) {
+    A[k] = -4.0 * dev[2][k];
+    B[k] = 2.0 * (dev[0][k] - dev[1][k] - dev[2][k]);
+    C[k] = -4.0 * dev[1][k];
+  }
+  hessian_tri_table(A, B, C, closed_form_bound(info), slack, info);
 }
 
 /* Power form of a bicubic tensor net: a[p][q] of u^p v^q. */
@@ -421,7 +442,7 @@ static void quad_power(const double (*net)[4][3], d3 a[4][4]) {
 
 /* All cells of levels 0..K on the shared (QUAD_G + 1)^2 grid; between grid
  * points (sub-triangles with legs 1/G, R^2 = 1/(2 G^2)) at most M/(4 G^2). */
-static void phong_quad_table(const double (*net)[4][3], const _tlod_corners* c, tlod_patch_info* info) {
+static void phong_quad_table(const double (*net)[4][3], double slack, tlod_patch_info* info) {
   enum { G = QUAD_G, S = G + 1 };
   d3 a[4][4];
   quad_power(net, a);
@@ -464,7 +485,7 @@ static void phong_quad_table(const double (*net)[4][3], const _tlod_corners* c, 
     double sampled = sqrt(worst) + m / (4.0 * G * G);
     e[l] = dmin(sampled, m / 4.0 * k_pow4[l]);
   }
-  finish(info, e, m / 4.0, eval_slack(c, NULL, 0));
+  finish(info, e, m / 4.0, slack);
 }
 
 /* Bilinear: S = ... + u v (p0 - p1 + p2 - p3); on a cell's triangle the
@@ -482,14 +503,34 @@ static void flat_quad_table(const _tlod_corners* c, tlod_patch_info* info) {
 /* Closed-form mode: error_bound is a rigorous bound of the level-0
  * deviation with the 4^-l law (docs/design.md 3.5); the slack is the
  * measured tables' own, so the two modes differ only in e_l. */
-void _tlod_error_table_closed(const _tlod_corners* c, const float (*pn_net)[3], tlod_patch_info* info) {
-  double extra[10][3], e[K + 1], e0 = closed_form_bound(info);
-  for (int x = 0; pn_net && x < 10; x++)
-    for (int k = 0; k < 3; k++)
-      extra[x][k] = pn_net[x][k];
+void _tlod_error_table_closed(const _tlod_corners* c, const double (*extra)[3], int extra_n, tlod_patch_info* info) {
+  double e[K + 1], e0 = closed_form_bound(info);
   for (int l = 0; l <= K; l++)
     e[l] = e0 * k_pow4[l];
-  finish(info, e, e0, eval_slack(c, (const double(*)[3])extra, pn_net ? 10 : 0));
+  finish(info, e, e0, eval_slack(c, extra, extra_n));
+}
+
+/* A quadratic face's evaluation is a sum of up to 9 products with Lagrange
+ * weights in [-1/8, 1] (sum of |weights| <= 25/16 on quads, 5/3 on
+ * triangles), each weight a few roundings: three times the Phong slack. */
+static double quadratic_slack(const _tlod_corners* c, const double (*nodes)[3], int node_n) {
+  return 3.0 * eval_slack(c, nodes, node_n);
+}
+
+void _tlod_error_table_quadratic_closed(const _tlod_corners* c, const double (*nodes)[3], int node_n,
+                                        tlod_patch_info* info) {
+  double e[K + 1], e0 = closed_form_bound(info);
+  for (int l = 0; l <= K; l++)
+    e[l] = e0 * k_pow4[l];
+  finish(info, e, e0, quadratic_slack(c, nodes, node_n));
+}
+
+void _tlod_error_table_quadratic(const _tlod_corners* c, const double (*dev)[3], const double (*quad_net)[4][3],
+                                 const double (*nodes)[3], int node_n, tlod_patch_info* info) {
+  if (c->n == 4)
+    phong_quad_table(quad_net, quadratic_slack(c, nodes, node_n), info);
+  else
+    quadratic_tri_table(dev, quadratic_slack(c, nodes, node_n), info);
 }
 
 void _tlod_error_table(tlod_surface_type type, const _tlod_corners* c, const double (*net)[3],
@@ -497,7 +538,7 @@ void _tlod_error_table(tlod_surface_type type, const _tlod_corners* c, const dou
   static const double zero[K + 1] = {0};
   if (c->n == 4) {
     if (quad_net)
-      phong_quad_table(quad_net, c, info);
+      phong_quad_table(quad_net, eval_slack(c, NULL, 0), info);
     else
       flat_quad_table(c, info);
   } else if (type == TLOD_SURFACE_PN) {

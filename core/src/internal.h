@@ -68,6 +68,14 @@ struct tlod_mesh {
   float (*attributes)[4];
   tlod_attribute_info attribute_info[TLOD_MAX_ATTRIBUTES];
 
+  /* Second-order nodes (mesh_nodes.c), all NULL when the desc had none:
+   * per kept face the resolved nodes (given, or shared from the neighbour;
+   * _TLOD_NONE), the bit mask of the slots the desc gave, and per vertex 1
+   * for a node of some face that is a corner of none. */
+  uint32_t (*face_nodes)[TLOD_FACE_NODES];
+  uint8_t* node_given;
+  uint8_t* node_only;
+
   tlod_mesh_info info;
   tlod_finding findings[TLOD_MAX_FINDINGS];
 };
@@ -96,6 +104,26 @@ tlod_result _tlod_mesh_check_attributes(tlod_context* ctx, const char* label, co
 tlod_result _tlod_mesh_copy_attributes(tlod_mesh* mesh, const tlod_mesh_desc* d);
 bool _tlod_mesh_same_attributes(const tlod_mesh* mesh, uint32_t a, uint32_t b);
 
+/* mesh_nodes.c: the desc's face nodes checked before anything is allocated
+ * (face_size 0: MIXED); copied for the kept faces (curved_faces counted,
+ * node-only vertices marked); shared across linked edges after adjacency
+ * (nodes_shared counted); whether a vertex is node-only; whether edge e of
+ * f and edge ge of g carry bitwise equal node positions (or both none). */
+tlod_result _tlod_mesh_check_nodes(tlod_context* ctx, const char* label, const tlod_mesh_desc* d, uint32_t face_size,
+                                   uint32_t input_faces);
+tlod_result _tlod_mesh_copy_nodes(tlod_mesh* mesh, const uint32_t* face_nodes);
+void _tlod_mesh_share_nodes(tlod_mesh* mesh);
+bool _tlod_mesh_is_node_only(const tlod_mesh* mesh, uint32_t v);
+bool _tlod_mesh_same_nodes(const tlod_mesh* mesh, uint32_t f, uint32_t e, uint32_t g, uint32_t ge);
+
+/* Per-patch precomputed data of a quadratic face (quadratic.c): the
+ * resolved nodes M0..M3 of its edges and its centre C (quads), and whether
+ * the face had a given node (the record's info[1]). */
+typedef struct _tlod_quad_patch {
+  float node[5][3];
+  uint32_t given;
+} _tlod_quad_patch;
+
 /* Per-patch precomputed data of a PN triangle: 10 cubic control points and
  * the 3 quadratic normal-field mid-edge normals. Order:
  * b300 b030 b003 b210 b120 b021 b012 b102 b201 b111 (corners i, j, k). */
@@ -110,9 +138,10 @@ struct tlod_surface {
   tlod_surface_desc desc; /* resolved */
   uint32_t patch_count;
   tlod_patch_info* info;
-  _tlod_pn_patch* pn;   /* PN only */
-  float* alpha;         /* per mesh vertex: the shape factor used */
-  float (*snapshot)[6]; /* vertex positions and normals the patches were built from */
+  _tlod_pn_patch* pn;     /* PN only */
+  _tlod_quad_patch* quad; /* QUADRATIC only */
+  float* alpha;           /* per mesh vertex: the shape factor used */
+  float (*snapshot)[6];   /* vertex positions and normals the patches were built from */
   char label[64];
 };
 

@@ -201,6 +201,7 @@ static tlod_result validate(tlod_context* ctx, const tlod_mesh_desc* in, mesh_pl
   if (r == TLOD_SUCCESS) r = check_indices(ctx, p);
   if (r == TLOD_SUCCESS) r = check_vertices(ctx, p);
   if (r == TLOD_SUCCESS) r = _tlod_mesh_check_attributes(ctx, p->label, &p->d);
+  if (r == TLOD_SUCCESS) r = _tlod_mesh_check_nodes(ctx, p->label, &p->d, p->face_size, p->input_faces);
   return r;
 }
 
@@ -224,15 +225,29 @@ static bool unit_normal(const float in[3], float out[3]) {
   return true;
 }
 
+/* A node-only vertex is no corner: its normal is never read, so it is not
+ * computed or repaired; a valid given one is kept, else (0, 0, 1). */
+static void node_normal(tlod_mesh* m, const tlod_mesh_desc* d, uint32_t v) {
+  float n[3];
+  if (d->normal_mode == TLOD_NORMALS_KEEP) load3(d->normals, d->normal_stride, v, n);
+  if (d->normal_mode != TLOD_NORMALS_KEEP || !unit_normal(n, m->normals[v]))
+    memcpy(m->normals[v], (const float[3]){0.0f, 0.0f, 1.0f}, sizeof(m->normals[v]));
+}
+
+/* After the faces and their nodes: node-only vertices are left out. */
 static void copy_normals(tlod_mesh* m, const tlod_mesh_desc* d) {
-  if (d->normal_mode != TLOD_NORMALS_KEEP) {
-    /* No normals given, or a recomputing mode: every normal is computed. */
-    memset(m->normal_computed, 1, m->vertex_count);
-    m->info.normals_computed = m->vertex_count;
-    return;
-  }
   for (uint32_t v = 0; v < m->vertex_count; v++) {
     float n[3];
+    if (_tlod_mesh_is_node_only(m, v)) {
+      node_normal(m, d, v);
+      continue;
+    }
+    if (d->normal_mode != TLOD_NORMALS_KEEP) {
+      /* No normals given, or a recomputing mode: the normal is computed. */
+      m->normal_computed[v] = 1;
+      m->info.normals_computed++;
+      continue;
+    }
     load3(d->normals, d->normal_stride, v, n);
     if (unit_normal(n, m->normals[v])) continue;
     m->normal_computed[v] = 1;
@@ -265,7 +280,6 @@ static tlod_result copy_vertices(tlod_mesh* m, const tlod_mesh_desc* d) {
   for (uint32_t v = 0; v < n; v++)
     load3(d->positions, d->position_stride, v, m->positions[v]);
   if (d->alphas) copy_alphas(m, d);
-  copy_normals(m, d);
   return TLOD_SUCCESS;
 }
 
@@ -359,7 +373,7 @@ static tlod_result count_unused(tlod_mesh* m) {
     for (uint32_t i = 0; i < m->face_corners[f]; i++)
       used[m->faces[f][i]] = 1;
   for (uint32_t v = 0; v < m->vertex_count; v++) {
-    if (used[v]) continue;
+    if (used[v] || _tlod_mesh_is_node_only(m, v)) continue;
     m->info.unused_vertices++;
     _tlod_mesh_add_finding(m, TLOD_FINDING_UNUSED_VERTEX, v, _TLOD_NONE, "vertex %u: referenced by no face", v);
   }
@@ -367,17 +381,22 @@ static tlod_result count_unused(tlod_mesh* m) {
   return TLOD_SUCCESS;
 }
 
-/* Over the corners of kept faces, so unused vertices do not count. */
+static void bbox_add(const float* x, float lo[3], float hi[3]) {
+  for (int c = 0; c < 3; c++) { /* finite: plain compares, no libm calls */
+    lo[c] = x[c] < lo[c] ? x[c] : lo[c];
+    hi[c] = x[c] > hi[c] ? x[c] : hi[c];
+  }
+}
+
+/* Over the corners and nodes of kept faces, so unused vertices do not count. */
 static void compute_bbox(tlod_mesh* m) {
   float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (uint32_t f = 0; f < m->face_count; f++)
-    for (uint32_t i = 0; i < m->face_corners[f]; i++) {
-      const float* x = m->positions[m->faces[f][i]];
-      for (int c = 0; c < 3; c++) { /* finite: plain compares, no libm calls */
-        lo[c] = x[c] < lo[c] ? x[c] : lo[c];
-        hi[c] = x[c] > hi[c] ? x[c] : hi[c];
-      }
-    }
+  for (uint32_t f = 0; f < m->face_count; f++) {
+    for (uint32_t i = 0; i < m->face_corners[f]; i++)
+      bbox_add(m->positions[m->faces[f][i]], lo, hi);
+    for (uint32_t s = 0; m->face_nodes && s < TLOD_FACE_NODES; s++)
+      if (m->face_nodes[f][s] != _TLOD_NONE) bbox_add(m->positions[m->face_nodes[f][s]], lo, hi);
+  }
   memcpy(m->info.bbox_min, lo, sizeof(lo));
   memcpy(m->info.bbox_max, hi, sizeof(hi));
 }
@@ -417,6 +436,7 @@ static void store_desc(tlod_mesh* m, const mesh_plan* p) {
   m->desc.indices = NULL;
   m->desc.face_sizes = NULL;
   m->desc.attributes = NULL;
+  m->desc.face_nodes = NULL;
   m->desc.face_count = p->input_faces;
   m->desc.label = m->label;
 }
@@ -430,6 +450,10 @@ static tlod_result build(tlod_mesh* m, const mesh_plan* p) {
    * welded position are degenerate. */
   if (r == TLOD_SUCCESS) r = _tlod_mesh_weld(m);
   if (r == TLOD_SUCCESS) r = copy_faces(m, p);
+  /* Nodes before the normals and the unused count: node-only vertices get
+   * neither a computed normal nor an unused finding. */
+  if (r == TLOD_SUCCESS) r = _tlod_mesh_copy_nodes(m, p->d.face_nodes);
+  if (r == TLOD_SUCCESS) copy_normals(m, &p->d);
   if (r == TLOD_SUCCESS) r = count_unused(m);
   if (r == TLOD_SUCCESS) r = _tlod_mesh_compute_normals_split(m, &m->split_source);
   /* After the splits, so split vertices get their source's values. */
@@ -482,6 +506,9 @@ void tlod_mesh_destroy(tlod_mesh* mesh) {
   _tlod_free(ctx, mesh->links);
   _tlod_free(ctx, mesh->split_source);
   _tlod_free(ctx, mesh->attributes);
+  _tlod_free(ctx, mesh->face_nodes);
+  _tlod_free(ctx, mesh->node_given);
+  _tlod_free(ctx, mesh->node_only);
   _tlod_free(ctx, mesh);
 }
 
@@ -653,5 +680,6 @@ tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* m) {
       .face_input_index = m->face_input,
       .attribute_count = m->attribute_count,
       .attributes = (const float(*)[4])m->attributes,
+      .face_nodes = (const uint32_t(*)[TLOD_FACE_NODES])m->face_nodes,
   };
 }

@@ -191,10 +191,11 @@ static uint32_t edge_end(const tlod_mesh* m, uint32_t f, uint32_t e) {
 }
 
 /* Edge e of f meets edge ge of g in the opposite direction: smooth when
- * both sides evaluate the shared edge from bitwise equal data. */
+ * both sides evaluate the shared edge from bitwise equal data (corners, and
+ * the edge's nodes after sharing). */
 static bool edge_smooth(const tlod_mesh* m, uint32_t f, uint32_t e, uint32_t g, uint32_t ge) {
   return same_vertex_data(m, edge_start(m, f, e), edge_end(m, g, ge)) &&
-         same_vertex_data(m, edge_end(m, f, e), edge_start(m, g, ge));
+         same_vertex_data(m, edge_end(m, f, e), edge_start(m, g, ge)) && _tlod_mesh_same_nodes(m, f, e, g, ge);
 }
 
 /* A smooth edge whose two sides carry different attribute values at a
@@ -373,5 +374,11 @@ tlod_result _tlod_mesh_build_adjacency(tlod_mesh* m) {
   classify_edges(m, &b);
   _tlod_free(m->ctx, b.first);
   _tlod_free(m->ctx, b.half);
+  /* The links give each node-less edge its neighbour's node; the smooth
+   * flags then compare the shared nodes. */
+  if (m->face_nodes) {
+    _tlod_mesh_share_nodes(m);
+    _tlod_mesh_refresh_smooth(m);
+  }
   return TLOD_SUCCESS;
 }

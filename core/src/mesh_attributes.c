@@ -100,6 +100,37 @@ bool _tlod_mesh_same_attributes(const tlod_mesh* m, uint32_t a, uint32_t b) {
 }
 
 /* ------------------------------------------------------------------------ */
+/* Update (time series of a field)                                          */
+/* ------------------------------------------------------------------------ */
+
+static tlod_result check_update(tlod_mesh* m, uint32_t a, const tlod_attribute_desc* d) {
+  if (a >= m->attribute_count)
+    return _tlod_fail(m->ctx, TLOD_ERROR_INVALID_ARGUMENT, "mesh '%s': update attribute %u: the mesh has %u attributes",
+                      m->label, a, m->attribute_count);
+  tlod_result r = check_desc(m->ctx, m->label, a, d);
+  return r == TLOD_SUCCESS ? check_values(m->ctx, m->label, a, d, m->info.input_vertex_count) : r;
+}
+
+tlod_result tlod_mesh_update_attribute(tlod_mesh* mesh, uint32_t attribute, const float* data, uint32_t stride) {
+  if (!mesh) return TLOD_ERROR_INVALID_ARGUMENT;
+  uint32_t na = mesh->attribute_count, input = mesh->info.input_vertex_count;
+  /* The attribute's own components and name; an index past the end is refused by check_update. */
+  tlod_attribute_desc d = {.data = data, .stride = stride};
+  if (attribute < na)
+    d.components = mesh->attribute_info[attribute].components, d.name = mesh->attribute_info[attribute].name;
+  tlod_result r = check_update(mesh, attribute, &d);
+  if (r != TLOD_SUCCESS) return r;
+  for (uint32_t v = 0; v < input; v++)
+    load(&d, v, mesh->attributes[(size_t)v * na + attribute]);
+  for (uint32_t v = input; v < mesh->vertex_count; v++)
+    memcpy(mesh->attributes[(size_t)v * na + attribute],
+           mesh->attributes[(size_t)mesh->split_source[v - input] * na + attribute], sizeof(*mesh->attributes));
+  /* Seam flags compare attribute values bitwise. */
+  _tlod_mesh_refresh_smooth(mesh);
+  return TLOD_SUCCESS;
+}
+
+/* ------------------------------------------------------------------------ */
 /* Queries                                                                  */
 /* ------------------------------------------------------------------------ */
 

@@ -45,7 +45,9 @@ typedef struct normal_job {
   double (*mean)[3];   /* creases: sum of the unit corner normals of a vertex */
 } normal_job;
 
+/* Node-only vertices (no corner of any face) never get a computed normal. */
 static bool wants_normal(const normal_job* j, uint32_t v) {
+  if (_tlod_mesh_is_node_only(j->m, v)) return false;
   return j->m->normal_computed[v] || j->m->desc.normal_mode == TLOD_NORMALS_ANGLE ||
          j->m->desc.normal_mode == TLOD_NORMALS_AREA;
 }

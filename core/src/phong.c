@@ -7,24 +7,19 @@
  * Maths and the error bound: docs/design.md. */
 #include "surface_eval.h"
 
-static v3 normal_or(v3 n, v3 fallback) {
-  v3 u = v3_normalize(n);
-  return (u.x == 0.0f && u.y == 0.0f && u.z == 0.0f) ? fallback : u;
-}
-
 void _tlod_phong_edge(v3 pa, v3 na, float alpha_a, v3 pb, v3 nb, float alpha_b, float t, v3* pos, v3* nrm) {
   float s = 1.0f - t;
   v3 p = v3_mix2(pa, s, pb, t);
   float alpha = alpha_a * s + alpha_b * t;
   v3 proj = v3_mix2(v3_project(p, pa, na), s, v3_project(p, pb, nb), t);
   *pos = v3_mix2(p, 1.0f - alpha, proj, alpha);
-  *nrm = normal_or(v3_mix2(na, s, nb, t), na);
+  *nrm = v3_normalize_or(v3_mix2(na, s, nb, t), na);
 }
 
 void _tlod_flat_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm) {
   float s = 1.0f - t;
   *pos = v3_mix2(pa, s, pb, t);
-  *nrm = normal_or(v3_mix2(na, s, nb, t), na);
+  *nrm = v3_normalize_or(v3_mix2(na, s, nb, t), na);
 }
 
 /* Weights and their u/v derivatives for the corners of a patch. */
@@ -66,7 +61,7 @@ void _tlod_phong_eval(const _tlod_corners* c, float u, float v, uint32_t flags, 
     pi[i] = v3_project(q, c->p[i], c->nrm[i]);
   v3 proj = blend(pi, &w, w.w);
   v3_store(out->position, v3_mix2(q, 1.0f - a, proj, a));
-  v3 shading = normal_or(blend(c->nrm, &w, w.w), c->nrm[0]);
+  v3 shading = v3_normalize_or(blend(c->nrm, &w, w.w), c->nrm[0]);
   v3_store(out->normal, shading);
   if (!(flags & (_TLOD_EVAL_DERIVS | _TLOD_EVAL_TRUE_NORMAL))) return;
   v3 qu = blend(c->p, &w, w.du), qv = blend(c->p, &w, w.dv);
@@ -78,16 +73,21 @@ void _tlod_phong_eval(const _tlod_corners* c, float u, float v, uint32_t flags, 
   }
   v3 tu = v3_add(v3_mix2(qu, 1.0f - a, su, a), v3_scale(v3_sub(proj, q), au));
   v3 tv = v3_add(v3_mix2(qv, 1.0f - a, sv, a), v3_scale(v3_sub(proj, q), av));
-  if (flags & _TLOD_EVAL_TRUE_NORMAL) v3_store(out->normal, normal_or(v3_cross(tu, tv), shading));
+  if (flags & _TLOD_EVAL_TRUE_NORMAL) v3_store(out->normal, v3_normalize_or(v3_cross(tu, tv), shading));
   v3_store(out->tangent, tu);
   v3_store(out->bitangent, tv);
+}
+
+v3 _tlod_corner_normal(const _tlod_corners* c, float u, float v) {
+  weights w = corner_weights(c->n, u, v);
+  return v3_normalize_or(blend(c->nrm, &w, w.w), c->nrm[0]);
 }
 
 void _tlod_flat_eval(const _tlod_corners* c, float u, float v, tlod_surface_point* out) {
   weights w = corner_weights(c->n, u, v);
   v3 tu = blend(c->p, &w, w.du), tv = blend(c->p, &w, w.dv);
   v3_store(out->position, blend(c->p, &w, w.w));
-  v3_store(out->normal, normal_or(blend(c->nrm, &w, w.w), c->nrm[0]));
+  v3_store(out->normal, _tlod_corner_normal(c, u, v));
   v3_store(out->tangent, tu);
   v3_store(out->bitangent, tv);
 }

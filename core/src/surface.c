@@ -28,7 +28,7 @@ static void gather(const tlod_surface* s, uint32_t face, _tlod_corners* c) {
   }
 }
 
-static void sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n, float grow, tlod_patch_info* info) {
+void _tlod_sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n, float grow, tlod_patch_info* info) {
   v3 center = c->p[0];
   for (uint32_t i = 1; i < c->n; i++)
     center = v3_add(center, c->p[i]);
@@ -54,8 +54,13 @@ static void sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n,
 static void build_error_table(tlod_surface* s, uint32_t f, const _tlod_corners* c, const double (*alpha_net)[3],
                               const double (*quad_net)[4][3]) {
   tlod_patch_info* info = &s->info[f];
+  bool pn = s->desc.type == TLOD_SURFACE_PN;
+  double net[10][3];
+  for (int i = 0; pn && i < 10; i++)
+    for (int k = 0; k < 3; k++)
+      net[i][k] = s->pn[f].b[i][k];
   if (s->desc.error_tables == TLOD_ERROR_TABLES_CLOSED_FORM) {
-    _tlod_error_table_closed(c, s->desc.type == TLOD_SURFACE_PN ? (const float(*)[3])s->pn[f].b : NULL, info);
+    _tlod_error_table_closed(c, (const double(*)[3])net, pn ? 10 : 0, info);
     return;
   }
   bool phong = s->desc.type == TLOD_SURFACE_PHONG;
@@ -63,13 +68,7 @@ static void build_error_table(tlod_surface* s, uint32_t f, const _tlod_corners* 
     _tlod_error_table(s->desc.type, c, NULL, phong ? quad_net : NULL, info);
     return;
   }
-  double net[10][3];
-  if (s->desc.type == TLOD_SURFACE_PN) {
-    for (int i = 0; i < 10; i++)
-      for (int k = 0; k < 3; k++)
-        net[i][k] = s->pn[f].b[i][k];
-    alpha_net = (const double(*)[3])net;
-  }
+  if (pn) alpha_net = (const double(*)[3])net;
   _tlod_error_table(s->desc.type, c, alpha_net, NULL, info);
 }
 
@@ -81,6 +80,10 @@ static void build_patch(tlod_surface* s, uint32_t f) {
   double quad_net[4][4][3], alpha_net[10][3];
   bool per_vertex = false;
   switch (s->desc.type) {
+  case TLOD_SURFACE_QUADRATIC:
+    /* Nodes, bounds, sphere and tables of its own (quadratic.c). */
+    _tlod_quadratic_build(s, f, &c, &s->quad[f], info);
+    return;
   case TLOD_SURFACE_PN: {
     _tlod_pn_build(&c, &s->pn[f]);
     info->error_bound = _tlod_pn_bound(&s->pn[f], &c, &info->d_max);
@@ -88,7 +91,7 @@ static void build_patch(tlod_surface* s, uint32_t f) {
     for (int i = 0; i < 10; i++)
       ctrl[i] = v3_load(s->pn[f].b[i]);
     /* Bernstein convex hull: the control points enclose the patch. */
-    sphere_of(&c, ctrl, 10, 0.0f, info);
+    _tlod_sphere_of(&c, ctrl, 10, 0.0f, info);
     break;
   }
   case TLOD_SURFACE_PHONG:
@@ -100,13 +103,13 @@ static void build_patch(tlod_surface* s, uint32_t f) {
       _tlod_quad_net(&c, quad_net);
       info->error_bound = _tlod_quad_net_bound(quad_net, &c, &info->d_max);
     }
-    sphere_of(&c, NULL, 0, info->error_bound, info);
+    _tlod_sphere_of(&c, NULL, 0, info->error_bound, info);
     break;
   default:
     /* gather() gave flat surfaces zero alphas: the quad bound is the bilinear one. */
     info->error_bound = c.n == 4 ? _tlod_quad_bound(&c, &info->d_max) : 0.0f;
     if (c.n == 3) info->d_max = 0.0f;
-    sphere_of(&c, NULL, 0, info->error_bound, info);
+    _tlod_sphere_of(&c, NULL, 0, info->error_bound, info);
     break;
   }
   build_error_table(s, f, &c, per_vertex ? (const double(*)[3])alpha_net : NULL, quad_net);
@@ -160,6 +163,7 @@ void tlod_surface_destroy(tlod_surface* s) {
   tlod_context* ctx = s->ctx;
   _tlod_free(ctx, s->info);
   _tlod_free(ctx, s->pn);
+  _tlod_free(ctx, s->quad);
   _tlod_free(ctx, s->alpha);
   _tlod_free(ctx, s->snapshot);
   _tlod_free(ctx, s);
@@ -170,7 +174,9 @@ static tlod_result alloc_surface(tlod_context* ctx, const tlod_mesh* mesh, tlod_
   s->alpha = _tlod_calloc(ctx, mesh->vertex_count, sizeof(float));
   s->snapshot = _tlod_calloc(ctx, mesh->vertex_count, sizeof(*s->snapshot));
   if (s->desc.type == TLOD_SURFACE_PN) s->pn = _tlod_calloc(ctx, mesh->face_count, sizeof(*s->pn));
-  if (!s->info || !s->alpha || !s->snapshot || (s->desc.type == TLOD_SURFACE_PN && !s->pn))
+  if (s->desc.type == TLOD_SURFACE_QUADRATIC) s->quad = _tlod_calloc(ctx, mesh->face_count, sizeof(*s->quad));
+  if (!s->info || !s->alpha || !s->snapshot || (s->desc.type == TLOD_SURFACE_PN && !s->pn) ||
+      (s->desc.type == TLOD_SURFACE_QUADRATIC && !s->quad))
     return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "surface '%s': out of memory for %u patches", s->desc.label,
                       mesh->face_count);
   return TLOD_SUCCESS;
@@ -218,6 +224,22 @@ tlod_result tlod_surface_create(tlod_context* ctx, const tlod_mesh* mesh, const 
   return TLOD_SUCCESS;
 }
 
+static bool vertex_changed(const tlod_surface* s, uint32_t v) {
+  const tlod_mesh* m = s->mesh;
+  return memcmp(s->snapshot[v], m->positions[v], sizeof(float) * 3) != 0 ||
+         memcmp(s->snapshot[v] + 3, m->normals[v], sizeof(float) * 3) != 0;
+}
+
+/* A patch depends on its corners and, on a quadratic surface, its nodes. */
+static bool face_changed(const tlod_surface* s, uint32_t f) {
+  const tlod_mesh* m = s->mesh;
+  for (uint32_t i = 0; i < m->face_corners[f]; i++)
+    if (vertex_changed(s, m->faces[f][i])) return true;
+  for (uint32_t i = 0; s->quad && m->face_nodes && i < TLOD_FACE_NODES; i++)
+    if (m->face_nodes[f][i] != _TLOD_NONE && vertex_changed(s, m->face_nodes[f][i])) return true;
+  return false;
+}
+
 tlod_result tlod_surface_refresh(tlod_surface* s, uint32_t* updated) {
   if (updated) *updated = 0;
   if (!s) return TLOD_ERROR_INVALID_ARGUMENT;
@@ -226,11 +248,7 @@ tlod_result tlod_surface_refresh(tlod_surface* s, uint32_t* updated) {
   if (!dirty) return _tlod_fail(s->ctx, TLOD_ERROR_OUT_OF_MEMORY, "surface '%s': out of memory", s->label);
   uint32_t count = 0;
   for (uint32_t f = 0; f < m->face_count; f++) {
-    for (uint32_t i = 0; i < m->face_corners[f] && !dirty[f]; i++) {
-      uint32_t v = m->faces[f][i];
-      dirty[f] = memcmp(s->snapshot[v], m->positions[v], sizeof(float) * 3) != 0 ||
-                 memcmp(s->snapshot[v] + 3, m->normals[v], sizeof(float) * 3) != 0;
-    }
+    dirty[f] = face_changed(s, f);
     count += dirty[f];
   }
   build_job job = {s, dirty};
@@ -282,6 +300,9 @@ void _tlod_patch_eval_with(const tlod_surface* s, uint32_t patch, const _tlod_co
   case TLOD_SURFACE_PHONG:
     _tlod_phong_eval(c, u, v, flags, out);
     return;
+  case TLOD_SURFACE_QUADRATIC:
+    _tlod_quadratic_eval(&s->quad[patch], c, u, v, out);
+    break;
   default:
     _tlod_flat_eval(c, u, v, out);
     break;
@@ -326,7 +347,11 @@ void _tlod_patch_edge_point(const tlod_surface* s, uint32_t patch, uint32_t edge
     return;
   }
   /* Canonical direction: from the smaller welded id, so both sides agree. */
-  if (m->weld_id[a] < m->weld_id[b])
+  bool forward = m->weld_id[a] < m->weld_id[b];
+  if (s->quad)
+    _tlod_quadratic_edge_point(s, patch, edge, forward ? a : b, forward ? b : a, forward ? t_end : 1.0f - t_end, pos,
+                               nrm);
+  else if (forward)
     _tlod_edge_eval(s, a, b, t_end, pos, nrm);
   else
     _tlod_edge_eval(s, b, a, 1.0f - t_end, pos, nrm);

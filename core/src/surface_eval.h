@@ -41,6 +41,11 @@ void _tlod_quad_net(const _tlod_corners* c, double net[4][4][3]);
 double _tlod_quad_net_m(const double net[4][4][3]);
 float _tlod_quad_net_bound(const double net[4][4][3], const _tlod_corners* c, float* d_max);
 
+/* The interpolated shading normal: normalize(sum of corner weights *
+ * corner normals), the first corner's where that cancels (Phong, flat and
+ * quadratic faces). */
+v3 _tlod_corner_normal(const _tlod_corners* c, float u, float v);
+
 /* Flat: the input triangle, the bilinear quad. */
 void _tlod_flat_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm);
 void _tlod_flat_eval(const _tlod_corners* c, float u, float v, tlod_surface_point* out);
@@ -54,6 +59,17 @@ void _tlod_pn_eval(const _tlod_pn_patch* patch, const _tlod_corners* c, float u,
 /* d_max: the paper's d'_max; returns max(9/4 d'_max, the second-derivative bound). */
 float _tlod_pn_bound(const _tlod_pn_patch* patch, const _tlod_corners* c, float* d_max);
 
+/* Quadratic faces (quadratic.c). The canonical edge function through the
+ * edge's node m; one patch (u, v) with tangents and the interpolated normal;
+ * the patch's resolved nodes, bounds, sphere and error tables; edge e of a
+ * patch in canonical direction a -> b (mesh vertices). */
+void _tlod_quadratic_edge(v3 pa, v3 na, v3 pb, v3 nb, v3 m, float t, v3* pos, v3* nrm);
+void _tlod_quadratic_eval(const _tlod_quad_patch* q, const _tlod_corners* c, float u, float v, tlod_surface_point* out);
+void _tlod_quadratic_build(const tlod_surface* s, uint32_t f, const _tlod_corners* c, _tlod_quad_patch* q,
+                           tlod_patch_info* info);
+void _tlod_quadratic_edge_point(const tlod_surface* s, uint32_t patch, uint32_t edge, uint32_t a, uint32_t b, float t,
+                                float pos[3], float nrm[3]);
+
 /* error_table.c: per-level error tables (issue #9, docs/design.md "Error
  * tables"). Fills error_table, error_tail and error_slack of info. net: the
  * cubic triangle net of surface minus flat patch (per-vertex-alpha Phong)
@@ -63,9 +79,21 @@ void _tlod_error_table(tlod_surface_type type, const _tlod_corners* c, const dou
                        const double (*quad_net)[4][3], tlod_patch_info* info);
 /* TLOD_ERROR_TABLES_CLOSED_FORM: the table from info->error_bound (already
  * set) alone, error_bound * 4^-l plus the measured tables' evaluation slack
- * (pn_net: the PN control net, NULL for other surfaces). */
-void _tlod_error_table_closed(const _tlod_corners* c, const float (*pn_net)[3], tlod_patch_info* info);
+ * (extra: points besides the corners the evaluation reads, the PN control
+ * net or a quadratic face's nodes; extra_n 0 for other surfaces). */
+void _tlod_error_table_closed(const _tlod_corners* c, const double (*extra)[3], int extra_n, tlod_patch_info* info);
+/* Quadratic faces: a triangle's edge deviations dev[e] = 2 (M_e - mid_e)
+ * (S - flat = 2 sum l_i l_j dev_ij), or a quad's bicubic net (its
+ * biquadratic degree-elevated); nodes: the resolved nodes (for the slack). */
+void _tlod_error_table_quadratic(const _tlod_corners* c, const double (*dev)[3], const double (*quad_net)[4][3],
+                                 const double (*nodes)[3], int node_n, tlod_patch_info* info);
+/* Its TLOD_ERROR_TABLES_CLOSED_FORM table (error_bound 4^-l, the same slack). */
+void _tlod_error_table_quadratic_closed(const _tlod_corners* c, const double (*nodes)[3], int node_n,
+                                        tlod_patch_info* info);
 
+/* surface.c: a bounding sphere about the corners' centroid through the
+ * corners and extra points, radius grown by grow (and a relative slack). */
+void _tlod_sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n, float grow, tlod_patch_info* info);
 /* surface.c: a patch's corner data, and evaluation with those corners
  * gathered once (tangents only when flags ask). */
 void _tlod_patch_corners(const tlod_surface* s, uint32_t patch, _tlod_corners* c);

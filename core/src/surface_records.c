@@ -23,6 +23,12 @@ static void fill_record(const tlod_surface* s, uint32_t f, tlod_patch_record* ou
     copy3(out->normal[c], m->normals[v]);
     out->weld[c] = m->weld_id[v];
   }
+  if (s->quad) {
+    /* Lagrange nodes M0..M3 and the centre, w = 0 (core.h tlod_patch_record). */
+    for (int i = 0; i < 5; i++)
+      copy3(out->pn_control[i], s->quad[f].node[i]);
+    out->info[1] = s->quad[f].given;
+  }
   if (!s->pn) return;
   for (int i = 0; i < 10; i++)
     copy3(out->pn_control[i], s->pn[f].b[i]);

@@ -41,6 +41,11 @@ static inline v3 v3_normalize(v3 a) {
   v3 b = {a.x / m, a.y / m, a.z / m};
   return v3_scale(b, 1.0f / v3_length(b));
 }
+/* normalize(n), or fallback where n is zero (a valid normal, callers' choice). */
+static inline v3 v3_normalize_or(v3 n, v3 fallback) {
+  v3 u = v3_normalize(n);
+  return (u.x == 0.0f && u.y == 0.0f && u.z == 0.0f) ? fallback : u;
+}
 /* Phong projection of q onto the tangent plane of (p, n). */
 static inline v3 v3_project(v3 q, v3 p, v3 n) { return v3_sub(q, v3_scale(n, v3_dot(v3_sub(q, p), n))); }
 /* (I - n n^T) d: the derivative of the projection along d. */

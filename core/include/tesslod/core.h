@@ -293,11 +293,20 @@ typedef struct tlod_mesh_desc {
    * input face: the mid-edge node of edges 0..3 (edge e from corner e to
    * corner (e + 1) % n; a triangle's [3] unused) and the centre node
    * ([4], quads: a 9-node face; TLOD_NO_NODE: an 8-node or linear face).
-   * A node is a vertex index < vertex_count, or TLOD_NO_NODE; node-only
-   * vertices are not "unused" and get no normal. A node index out of range
-   * or equal to a corner of its face: TLOD_ERROR_INVALID_MESH naming the
-   * face and the node. NULL: no face has nodes. Other surface types ignore
-   * the nodes. */
+   * A node is a vertex index < vertex_count, or TLOD_NO_NODE; slots a face
+   * does not have (a triangle's [3] and [4]) are ignored. A node index out
+   * of range, equal to a corner of its face or to another node of it:
+   * TLOD_ERROR_INVALID_MESH naming the input face and the node slot
+   * ("face 7: node 2: index 99 out of range (40 vertices)"). Node-only
+   * vertices (a node of some kept face, a corner of none) are not "unused"
+   * and get no normal work: a valid given normal is kept, else (0, 0, 1),
+   * never counted as repaired or computed. Node positions count in the
+   * bbox and are updated by tlod_mesh_update() like any vertex. After
+   * adjacency a linked edge without a node takes its neighbour's given
+   * node (tlod_mesh_info.nodes_shared; tlod_mesh_view.face_nodes shows the
+   * result), and an edge whose two sides have bitwise different node
+   * positions is not smooth. NULL: no face has nodes. Other surface types
+   * ignore the nodes. */
   const uint32_t* face_nodes;
 } tlod_mesh_desc;
 
@@ -395,6 +404,21 @@ TLOD_API tlod_attribute_info tlod_mesh_query_attribute(const tlod_mesh* mesh, ui
  * normals with computed normals: they are recomputed. */
 TLOD_API tlod_result tlod_mesh_update(tlod_mesh* mesh, const float* positions, uint32_t position_stride,
                                       const float* normals, uint32_t normal_stride);
+
+/* Replaces the values of one vertex attribute (a result field's next time
+ * step) in place: data holds the attribute's `components` floats per input
+ * vertex (stride bytes apart; 0 == 4 * components), crease-split vertices
+ * take their source's. Positions, normals, nodes and the other attributes
+ * are untouched; the seam flags (tlod_edge_link.seam) are recomputed.
+ * Surfaces hold no attribute data, so tlod_mesh_eval_attributes_grid() and
+ * tlod_mesh_patch_attributes() give the new values at once; a device picks
+ * them up on its next tlod_device_update_surface(). Checked, nothing
+ * written on failure: NULL mesh (TLOD_ERROR_INVALID_ARGUMENT, no last
+ * error), attribute >= the attribute count, NULL data or a stride below an
+ * element (TLOD_ERROR_INVALID_ARGUMENT naming the attribute), a value not
+ * finite (TLOD_ERROR_INVALID_MESH naming the vertex and the attribute). */
+TLOD_API tlod_result tlod_mesh_update_attribute(tlod_mesh* mesh, uint32_t attribute, const float* data,
+                                                uint32_t stride);
 
 /* ------------------------------------------------------------------------ */
 /* Surfaces                                                                 */
