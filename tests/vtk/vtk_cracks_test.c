@@ -4,8 +4,9 @@
  * list for a random camera (near, far, grazing, inside, orthographic) realised by the cpu
  * tessellator with no_weld (every patch its own pattern vertices, as a GPU draws them) must weld by
  * exact position into a closed, consistently oriented manifold (tests/unit/shapes.h); without
- * stitching some frame must open (the checker sees cracks). Meshes: the hex box and the coarse
- * hex cylinder (Phong quads, creases at 45 degrees), the 20- and 27-node hex pairs (quadratic).
+ * stitching some frame must open (the checker sees cracks). Meshes: the hex box (Phong quads, smooth
+ * normals), the coarse hex cylinder (Phong quads, creases at 45 degrees: strips at the rims), the
+ * 20- and 27-node hex pairs (quadratic, creases at 45 degrees).
  * Usage: vtk_cracks_test WORK_DIR
  */
 #include <math.h>
@@ -105,12 +106,12 @@ static void crack_suite(tlod_context* ctx, const tlod_surface* s, const char* wh
   tlod_patterns_destroy(pat);
 }
 
-static void mesh_case(const vtk_model* m, const char* name, vtk_format format, tlod_surface_type type) {
+static void mesh_case(const vtk_model* m, const char* name, vtk_format format, tlod_surface_type type, float crease) {
   tlod_import_result* r = vtk_test_write_import(m, work, name, format);
   CHECK(r);
   tlod_context* ctx = NULL;
   CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 1}, &ctx) == TLOD_SUCCESS);
-  tlod_mesh* mesh = vtk_test_mesh(ctx, r, 45, 0);
+  tlod_mesh* mesh = vtk_test_mesh(ctx, r, crease, 0);
   tlod_surface* s = mesh ? vtk_test_surface(ctx, mesh, type) : NULL;
   crack_stats st = {0};
   if (s) crack_suite(ctx, s, name, &st);
@@ -128,24 +129,25 @@ static void mesh_case(const vtk_model* m, const char* name, vtk_format format, t
 TEST(test_hex_box) {
   vtk_model m;
   vtk_build_box(&m, 4, 3, 2, 2.0, 1.5, 1.0);
-  mesh_case(&m, "box.vtk", VTK_LEGACY_BINARY, TLOD_SURFACE_PHONG);
+  /* no creases: with them every box face is flat and one level would do */
+  mesh_case(&m, "box.vtk", VTK_LEGACY_BINARY, TLOD_SURFACE_PHONG, 0);
   vtk_model_free(&m);
 }
 
 TEST(test_hex_cylinder) {
   vtk_model m;
   vtk_build_hex_cylinder(&m, 1, 2, 2);
-  mesh_case(&m, "cylinder.vtu", VTK_XML_ASCII, TLOD_SURFACE_PHONG);
+  mesh_case(&m, "cylinder.vtu", VTK_XML_ASCII, TLOD_SURFACE_PHONG, 45);
   vtk_model_free(&m);
 }
 
 TEST(test_quadratic_hexes) {
   vtk_model m;
   vtk_build_quadratic_pair(&m, VTK_QUADRATIC_HEXAHEDRON);
-  mesh_case(&m, "hex20.vtk", VTK_LEGACY_ASCII, TLOD_SURFACE_QUADRATIC);
+  mesh_case(&m, "hex20.vtk", VTK_LEGACY_ASCII, TLOD_SURFACE_QUADRATIC, 45);
   vtk_model_free(&m);
   vtk_build_quadratic_pair(&m, VTK_TRIQUADRATIC_HEXAHEDRON);
-  mesh_case(&m, "hex27.vtu", VTK_XML_ASCII, TLOD_SURFACE_QUADRATIC);
+  mesh_case(&m, "hex27.vtu", VTK_XML_ASCII, TLOD_SURFACE_QUADRATIC, 45);
   vtk_model_free(&m);
 }
 

@@ -1,9 +1,11 @@
 /*
  * vtk_import_bench.c -- the scale measurement of VTK input (issue 14, BENCHMARKS.md) and its
  * small-size check.
- *   vtk_import_bench gen N FILE     writes an N x N x N hexahedron block (unit cube, legacy binary
- *                                   .vtk, or .vtu by extension; point fields temperature and
- *                                   displacement, cell field pressure; every fifth cell inverted)
+ *   vtk_import_bench gen MODEL FILE writes a test mesh (.vtu by extension, else legacy binary
+ *                                   .vtk): MODEL blockN is an N x N x N hexahedron block (unit cube;
+ *                                   point fields temperature and displacement, cell field pressure;
+ *                                   every fifth cell inverted), or box, sphere, cylinder, hex20,
+ *                                   hex27, mixed (vtk_model.h)
  *   vtk_import_bench import FILE    imports it once and prints wall seconds, the importer's stage
  *                                   times (tlod_import_vtk_info), the boundary counts and the peak RSS
  *   vtk_import_bench check N WORK   gen + import in one run, exit 1 unless the boundary has 6 N^2
@@ -33,9 +35,33 @@ static void on_progress(void* user, const char* stage, double fraction) {
   snprintf(p->stage, sizeof p->stage, "%s", stage ? stage : "(null)");
 }
 
-static int gen(uint32_t n, const char* path) {
+/* The model a name stands for; false for an unknown name. */
+static bool build(const char* name, vtk_model* m) {
+  if (strncmp(name, "block", 5) == 0 && atoi(name + 5) > 0) {
+    uint32_t n = (uint32_t)atoi(name + 5);
+    vtk_build_box(m, n, n, n, 1, 1, 1);
+  } else if (strcmp(name, "box") == 0) {
+    vtk_build_box(m, 4, 3, 2, 2.0, 1.5, 1.0);
+  } else if (strcmp(name, "sphere") == 0) {
+    vtk_build_tet_sphere(m, 3, 1.0);
+  } else if (strcmp(name, "cylinder") == 0) {
+    vtk_build_hex_cylinder(m, 1, 2, 2);
+  } else if (strcmp(name, "hex20") == 0 || strcmp(name, "hex27") == 0) {
+    vtk_build_quadratic_pair(m, name[4] == '0' ? VTK_QUADRATIC_HEXAHEDRON : VTK_TRIQUADRATIC_HEXAHEDRON);
+  } else if (strcmp(name, "mixed") == 0) {
+    vtk_build_mixed(m);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+static int gen(const char* name, const char* path) {
   vtk_model m;
-  vtk_build_box(&m, n, n, n, 1, 1, 1);
+  if (!build(name, &m)) {
+    fprintf(stderr, "vtk_import_bench: unknown model '%s'\n", name);
+    return 2;
+  }
   size_t len = strlen(path);
   bool xml = len > 4 && strcmp(path + len - 4, ".vtu") == 0;
   bool ok = vtk_model_write(&m, path, xml ? VTK_XML_ASCII : VTK_LEGACY_BINARY);
@@ -70,9 +96,10 @@ static tlod_import_result* import(const char* path, progress_log* log) {
 }
 
 static int check(uint32_t n, const char* work) {
-  char path[1024];
+  char path[1024], name[32];
   snprintf(path, sizeof path, "%s/block%u.vtk", work, n);
-  if (gen(n, path)) return 1;
+  snprintf(name, sizeof name, "block%u", n);
+  if (gen(name, path)) return 1;
   progress_log log = {0};
   tlod_import_result* r = import(path, &log);
   if (!r) return 1;
@@ -86,7 +113,7 @@ static int check(uint32_t n, const char* work) {
 }
 
 int main(int argc, char** argv) {
-  if (argc == 4 && strcmp(argv[1], "gen") == 0) return gen((uint32_t)atoi(argv[2]), argv[3]);
+  if (argc == 4 && strcmp(argv[1], "gen") == 0) return gen(argv[2], argv[3]);
   if (argc == 3 && strcmp(argv[1], "import") == 0) {
     progress_log log = {0};
     tlod_import_result* r = import(argv[2], &log);
@@ -94,6 +121,6 @@ int main(int argc, char** argv) {
     return r ? 0 : 1;
   }
   if (argc == 4 && strcmp(argv[1], "check") == 0) return check((uint32_t)atoi(argv[2]), argv[3]);
-  fprintf(stderr, "usage: vtk_import_bench gen N FILE | import FILE | check N WORK_DIR\n");
+  fprintf(stderr, "usage: vtk_import_bench gen MODEL FILE | import FILE | check N WORK_DIR\n");
   return 2;
 }
