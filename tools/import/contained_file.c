@@ -12,6 +12,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "tesslod/core.h"
+
 static int _tlod_hex(char c) {
   if (c >= '0' && c <= '9') return c - '0';
   if (c >= 'a' && c <= 'f') return c - 'a' + 10;
@@ -192,4 +194,16 @@ const char* _tlod_contained_message(_tlod_contained_status status) {
     return "out of memory";
   }
   return "refused";
+}
+
+int _tlod_contained_result(_tlod_contained_status status) {
+  switch (status) {
+  case _TLOD_CONTAINED_TOO_LARGE:
+  case _TLOD_CONTAINED_OUT_OF_MEMORY:
+    return TLOD_ERROR_OUT_OF_MEMORY;
+  case _TLOD_CONTAINED_BAD_ESCAPE:
+    return TLOD_ERROR_PARSE;
+  default:
+    return TLOD_ERROR_IO;
+  }
 }

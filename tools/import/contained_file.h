@@ -43,6 +43,11 @@ bool _tlod_percent_decode(const char* ref, char* out, size_t out_size);
 _tlod_contained_status _tlod_contained_read(const char* folder, const char* ref, size_t max_bytes, unsigned char** data,
                                             size_t* size);
 
+/* The tlod_result a refusal gives: TLOD_ERROR_OUT_OF_MEMORY (too large, out of memory),
+ * TLOD_ERROR_PARSE (bad escape), else TLOD_ERROR_IO. Returned as int (tlod_result) so this
+ * header needs no core header. */
+int _tlod_contained_result(_tlod_contained_status status);
+
 /* A short phrase for a status, for "<file>: <element> '<ref>': <phrase>". */
 const char* _tlod_contained_message(_tlod_contained_status status);
 

@@ -124,18 +124,6 @@ std::string tinygltf_key(const std::string& uri) {
   return r;
 }
 
-tlod_result refusal_code(_tlod_contained_status st) {
-  switch (st) {
-  case _TLOD_CONTAINED_TOO_LARGE:
-  case _TLOD_CONTAINED_OUT_OF_MEMORY:
-    return TLOD_ERROR_OUT_OF_MEMORY;
-  case _TLOD_CONTAINED_BAD_ESCAPE:
-    return TLOD_ERROR_PARSE;
-  default:
-    return TLOD_ERROR_IO;
-  }
-}
-
 void read_buffer(const char* folder, size_t i, const std::string& uri, _tlod_import_budget* budget, Files& files) {
   const std::string where = format("buffers[%zu].uri '%.200s'", i, uri.c_str());
   if (!folder) fail(TLOD_ERROR_IO, where + ": refused: an external file of a model imported from memory");
@@ -145,7 +133,8 @@ void read_buffer(const char* folder, size_t i, const std::string& uri, _tlod_imp
   size_t size = 0;
   const _tlod_contained_status st =
       _tlod_contained_read(folder, uri.c_str(), _tlod_budget_file_limit(budget), &data, &size);
-  if (st != _TLOD_CONTAINED_OK) fail(refusal_code(st), where + ": " + _tlod_contained_message(st));
+  if (st != _TLOD_CONTAINED_OK)
+    fail(tlod_result(_tlod_contained_result(st)), where + ": " + _tlod_contained_message(st));
   _tlod_budget_add_input(budget, size);
   if (!_tlod_budget_take(budget, 2 * size)) {
     std::free(data);

@@ -182,6 +182,8 @@ static tlod_result _tlod_import_setup(_tlod_import_job* job, const tlod_import_d
   const size_t limit = desc ? desc->memory_limit : 0;
   *budget = (_tlod_import_budget){limit ? limit : _tlod_budget_default(0), 0, limit == 0};
   job->keep_scene = desc && desc->keep_scene;
+  job->progress = desc ? desc->progress : NULL;
+  job->progress_user = desc ? desc->progress_user : NULL;
   job->budget = budget;
   return TLOD_SUCCESS;
 }
@@ -194,9 +196,29 @@ static tlod_result _tlod_import_dispatch(_tlod_import_job* job) {
     return _tlod_import_obj(job);
   } else if (_tlod_str_ends_with_nocase(path, ".ply")) {
     return _tlod_import_ply(job);
+  } else if (_tlod_is_vtk_path(path)) {
+    return _tlod_import_vtk(job);
   }
-  return _tlod_import_fail(job, TLOD_ERROR_UNSUPPORTED, "unknown file extension (expected .gltf, .glb, .obj or .ply)");
+  return _tlod_import_fail(job, TLOD_ERROR_UNSUPPORTED,
+                           "unknown file extension (expected .gltf, .glb, .obj, .ply, .vtk, .vtu, .vtp, .pvtu, .pvd "
+                           "or .stl)");
 }
+
+/* VTK's formats (vtk_import.cpp reads them; without TLOD_WITH_VTK the stub below refuses them).
+ * A '*' in the file name is a numbered series of one of them. */
+bool _tlod_is_vtk_path(const char* path) {
+  return _tlod_str_ends_with_nocase(path, ".vtk") || _tlod_str_ends_with_nocase(path, ".vtu") ||
+         _tlod_str_ends_with_nocase(path, ".vtp") || _tlod_str_ends_with_nocase(path, ".pvtu") ||
+         _tlod_str_ends_with_nocase(path, ".pvd") || _tlod_str_ends_with_nocase(path, ".stl");
+}
+
+#if !TLOD_WITH_VTK
+tlod_result _tlod_import_vtk(const _tlod_import_job* job) {
+  const char* dot = strrchr(job->name, '.');
+  return _tlod_import_fail(job, TLOD_ERROR_UNSUPPORTED, "%s files need VTK: this build has TLOD_WITH_VTK=OFF",
+                           dot ? dot : ".vtk");
+}
+#endif
 
 /* The folder part of path ("" for none), in buf. */
 static const char* _tlod_folder_of(const char* path, char* buf, size_t size) {
@@ -227,7 +249,8 @@ tlod_result tlod_import_file_desc(const char* path, const tlod_import_desc* desc
                                   size_t error_size) {
   char folder[4096];
   _tlod_import_job job = {
-      path, path ? _tlod_base_name(path) : "(null)", NULL, NULL, 0, {0}, NULL, out, error, error_size, false};
+      path, path ? _tlod_base_name(path) : "(null)", NULL, NULL, 0, {0}, NULL, out, error, error_size, false, NULL,
+      NULL};
   job.folder = path ? _tlod_folder_of(path, folder, sizeof folder) : NULL;
   return _tlod_import_run(&job, desc);
 }
@@ -253,7 +276,9 @@ tlod_result tlod_import_memory(const char* name, const void* data, size_t size, 
                           out,
                           error,
                           error_size,
-                          false};
+                          false,
+                          NULL,
+                          NULL};
   if (!data && size) return _tlod_import_fail(&job, TLOD_ERROR_INVALID_ARGUMENT, "data is NULL with size %zu", size);
   return _tlod_import_run(&job, desc);
 }

@@ -68,6 +68,16 @@ typedef struct _tlod_import_data {
   uint32_t skin_count;
   const tlod_import_skin* skins;
   uint32_t weights_renormalised;
+  /* VTK (issue 14), deep-copied like the rest: TLOD_FACE_NODES per face or NULL;
+   * fields[i].data holds max(1, step_count) x vertex_count x components floats;
+   * vtk NULL for other formats; step_positions step_count x vertex_count x 3. */
+  const uint32_t* face_nodes;
+  uint32_t field_count;
+  const tlod_import_field* fields;
+  const tlod_import_vtk_info* vtk;
+  uint32_t step_count;
+  const float* step_times;
+  const float* step_positions;
 } _tlod_import_data;
 
 /* The import's memory budget (tlod_import_desc.memory_limit): every
@@ -111,7 +121,9 @@ typedef struct _tlod_import_job {
   tlod_import_result** out;
   char* error;
   size_t error_size;
-  bool keep_scene; /* tlod_import_desc.keep_scene */
+  bool keep_scene;                                                  /* tlod_import_desc.keep_scene */
+  void (*progress)(void* user, const char* stage, double fraction); /* tlod_import_desc.progress; NULL: none */
+  void* progress_user;
 } _tlod_import_job;
 
 /* Copies d into a new result (allocator memory) and stores it in *job->out. */
@@ -130,6 +142,11 @@ tlod_result _tlod_import_read_file(const _tlod_import_job* job, unsigned char** 
 tlod_result _tlod_import_gltf(const _tlod_import_job* job);
 tlod_result _tlod_import_obj(const _tlod_import_job* job);
 tlod_result _tlod_import_ply(const _tlod_import_job* job);
+/* .vtk .vtu .vtp .pvtu .pvd .stl and numbered series (a '*' in the name): vtk_import.cpp
+ * when built with TLOD_WITH_VTK, else TLOD_ERROR_UNSUPPORTED naming the build option. */
+tlod_result _tlod_import_vtk(const _tlod_import_job* job);
+/* True when path names one of the formats above (the dispatch's test). */
+bool _tlod_is_vtk_path(const char* path);
 
 /* Case-insensitive "does s end with suffix" (format from the extension). */
 bool _tlod_str_ends_with_nocase(const char* s, const char* suffix);

@@ -27,6 +27,19 @@ static bool _tlod_acc(size_t* total, size_t count, size_t each) {
   return _tlod_size_mul(count, each, &n) && _tlod_size_add(*total, n, total);
 }
 
+/* The VTK parts: face nodes, fields (every step), series arrays, the info. */
+static bool _tlod_vtk_bytes(const _tlod_import_data* d, size_t* t) {
+  const size_t steps = d->step_count ? d->step_count : 1;
+  bool ok = (!d->face_nodes || _tlod_acc(t, d->face_count, 4u * TLOD_FACE_NODES)) &&
+            _tlod_acc(t, d->field_count, sizeof(tlod_import_field)) && _tlod_acc(t, 1, sizeof(tlod_import_vtk_info)) &&
+            _tlod_acc(t, d->step_count, 4u);
+  size_t per_step;
+  ok = ok && _tlod_size_mul(steps, d->vertex_count, &per_step);
+  for (uint32_t i = 0; ok && i < d->field_count; ++i)
+    ok = _tlod_acc(t, per_step, 4u * d->fields[i].components);
+  return ok && (!d->step_positions || _tlod_acc(t, per_step, 12u));
+}
+
 static bool _tlod_scene_bytes(const _tlod_import_data* d, size_t* t) {
   bool ok = _tlod_acc(t, d->attribute_count, 0);
   for (uint32_t i = 0; i < d->attribute_count; ++i)
@@ -49,7 +62,7 @@ static bool _tlod_scene_bytes(const _tlod_import_data* d, size_t* t) {
            _tlod_acc(t, 1, sizeof(tlod_import_channel));
   for (uint32_t i = 0; ok && i < d->skin_count; ++i)
     ok = _tlod_acc(t, d->skins[i].joint_count, 4 * 17);
-  return ok;
+  return ok && _tlod_vtk_bytes(d, t);
 }
 
 /* What the result takes: vertex_count x 24 (positions, normals) + indices +
@@ -96,6 +109,20 @@ static void _tlod_copy_geometry(_tlod_copier* c, tlod_import_result* r, const _t
   r->joints = (uint16_t*)_tlod_dup(c, d->joints, d->vertex_count, 8u);
   r->weights = (float*)_tlod_dup(c, d->weights, d->vertex_count, 16u);
   r->weights_renormalised = d->weights_renormalised;
+}
+
+static void _tlod_copy_vtk(_tlod_copier* c, tlod_import_result* r, const _tlod_import_data* d) {
+  const size_t steps = d->step_count ? d->step_count : 1;
+  r->face_nodes = (uint32_t*)_tlod_dup(c, d->face_nodes, d->face_count, 4u * TLOD_FACE_NODES);
+  r->field_count = d->field_count;
+  r->fields = (tlod_import_field*)_tlod_dup(c, d->fields, d->field_count, sizeof(tlod_import_field));
+  for (uint32_t i = 0; r->fields && i < d->field_count; ++i)
+    r->fields[i].data = (float*)_tlod_dup(c, d->fields[i].data, steps * d->vertex_count, 4u * d->fields[i].components);
+  if (!r->fields) r->field_count = 0;
+  r->vtk = (tlod_import_vtk_info*)_tlod_dup(c, d->vtk, 1, sizeof(tlod_import_vtk_info));
+  r->step_count = d->step_count;
+  r->step_times = (float*)_tlod_dup(c, d->step_times, d->step_count, 4u);
+  r->step_positions = (float*)_tlod_dup(c, d->step_positions, d->step_count * (size_t)d->vertex_count, 12u);
 }
 
 /* OBJ, PLY: one mesh of every part, at one identity node. */
@@ -182,6 +209,7 @@ tlod_result _tlod_import_finish(const _tlod_import_job* job, const _tlod_import_
   _tlod_copier c = {a, true};
   _tlod_copy_geometry(&c, r, d);
   _tlod_copy_scene(&c, r, d);
+  _tlod_copy_vtk(&c, r, d);
   r->polygons_triangulated = d->polygons_triangulated;
   r->strips_fans_converted = d->strips_fans_converted;
   r->primitives_skipped = d->primitives_skipped;
@@ -213,8 +241,11 @@ static void _tlod_free_scene(tlod_import_result* r, const tlod_allocator* a) {
     a->free_fn(r->skins[i].joints, a->user_data);
     a->free_fn(r->skins[i].inverse_bind, a->user_data);
   }
-  void* arrays[] = {r->joints,   r->weights, r->meshes,     r->nodes, r->materials,
-                    r->textures, r->images,  r->animations, r->skins};
+  for (uint32_t i = 0; r->fields && i < r->field_count; ++i)
+    a->free_fn(r->fields[i].data, a->user_data);
+  void* arrays[] = {r->joints,   r->weights, r->meshes,     r->nodes,         r->materials,
+                    r->textures, r->images,  r->animations, r->skins,         r->face_nodes,
+                    r->fields,   r->vtk,     r->step_times, r->step_positions};
   for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; ++i)
     a->free_fn(arrays[i], a->user_data);
 }

@@ -1,0 +1,36 @@
+// Private to the VTK shim: checks on a file's bytes before a VTK reader sees them, so that a
+// small file declaring huge counts fails with our message instead of making VTK allocate what
+// it declares (docs/vtk.md section 7). Each throws ImportError naming the section at fault.
+#ifndef TESSLOD_TOOLS_IMPORT_VTK_PREFLIGHT_HPP
+#define TESSLOD_TOOLS_IMPORT_VTK_PREFLIGHT_HPP
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace tlod_import_detail {
+
+// Legacy .vtk: the header (version line, ASCII|BINARY, DATASET kind, returned lower-case in
+// *dataset), then every count VTK would allocate for (POINTS, CELLS, CELL_TYPES, POLYGONS ...,
+// POINT_DATA / CELL_DATA arrays, FIELD arrays, DIMENSIONS) against the bytes left in the file
+// (each value takes at least 2 bytes in ASCII, its type's size in binary) and against room.
+void preflight_legacy(const char* data, size_t size, size_t room, std::string* dataset);
+
+// XML .vtu/.vtp: NumberOfPoints / NumberOfCells / NumberOfVerts|Lines|Strips|Polys of every
+// Piece and NumberOfComponents of every DataArray, estimated in bytes against room (XML data
+// may be compressed, so the file size bounds nothing).
+void preflight_xml(const char* data, size_t size, size_t room);
+
+// STL: a binary file's triangle count against its size.
+void preflight_stl(const char* data, size_t size);
+
+// The value of attribute name (either quote) in the tag text [p, end); false when absent.
+bool xml_attribute(const char* p, const char* end, const char* name, std::string* value);
+
+// Calls each(tag_begin, tag_end) for every tag "<NAME ...>" of [data, data + size).
+void xml_tags(const char* data, size_t size, const char* name,
+              const std::function<void(const char* begin, const char* end)>& each);
+
+} // namespace tlod_import_detail
+
+#endif

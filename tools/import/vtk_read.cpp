@@ -1,0 +1,207 @@
+// vtk_read.cpp -- VTK's readers on bytes we read (docs/vtk.md section 6). Every message VTK
+// emits while one of our reads runs ends up in that read's capture, never on the terminal:
+//   - the reader's own errors and warnings: ErrorEvent / WarningEvent observers on it;
+//   - messages of objects without observers (VTK's XML parser, data arrays): VTK sends those
+//     to its process-wide vtkOutputWindow. We install once (std::call_once) a window that
+//     appends them to the capture of the read running on the calling thread (thread_local)
+//     and drops them otherwise. That is a process-wide setting, acceptable because it only
+//     changes where VTK's diagnostics go: an application that wants VTK's own window can set
+//     it again after its first import (docs/vtk.md section 6).
+#include "vtk_read.hpp"
+
+#include <mutex>
+#include <string>
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkNew.h>
+#include <vtkOutputWindow.h>
+#include <vtkPolyDataReader.h>
+#include <vtkRectilinearGridReader.h>
+#include <vtkSTLReader.h>
+#include <vtkStructuredGridReader.h>
+#include <vtkStructuredPointsReader.h>
+#include <vtkUnstructuredGridReader.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include "import_error.hpp"
+#include "vtk_preflight.hpp"
+
+namespace tlod_import_detail {
+namespace {
+
+struct Capture {
+  std::string errors, warnings;
+};
+
+thread_local Capture* tl_capture = nullptr;
+
+// "ERROR: In /path/vtkFoo.cxx, line 12\nvtkFoo (0x55d0): message\n\n" -> "vtkFoo: message".
+std::string clean(const char* text) {
+  std::string s(text ? text : "");
+  if (s.rfind("ERROR: In ", 0) == 0 || s.rfind("Warning: In ", 0) == 0 || s.rfind("Generic Warning: In ", 0) == 0) {
+    const size_t nl = s.find('\n');
+    s = nl == std::string::npos ? "" : s.substr(nl + 1);
+  }
+  const size_t open = s.find(" (0x");
+  const size_t close = open == std::string::npos ? open : s.find("): ", open);
+  if (close != std::string::npos) s.erase(open, close + 1 - open);
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ')
+    s.pop_back();
+  return s;
+}
+
+void append(std::string& to, const char* text) {
+  const std::string m = clean(text);
+  if (m.empty() || to.find(m) != std::string::npos) return; // VTK repeats itself
+  if (!to.empty()) to += "; ";
+  to += m;
+}
+
+class QuietWindow : public vtkOutputWindow {
+public:
+  static QuietWindow* New() {
+    QuietWindow* w = new QuietWindow;
+    w->InitializeObjectBase();
+    return w;
+  }
+  void DisplayText(const char*) override {}
+  void DisplayErrorText(const char* t) override {
+    if (tl_capture) append(tl_capture->errors, t);
+  }
+  void DisplayWarningText(const char* t) override {
+    if (tl_capture) append(tl_capture->warnings, t);
+  }
+  void DisplayGenericWarningText(const char* t) override { DisplayWarningText(t); }
+  void DisplayDebugText(const char*) override {}
+};
+
+void install_quiet_window() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    QuietWindow* w = QuietWindow::New();
+    vtkOutputWindow::SetInstance(w);
+    w->Delete();
+  });
+}
+
+void on_message(vtkObject*, unsigned long event, void* client, void* call) {
+  Capture* c = static_cast<Capture*>(client);
+  append(event == vtkCommand::ErrorEvent ? c->errors : c->warnings, static_cast<const char*>(call));
+}
+
+void on_progress(vtkObject*, unsigned long, void* client, void* call) {
+  const auto* p = static_cast<const std::function<void(double)>*>(client);
+  if (*p && call) (*p)(*static_cast<double*>(call));
+}
+
+// Observers on reader into c; progress forwarded.
+void observe(vtkAlgorithm* reader, Capture* c, const std::function<void(double)>* progress) {
+  vtkNew<vtkCallbackCommand> msg;
+  msg->SetCallback(on_message);
+  msg->SetClientData(c);
+  reader->AddObserver(vtkCommand::ErrorEvent, msg);
+  reader->AddObserver(vtkCommand::WarningEvent, msg);
+  vtkNew<vtkCallbackCommand> prog;
+  prog->SetCallback(on_progress);
+  prog->SetClientData(const_cast<std::function<void(double)>*>(progress));
+  reader->AddObserver(vtkCommand::ProgressEvent, prog);
+}
+
+vtkSmartPointer<vtkDataReader> legacy_reader(const std::string& dataset) {
+  if (dataset == "unstructured_grid") return vtkSmartPointer<vtkUnstructuredGridReader>::New();
+  if (dataset == "polydata") return vtkSmartPointer<vtkPolyDataReader>::New();
+  if (dataset == "structured_grid") return vtkSmartPointer<vtkStructuredGridReader>::New();
+  if (dataset == "rectilinear_grid") return vtkSmartPointer<vtkRectilinearGridReader>::New();
+  if (dataset == "structured_points") return vtkSmartPointer<vtkStructuredPointsReader>::New();
+  fail(TLOD_ERROR_UNSUPPORTED, format("DATASET %.40s: not read (UNSTRUCTURED_GRID, POLYDATA, STRUCTURED_GRID, "
+                                      "RECTILINEAR_GRID or STRUCTURED_POINTS)",
+                                      dataset.c_str()));
+}
+
+vtkSmartPointer<vtkAlgorithm> make_reader(const VtkSource& src, size_t room) {
+  switch (src.format) {
+  case VtkFormat::Legacy: {
+    std::string dataset;
+    preflight_legacy(src.data, src.size, room, &dataset);
+    vtkSmartPointer<vtkDataReader> r = legacy_reader(dataset);
+    r->ReadAllScalarsOn();
+    r->ReadAllVectorsOn();
+    r->ReadAllNormalsOn();
+    r->ReadAllTensorsOn();
+    r->ReadAllFieldsOn();
+    r->ReadAllTCoordsOn();
+    r->ReadAllColorScalarsOn();
+    r->SetBinaryInputString(src.data, int(src.size));
+    r->ReadFromInputStringOn();
+    return r;
+  }
+  case VtkFormat::Vtu:
+  case VtkFormat::Vtp: {
+    preflight_xml(src.data, src.size, room);
+    vtkSmartPointer<vtkXMLReader> r;
+    if (src.format == VtkFormat::Vtu)
+      r = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+    else
+      r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    r->ReadFromInputStringOn();
+    r->SetInputString(std::string(src.data, src.size));
+    return r;
+  }
+  case VtkFormat::Stl: {
+    preflight_stl(src.data, src.size);
+    if (!src.file_path) fail(TLOD_ERROR_UNSUPPORTED, "STL from memory: VTK's STL reader reads files only");
+    vtkSmartPointer<vtkSTLReader> r = vtkSmartPointer<vtkSTLReader>::New();
+    r->SetFileName(src.file_path);
+    r->MergingOn(); // STL repeats every corner; merged points give a connected surface
+    return r;
+  }
+  }
+  fail(TLOD_ERROR_UNSUPPORTED, "unknown VTK format");
+}
+
+// Sets tl_capture for the lifetime of a read (restored on throw).
+struct CaptureScope {
+  Capture* saved;
+  explicit CaptureScope(Capture* c) : saved(tl_capture) { tl_capture = c; }
+  ~CaptureScope() { tl_capture = saved; }
+};
+
+} // namespace
+
+bool vtk_format_of(const std::string& name, VtkFormat* out) {
+  const char* s = name.c_str();
+  if (_tlod_str_ends_with_nocase(s, ".vtk"))
+    *out = VtkFormat::Legacy;
+  else if (_tlod_str_ends_with_nocase(s, ".vtu"))
+    *out = VtkFormat::Vtu;
+  else if (_tlod_str_ends_with_nocase(s, ".vtp"))
+    *out = VtkFormat::Vtp;
+  else if (_tlod_str_ends_with_nocase(s, ".stl"))
+    *out = VtkFormat::Stl;
+  else
+    return false;
+  return true;
+}
+
+vtkSmartPointer<vtkDataSet> read_vtk(const VtkSource& src, size_t budget_room,
+                                     const std::function<void(const std::string&)>& warn,
+                                     const std::function<void(double)>& progress) {
+  install_quiet_window();
+  if (src.size > size_t(INT32_MAX)) fail(TLOD_ERROR_UNSUPPORTED, "file larger than 2 GiB (VTK reads ints)");
+  Capture capture;
+  CaptureScope scope(&capture);
+  vtkSmartPointer<vtkAlgorithm> reader = make_reader(src, budget_room);
+  observe(reader, &capture, &progress);
+  reader->Update();
+  vtkDataSet* out = vtkDataSet::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!capture.warnings.empty()) warn("VTK: " + capture.warnings);
+  if (!capture.errors.empty()) fail(TLOD_ERROR_PARSE, "VTK: " + capture.errors);
+  if (!out) fail(TLOD_ERROR_PARSE, "VTK's reader produced no data set");
+  return out;
+}
+
+} // namespace tlod_import_detail
