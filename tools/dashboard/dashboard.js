@@ -227,7 +227,8 @@ function showScreenshot(run, frame) {
 function metaLine(run) {
   const m = run.meta || {};
   const view = m.debug_view && m.debug_view !== 'none' ? 'debug view ' + m.debug_view : '';
-  return [m.scene, m.path, m.mode, m.backend, m.surface, view,
+  const field = m.field ? 'field ' + m.field : '';
+  return [m.scene, m.path, m.mode, m.backend, m.surface, view, field,
     m.stopped].filter(Boolean).join(' · ');
 }
 

@@ -9,12 +9,14 @@
 #define NAME_OF(value, text) text,
 
 const char* const tool_surface_options[] = {TLOD_SURFACE_TYPE_NAMES(NAME_OF) NULL};
+const char* const tool_surface_auto_options[] = {"auto", TLOD_SURFACE_TYPE_NAMES(NAME_OF) NULL};
 const char* const tool_normal_options[] = {TLOD_NORMAL_MODE_NAMES(NAME_OF) NULL};
 const char* const tool_policy_options[] = {TLOD_LOD_POLICY_NAMES(NAME_OF) NULL};
 
 /* cli_parse_enum's index is added to the first named value: the tables must
  * list the values in enum order. */
 _Static_assert(TLOD_SURFACE_PN - TLOD_SURFACE_FLAT == 2, "surface names in enum order");
+_Static_assert(TLOD_SURFACE_FLAT == TLOD_SURFACE_DEFAULT + 1, "auto (DEFAULT) just before the named surfaces");
 _Static_assert(TLOD_NORMALS_AREA - TLOD_NORMALS_KEEP == 2, "normal mode names in enum order");
 _Static_assert(TLOD_POLICY_FLAT - TLOD_POLICY_ERROR == 4, "policy names in enum order");
 

@@ -7,8 +7,11 @@
 
 #include "tesslod/lod.h"
 
-/* "flat", "phong", "pn": TLOD_SURFACE_FLAT + index. (+ 1: phong | pn only.) */
+/* "flat", "phong", "pn", "quadratic": TLOD_SURFACE_FLAT + index. */
 extern const char* const tool_surface_options[];
+/* "auto", "flat", "phong", "pn", "quadratic": (tlod_surface_type)index, auto
+ * being TLOD_SURFACE_DEFAULT (resolved per input by cli_resolve_surface). */
+extern const char* const tool_surface_auto_options[];
 /* "keep", "angle", "area": TLOD_NORMALS_KEEP + index. */
 extern const char* const tool_normal_options[];
 /* "error", "silhouette", "hybrid", "uniform", "flat": TLOD_POLICY_ERROR + index. */

@@ -21,6 +21,7 @@ int cli_create_mesh(tlod_context* ctx, const cli_mesh* m, tlod_normal_mode norma
       .label = m->name,
       .attributes = m->attribute_count ? attributes : NULL,
       .attribute_count = m->attribute_count,
+      .face_nodes = m->face_nodes,
   };
   if (tlod_mesh_create(ctx, &desc, out) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx));

@@ -13,6 +13,7 @@ void cli_mesh_free(cli_mesh* m) {
   free(m->indices);
   free(m->face_sizes);
   free(m->face_source);
+  free(m->face_nodes);
   for (uint32_t a = 0; a < m->attribute_count; a++)
     free(m->attributes[a].data);
   tlod_import_free(m->source);
@@ -41,6 +42,7 @@ static void take_over(tlod_import_result* r, cli_mesh* m) {
   m->indices = r->indices;
   m->face_count = r->face_count;
   m->face_sizes = r->face_sizes;
+  m->face_nodes = r->face_nodes;
   snprintf(m->warnings, sizeof(m->warnings), "%s", r->warnings);
   m->has_color = r->part_count > 0;
   if (m->has_color) memcpy(m->base_color, r->parts[0].base_color, sizeof(m->base_color));
@@ -48,13 +50,18 @@ static void take_over(tlod_import_result* r, cli_mesh* m) {
   r->positions = r->normals = NULL;
   r->indices = NULL;
   r->face_sizes = NULL;
+  r->face_nodes = NULL;
   m->source = r;
 }
 
 static int load_file(const char* path, cli_mesh* m) {
   char err[512];
   tlod_import_result* r = NULL;
-  if (tlod_import_file(path, NULL, &r, err, sizeof(err)) != TLOD_SUCCESS) return cli_error(CLI_FAILED, "%s", err);
+  tlod_import_desc d = {0};
+  cli_progress_hook(&d);
+  tlod_result res = tlod_import_file_desc(path, &d, &r, err, sizeof(err));
+  cli_progress_end(&d);
+  if (res != TLOD_SUCCESS) return cli_error(CLI_FAILED, "%s", err);
   take_over(r, m);
   return CLI_OK;
 }
@@ -76,4 +83,34 @@ int cli_load_scene(const char* in, tlod_import_result** out) {
   tlod_import_desc d = {.keep_scene = true};
   if (tlod_import_file_desc(in, &d, out, err, sizeof(err)) != TLOD_SUCCESS) return cli_error(CLI_FAILED, "%s", err);
   return CLI_OK;
+}
+
+bool cli_mesh_is_vtk(const cli_mesh* m) { return m->source && m->source->vtk; }
+
+tlod_surface_type cli_resolve_surface(tlod_surface_type asked, const cli_mesh* m) {
+  if (asked != TLOD_SURFACE_DEFAULT) return asked;
+  return m->face_nodes ? TLOD_SURFACE_QUADRATIC : TLOD_SURFACE_PHONG;
+}
+
+float cli_resolve_crease(float asked, const cli_mesh* m) {
+  if (asked >= 0.0f) return asked;
+  return cli_mesh_is_vtk(m) ? CLI_VTK_CREASE_DEG : 0.0f;
+}
+
+uint32_t cli_add_scalar_attribute(cli_mesh* m, const char* name, const float* values) {
+  if (m->attribute_count >= TLOD_MAX_ATTRIBUTES) {
+    cli_error(CLI_FAILED, "%s: %u attributes already: no room for '%s'", m->name, m->attribute_count, name);
+    return UINT32_MAX;
+  }
+  float* data = malloc(sizeof(float) * ((size_t)m->vertex_count + 1));
+  if (!data) {
+    cli_error(CLI_FAILED, "%s: out of memory for attribute '%s'", m->name, name);
+    return UINT32_MAX;
+  }
+  memcpy(data, values, sizeof(float) * m->vertex_count);
+  cli_attribute* a = &m->attributes[m->attribute_count];
+  snprintf(a->name, sizeof(a->name), "%s", name);
+  a->components = 1;
+  a->data = data;
+  return m->attribute_count++;
 }

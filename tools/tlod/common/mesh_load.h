@@ -46,6 +46,9 @@ typedef struct cli_mesh {
   uint32_t* face_source;      /* after cli_split_quads: loaded face of each face; NULL: identity */
   uint32_t source_face_count; /* faces as loaded */
   uint32_t quads_split;
+  /* Second-order nodes, TLOD_FACE_NODES per face (tlod_mesh_desc.face_nodes);
+   * NULL: none (also after cli_split_quads: PN ignores nodes). */
+  uint32_t* face_nodes;
   bool has_color; /* base_color holds the file's first part colour */
   float base_color[4];
   char warnings[1024];
@@ -56,11 +59,29 @@ typedef struct cli_mesh {
   tlod_import_result* source;
 } cli_mesh;
 
-/* Loads IN: a file (.gltf .glb .obj .ply) or "demo:NAME". */
+/* Loads IN: a file (.gltf .glb .obj .ply, and with VTK .vtk .vtu .vtp
+ * .pvtu .pvd .stl or a numbered series) or "demo:NAME". Long VTK imports
+ * show their progress on a terminal (stderr). */
 int cli_load(const char* in, cli_mesh* out);
+/* true when m came from a VTK file (m->source->vtk): its defaults differ
+ * (--surface auto, the crease angle CLI_VTK_CREASE_DEG). */
+bool cli_mesh_is_vtk(const cli_mesh* m);
+/* The crease angle VTK meshes get when none is given: machined parts keep
+ * their feature edges (a box's 90 and a chamfer's 45 degrees) sharp, while
+ * coarse curved walls (a cylinder of 10 or more elements round, 36 degrees
+ * apart or less) stay smooth (docs/play.md, "VTK input"). */
+#define CLI_VTK_CREASE_DEG 40.0f
+/* --surface auto (TLOD_SURFACE_DEFAULT) resolved for m: QUADRATIC when it
+ * has second-order faces, else PHONG; a type asked for stays as it is. */
+tlod_surface_type cli_resolve_surface(tlod_surface_type asked, const cli_mesh* m);
+/* --crease not given (negative): CLI_VTK_CREASE_DEG for VTK meshes, else 0. */
+float cli_resolve_crease(float asked, const cli_mesh* m);
 /* Splits every quad into two triangles (PN triangles need triangles). */
 int cli_split_quads(cli_mesh* m);
 void cli_mesh_free(cli_mesh* m);
+/* Import progress on a terminal (stderr) for d; end clears the line. */
+void cli_progress_hook(tlod_import_desc* d);
+void cli_progress_end(const tlod_import_desc* d);
 /* Names of the built-in demo meshes, for --help. */
 const char* cli_demo_names(void);
 /* "demo:NAME" without the prefix into m (see cli_demo_names). */
@@ -69,6 +90,9 @@ int cli_load_demo(const char* name, cli_mesh* m);
 /* Creates a core mesh from a loaded one, with its attributes; prints the
  * core's message on failure. */
 int cli_create_mesh(tlod_context* ctx, const cli_mesh* m, tlod_normal_mode normals, float crease_deg, tlod_mesh** out);
+/* Appends a 1-component attribute (values copied, vertex_count floats):
+ * its index, or UINT32_MAX (printed) when m has TLOD_MAX_ATTRIBUTES already. */
+uint32_t cli_add_scalar_attribute(cli_mesh* m, const char* name, const float* values);
 
 /* Reads IN (.gltf .glb .obj .ply; not demo:) with keep_scene: parts in mesh
  * space, nodes with world matrices. Warnings stay in (*out)->warnings.

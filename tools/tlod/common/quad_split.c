@@ -51,6 +51,8 @@ int cli_split_quads(cli_mesh* m) {
   m->index_count = count;
   m->face_count = count / 3;
   m->face_sizes = NULL;
+  free(m->face_nodes); /* PN draws the split triangles' own surface: nodes do not apply */
+  m->face_nodes = NULL;
   m->quads_split = quads;
   return CLI_OK;
 }

@@ -108,7 +108,8 @@ static bool read_meta_strings(const json_value* root, run_meta* m, const char* n
          get_string(root, "surface", &m->surface, name, err, n) &&
          get_string(root, "policy", &m->policy, name, err, n) &&
          get_string(root, "stopped", &m->stopped, name, err, n) &&
-         get_string(root, "debug_view", &m->debug_view, name, err, n);
+         get_string(root, "debug_view", &m->debug_view, name, err, n) &&
+         get_string(root, "field", &m->field, name, err, n);
 }
 
 static bool read_meta_numbers(const json_value* root, run_meta* m, const char* name, char* err, size_t n) {
@@ -255,8 +256,8 @@ bool run_read_trace_text(const char* name, const char* text, size_t size, run* o
 }
 
 static void free_meta(run_meta* m) {
-  char** s[] = {&m->schema,   &m->tool,    &m->scene,  &m->path,    &m->mode,      &m->backend,
-                &m->renderer, &m->surface, &m->policy, &m->stopped, &m->debug_view};
+  char** s[] = {&m->schema,   &m->tool,    &m->scene,  &m->path,    &m->mode,       &m->backend,
+                &m->renderer, &m->surface, &m->policy, &m->stopped, &m->debug_view, &m->field};
   for (size_t i = 0; i < sizeof s / sizeof s[0]; i++)
     free(*s[i]);
 }

@@ -116,6 +116,7 @@ typedef struct run_meta {
   char* policy;
   char* stopped;    /* "completed", "interrupted", ...; "" when truncated */
   char* debug_view; /* `tlod play --debug-view`; "" none */
+  char* field;      /* `tlod play --field` in one line ("temperature [K] 0..250 viridis"); "" none */
   double epsilon_px, fps, path_duration_s, wall_s;
   int64_t max_level, scene_budget, width, height, screenshot_every;
   int64_t frames_requested, frames_completed; /* -1 when absent */

@@ -1,6 +1,7 @@
 /* tlod -- the scene set-up shared by the commands. */
 #include "scene_setup.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
@@ -14,9 +15,23 @@ int scene_input_load(const scene_setup_desc* d, cli_mesh* out) {
   return rc;
 }
 
+/* The chosen field's step-0 scalars as the mesh's last attribute. */
+static int add_field(const scene_setup_desc* d, scene_setup* s) {
+  if (!d->field || !d->field->spec) return CLI_OK;
+  int rc = field_select(s->in.source, d->input, d->field, &s->field);
+  if (rc != CLI_OK) return rc;
+  float* values = malloc(sizeof(float) * ((size_t)s->in.vertex_count + 1));
+  if (!values) return cli_error(CLI_FAILED, "%s: out of memory for field '%s'", d->input, s->field.label);
+  field_scalars(s->in.source, &s->field, 0, values);
+  s->field_attribute = cli_add_scalar_attribute(&s->in, s->field.name, values);
+  free(values);
+  s->has_field = s->field_attribute != UINT32_MAX;
+  return s->has_field ? CLI_OK : CLI_FAILED;
+}
+
 static int make_surface(tlod_context* ctx, const scene_setup_desc* d, scene_setup* s) {
   tlod_surface_desc sd = {
-      .type = d->surface, .alpha_mode = d->alpha_mode, .alpha = d->alpha, .label = d->label ? d->label : d->input};
+      .type = s->surface_type, .alpha_mode = d->alpha_mode, .alpha = d->alpha, .label = d->label ? d->label : d->input};
   if (tlod_surface_create(ctx, s->mesh, &sd, &s->surface) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "%s: %s", d->input, tlod_context_last_error(ctx));
   return CLI_OK;
@@ -32,8 +47,11 @@ static int make_patterns(tlod_context* ctx, const scene_setup_desc* d, scene_set
 static int create_steps(tlod_context* ctx, const scene_setup_desc* d, scene_setup* s) {
   double t0 = cli_now_ms();
   int rc = scene_input_load(d, &s->in);
+  if (rc == CLI_OK) rc = add_field(d, s);
+  s->surface_type = cli_resolve_surface(d->surface, &s->in);
+  s->crease_deg = cli_resolve_crease(d->crease_deg, &s->in);
   double t1 = cli_now_ms();
-  if (rc == CLI_OK) rc = cli_create_mesh(ctx, &s->in, d->normals, d->crease_deg, &s->mesh);
+  if (rc == CLI_OK) rc = cli_create_mesh(ctx, &s->in, d->normals, s->crease_deg, &s->mesh);
   double t2 = cli_now_ms();
   if (rc == CLI_OK) rc = make_surface(ctx, d, s);
   double t3 = cli_now_ms();

@@ -11,10 +11,10 @@
 enum { DASHBOARD_OBJECT_LINES = 16 };
 
 static void write_meta(json_writer* w, const run_meta* m) {
-  const char* names[] = {"schema",   "tool",    "scene",  "path",    "mode",      "backend",
-                         "renderer", "surface", "policy", "stopped", "debug_view"};
-  const char* values[] = {m->schema,   m->tool,    m->scene,  m->path,    m->mode,      m->backend,
-                          m->renderer, m->surface, m->policy, m->stopped, m->debug_view};
+  const char* names[] = {"schema",   "tool",    "scene",  "path",    "mode",       "backend",
+                         "renderer", "surface", "policy", "stopped", "debug_view", "field"};
+  const char* values[] = {m->schema,   m->tool,    m->scene,  m->path,    m->mode,       m->backend,
+                          m->renderer, m->surface, m->policy, m->stopped, m->debug_view, m->field};
   json_object_begin(w, "meta");
   for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
     json_string(w, names[i], values[i]);

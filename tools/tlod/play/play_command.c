@@ -147,11 +147,25 @@ static int set_up(play_session* p) {
   p->backend = o->backend ? o->backend : "gl";
   if (rc == CLI_OK && gpu_backend(p->backend)) p->platform = play_platform_open(o, &rc, &p->backend);
   if (rc == CLI_OK && !strcmp(p->backend, "vulkan")) rc = shader_cache(p);
-  if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, o->surface, p->platform, p->shader_dir);
+  if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, p->platform, p->shader_dir);
   if (rc == CLI_OK && o->screenshot_every) rc = alloc_pixels(p);
   if (rc == CLI_OK) rc = play_server_start(o, &p->server); /* a port in use fails before the folder is made */
   if (rc == CLI_OK) rc = play_make_run_folder(o, p->out_dir, sizeof(p->out_dir), &p->lock_fd);
   return rc;
+}
+
+static play_field_info field_info(const play_scene* s) {
+  const field_selection* f = &s->field.sel;
+  if (!s->field.on) return (play_field_info){0};
+  return (play_field_info){.name = f->name,
+                           .label = f->label,
+                           .units = f->units,
+                           .component = f->component,
+                           .min = f->lo,
+                           .max = f->hi,
+                           .colormap = colormap_names[f->colormap],
+                           .from_cells = f->from_cells,
+                           .steps = s->series.count};
 }
 
 static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t frames) {
@@ -161,7 +175,7 @@ static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t f
                       .mode = m->name,
                       .backend = p->backend,
                       .renderer = p->renderer,
-                      .surface = tool_surface_name(o->surface),
+                      .surface = tool_surface_name(p->scene.surface_type),
                       .path = p->path.name,
                       .path_duration_s = camera_path_duration(&p->path),
                       .loop = o->loop,
@@ -180,6 +194,7 @@ static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t f
                       .object_count = p->scene.count,
                       .animation = p->scene.animation.channel_count ? p->scene.animation.name : "",
                       .animation_duration_s = p->scene.animation.duration_s,
+                      .field = field_info(&p->scene),
                       .warnings = p->scene.warnings,
                       .warning_count = p->scene.warning_count,
                       .dir = o->compare ? m->dir : ".",

@@ -287,6 +287,7 @@ static int play_frame_n(play_run* r, uint32_t n, double run_start, play_trace* t
     rc = play_scene_pose(r->scene, fr->time_s);
     fr->anim_ms = cli_now_ms() - a0;
   }
+  if (rc == CLI_OK && r->scene->series.count) rc = play_scene_series(r->scene, fr->time_s, r->o->loop);
   if (rc == CLI_OK)
     rc = r->grouped ? update_group(r, &view, n, run_start, os) : update_objects(r, &view, n, run_start, os);
   if (rc == CLI_OK) rc = draw_objects(r, &view, n, run_start, os);

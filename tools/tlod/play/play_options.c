@@ -27,7 +27,18 @@ void play_usage(FILE* f) {
       "                      (this build has: %s)\n"
       "  --mode M            adaptive (default) | uniform:L (every visible patch at level L, 0..%d) | flat (level 0)\n"
       "  --compare M,M[,..]  play the same path once per mode (output per mode in subfolders)\n"
-      "  --surface S         phong (default) | pn (splits quads into triangles)\n"
+      "  --surface S         auto (default) | phong | pn | flat | quadratic; auto: quadratic for VTK files with\n"
+      "                      second-order faces (their exact curved surface), else phong; pn splits quads\n"
+      "                      into triangles and ignores second-order nodes\n"
+      "  --crease DEG        computed normals split across edges sharper than DEG (default: none; VTK\n"
+      "                      files %.0f)\n"
+      "  --field F           colour by a result field (VTK point or cell data): NAME, NAME:C (component C,\n"
+      "                      0-based, or x|y|z) or NAME:magnitude (default for vectors); default: none;\n"
+      "                      a legend goes into the screenshots; a series (.pvd, numbered files) plays its\n"
+      "                      steps over the timeline (step times in seconds, the last held; --loop repeats)\n"
+      "  --range MIN,MAX     the field values at the ends of the colour map (default: the field's range over\n"
+      "                      all steps)\n"
+      "  --colormap M        viridis (default) | diverging (cool-warm, centred on the range's middle)\n"
       "  --epsilon PX        adaptive: screen-space error bound in pixels (default 0.5)\n"
       "  --policy P          adaptive: error | silhouette | hybrid (default hybrid)\n"
       "  --max-level L       adaptive: finest level, 1..%d (default 6)\n"
@@ -57,7 +68,7 @@ void play_usage(FILE* f) {
       "  --serve-linger S    keep serving S seconds after playing (default 0: stop at the end)\n"
       "Writes trace.json, trace.csv, chrome_trace.json, summary.json and summary.txt into the run folder.\n"
       "Ctrl-C stops after the current frame, writes what was played and exits with 130.\n",
-      cli_demo_names(), tlod_backend_names(), TLOD_MAX_LEVEL, TLOD_MAX_LEVEL);
+      cli_demo_names(), tlod_backend_names(), TLOD_MAX_LEVEL, (double)CLI_VTK_CREASE_DEG, TLOD_MAX_LEVEL);
 }
 
 static int mode_error(const char* option, const char* text, const char* problem) {
@@ -120,15 +131,39 @@ static int parse_lod(int argc, char** argv, int* i, play_options* o) {
   const char* v = NULL;
   int e;
   if (!strcmp(a, "--surface")) {
-    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, tool_surface_options + 1)) < 0) return CLI_USAGE;
-    o->surface = (tlod_surface_type)(TLOD_SURFACE_PHONG + e);
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, tool_surface_auto_options)) < 0) return CLI_USAGE;
+    o->surface = (tlod_surface_type)e;
     return CLI_OK;
   }
+  if (!strcmp(a, "--crease"))
+    return cli_usage_unless((v = cli_value(argc, argv, i)) && cli_parse_float(a, v, 0.0, 180.0, &o->crease));
   if (!strcmp(a, "--scene-budget"))
     return cli_usage_unless((v = cli_value(argc, argv, i)) && cli_parse_uint(a, v, 1, UINT32_MAX, &o->scene_budget));
   int rc = cli_parse_lod_option(argc, argv, i, &o->epsilon, &o->policy, &o->max_level);
   if (rc != CLI_NOT_MINE) return rc;
   return parse_modes(argc, argv, i, o);
+}
+
+static int parse_field(int argc, char** argv, int* i, play_options* o) {
+  const char* a = argv[*i];
+  const char* v = NULL;
+  int e;
+  if (!strcmp(a, "--field")) {
+    if (!(o->field.spec = cli_value(argc, argv, i))) return CLI_USAGE;
+    if (!*o->field.spec || *o->field.spec == ':') return cli_error(CLI_USAGE, "--field: expected NAME[:COMPONENT]");
+    return CLI_OK;
+  }
+  if (!strcmp(a, "--range")) {
+    o->field.has_range = true;
+    return cli_usage_unless((v = cli_value(argc, argv, i)) && field_parse_range(a, v, o->field.range));
+  }
+  if (!strcmp(a, "--colormap")) {
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, colormap_names)) < 0) return CLI_USAGE;
+    o->field.colormap = (colormap_kind)e;
+    o->colormap_given = true;
+    return CLI_OK;
+  }
+  return CLI_NOT_MINE;
 }
 
 static int parse_timing(int argc, char** argv, int* i, play_options* o) {
@@ -202,6 +237,7 @@ static int parse_argument(int argc, char** argv, int* i, play_options* o) {
   int rc = parse_flag(a, o);
   if (rc == CLI_NOT_MINE) rc = parse_lod(argc, argv, i, o);
   if (rc == CLI_NOT_MINE) rc = parse_timing(argc, argv, i, o);
+  if (rc == CLI_NOT_MINE) rc = parse_field(argc, argv, i, o);
   if (rc == CLI_NOT_MINE) rc = parse_output(argc, argv, i, o);
   if (rc == CLI_NOT_MINE) rc = play_serve_option(argc, argv, i, o);
   if (rc != CLI_NOT_MINE) return rc;
@@ -216,6 +252,8 @@ static int check(const play_options* o) {
   if (o->compare && o->mode_given) return cli_error(CLI_USAGE, "play: give --mode or --compare, not both");
   if (o->frames && o->duration > 0.0f) return cli_error(CLI_USAGE, "play: give --frames or --duration, not both");
   if (o->serve_linger > 0.0f && !o->serve) return cli_error(CLI_USAGE, "--serve-linger: needs --serve");
+  if ((o->field.has_range || o->colormap_given) && !o->field.spec)
+    return cli_error(CLI_USAGE, "%s: needs --field NAME", o->field.has_range ? "--range" : "--colormap");
   bool image = !o->backend || gpu_backend(o->backend);
   if (!image && o->screenshot_every)
     return cli_error(CLI_USAGE,
@@ -232,7 +270,8 @@ static int check(const play_options* o) {
 }
 
 int play_parse(int argc, char** argv, play_options* o) {
-  *o = (play_options){.surface = TLOD_SURFACE_PHONG,
+  *o = (play_options){.surface = TLOD_SURFACE_DEFAULT,
+                      .crease = -1.0f,
                       .epsilon = 0.5f,
                       .policy = TLOD_POLICY_HYBRID,
                       .max_level = 6,

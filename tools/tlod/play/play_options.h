@@ -5,6 +5,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "field/field_select.h"
 #include "tesslod/lod.h"
 
 #define PLAY_MAX_MODES 8
@@ -38,7 +39,10 @@ typedef struct play_options {
   play_mode modes[PLAY_MAX_MODES];
   uint32_t mode_count;
   bool compare, mode_given;
-  tlod_surface_type surface;
+  tlod_surface_type surface; /* DEFAULT: auto (cli_resolve_surface) */
+  float crease;              /* negative: the input's default (cli_resolve_crease) */
+  field_options field;       /* --field, --range, --colormap; spec NULL: no field */
+  bool colormap_given;
   float epsilon;
   tlod_lod_policy policy;
   uint32_t max_level;

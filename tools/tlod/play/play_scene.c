@@ -9,6 +9,7 @@
 
 #include "cli.h"
 #include "common/gpu_target.h"
+#include "field/field_hook.h"
 
 static const float k_identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
@@ -19,6 +20,8 @@ void play_scene_free(play_scene* s) {
   for (uint32_t i = 0; i < s->surface_count; i++)
     scene_setup_destroy(&s->surfaces[i].setup);
   play_gltf_free(s);
+  play_series_free(s);
+  free(s->field.hook);
   free(s->surfaces);
   free(s->objects);
   free(s->infos);
@@ -85,6 +88,8 @@ static int add_object(play_scene* s, const play_options* o, const char* source, 
   scene_setup_desc d = {.input = source,
                         .label = name,
                         .surface = o->surface,
+                        .crease_deg = o->crease,
+                        .field = &o->field,
                         .alpha_mode = TLOD_ALPHA_GLOBAL,
                         .alpha = 0.75f,
                         .place = place,
@@ -147,11 +152,28 @@ static int add_objects(const play_options* o, play_scene* s) {
   return rc == CLI_OK ? add_object(s, o, o->scene, base, grey, NULL) : rc;
 }
 
+/* The surface type made and the field of surface 0 (a file scene: one
+ * object); glTF scenes and the demo scene have no fields. */
+static int describe_field(const play_options* o, play_scene* s) {
+  const scene_setup* st = s->surface_count ? &s->surfaces[0].setup : NULL;
+  bool file = !play_scene_is_gltf(s->name) && st && st->mesh && st->in.source;
+  s->surface_type = file ? st->surface_type : o->surface == TLOD_SURFACE_DEFAULT ? TLOD_SURFACE_PHONG : o->surface;
+  if (!o->field.spec) return CLI_OK;
+  if (!file || !st->has_field)
+    return cli_error(CLI_FAILED, "--field %s: %s has no fields (they come from VTK files)", o->field.spec, s->name);
+  s->field = (play_field){.on = true, .sel = st->field, .attribute = st->field_attribute};
+  if (!(s->field.hook = field_hook_glsl(&st->field, st->field_attribute)))
+    return cli_error(CLI_FAILED, "out of memory for the field's shader");
+  return CLI_OK;
+}
+
 int play_scene_load(const play_options* o, play_scene* s) {
   memset(s, 0, sizeof(*s));
   if (tlod_context_create(&(tlod_context_desc){.label = "tlod play"}, &s->ctx) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "cannot create a context");
   int rc = add_objects(o, s);
+  if (rc == CLI_OK) rc = describe_field(o, s);
+  if (rc == CLI_OK) rc = play_series_setup(s);
   if (rc != CLI_OK) return rc;
   /* One pattern set for every object and mode: the finest level any mode needs. */
   tlod_patterns_desc pd = {.max_level = play_modes_max_level(o)};
@@ -162,13 +184,13 @@ int play_scene_load(const play_options* o, play_scene* s) {
   return CLI_OK;
 }
 
-int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_type type, tlod_platform* platform,
+int play_scene_create_device(play_scene* s, const char* backend, tlod_platform* platform,
                              const char* shader_cache_dir) {
   play_scene_destroy_device(s);
   /* One surface type per run: the gl device links its two programs only. */
   tlod_device_desc d = {.backend = backend,
                         .patterns = s->patterns,
-                        .gl = {.surface_types = 1u << (type == TLOD_SURFACE_DEFAULT ? TLOD_SURFACE_PHONG : type)},
+                        .gl = {.surface_types = 1u << s->surface_type, .fragment_hook = s->field.hook},
                         .label = "tlod play"};
   gpu_target_device_desc(platform, shader_cache_dir, false, &d);
   if (tlod_device_create(s->ctx, &d, &s->device) != TLOD_SUCCESS)

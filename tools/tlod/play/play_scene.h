@@ -61,8 +61,27 @@ typedef struct play_animation {
   float duration_s;
 } play_animation;
 
+/* A result field drawn through a colour map (tlod play --field). */
+typedef struct play_field {
+  bool on;
+  field_selection sel;
+  uint32_t attribute; /* the field's mesh attribute of surface 0 */
+  char* hook;         /* the device's fragment hook (field_hook_glsl); NULL: none */
+} play_field;
+
+/* A VTK time series (the import's step_count >= 2; one object): the step
+ * drawn follows the timeline (play_series.c). */
+typedef struct play_series {
+  uint32_t count; /* 0: no series */
+  uint32_t step;  /* drawn now */
+  float* scalars; /* vertex_count floats: the field at a step */
+} play_series;
+
 typedef struct play_scene {
   char name[256];
+  tlod_surface_type surface_type; /* of the surfaces (auto resolved): the trace's "surface" */
+  play_field field;
+  play_series series;
   tlod_context* ctx;
   play_surface* surfaces;
   uint32_t surface_count;
@@ -97,8 +116,7 @@ typedef struct tlod_platform tlod_platform;
 /* The run's device (programs and patterns made once), one device surface
  * per surface and one device texture per image. vulkan: on the platform's
  * device (NULL otherwise), SPIR-V cached in shader_cache_dir (NULL: none). */
-int play_scene_create_device(play_scene* s, const char* backend, tlod_surface_type type, tlod_platform* platform,
-                             const char* shader_cache_dir);
+int play_scene_create_device(play_scene* s, const char* backend, tlod_platform* platform, const char* shader_cache_dir);
 /* The device draws with the platform's context: destroy it while it exists. */
 void play_scene_destroy_device(play_scene* s);
 
@@ -123,5 +141,16 @@ int play_anim_setup(play_scene* s, const play_options* o);
  * duration): world matrices of every object, skinned surfaces skinned,
  * updated, refreshed and uploaded (play_anim.c). */
 int play_scene_pose(play_scene* s, double t);
+
+/* Series (play_series.c): set up after loading (a no-op without steps). */
+int play_series_setup(play_scene* s);
+void play_series_free(play_scene* s);
+/* The step of timeline time t seconds: the last whose time is <= t (step 0
+ * before the first); loop: t wraps over the series' period (its span plus
+ * one mean step, so each step shows as long). */
+uint32_t play_series_step(const tlod_import_result* r, double t, bool loop);
+/* Shows the step of time t: positions (and the field) updated, refreshed
+ * and uploaded when the step changed. */
+int play_scene_series(play_scene* s, double t, bool loop);
 
 #endif

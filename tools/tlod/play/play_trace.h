@@ -100,6 +100,18 @@ typedef struct play_resources {
 
 typedef struct play_trace_files play_trace_files; /* play_trace_files.c */
 
+/* The result field coloured (tlod play --field); name NULL: none. */
+typedef struct play_field_info {
+  const char* name;  /* the array's name */
+  const char* label; /* "stress", "displacement:magnitude", "velocity:1" */
+  const char* units; /* "" none */
+  int component;     /* -1: magnitude */
+  double min, max;   /* the range on the colour map */
+  const char* colormap;
+  bool from_cells; /* cell data averaged to points */
+  uint32_t steps;  /* of a time series, 0: one file */
+} play_field_info;
+
 /* One playback (one mode) and its settings. */
 typedef struct play_trace {
   /* settings */
@@ -128,6 +140,7 @@ typedef struct play_trace {
   uint32_t object_count;
   const char* animation; /* the animation played, "" none */
   double animation_duration_s;
+  play_field_info field;
   const char* warnings; /* the importer's, newline-separated; "" none */
   uint32_t warning_count;
   /* results */

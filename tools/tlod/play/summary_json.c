@@ -72,6 +72,26 @@ static void json_gpu_settings(json_writer* w, const play_trace* t0, const play_t
   json_string(w, "shader_cache", t0->shader_cache ? t0->shader_cache : "");
 }
 
+/* --field: what was coloured and how (the dashboard's legend). */
+static void json_field(json_writer* w, const play_field_info* f) {
+  if (!f->name) return;
+  json_object_begin(w, "field");
+  json_string(w, "name", f->name);
+  json_string(w, "label", f->label);
+  json_string(w, "units", f->units);
+  if (f->component < 0) {
+    json_string(w, "component", "magnitude");
+  } else {
+    json_int(w, "component", f->component);
+  }
+  json_number(w, "min", f->min);
+  json_number(w, "max", f->max);
+  json_string(w, "colormap", f->colormap);
+  json_bool(w, "from_cells", f->from_cells);
+  json_uint(w, "steps", f->steps);
+  json_object_end(w);
+}
+
 static bool summary_json(FILE* f, const void* data) {
   const summary_job* j = data;
   const play_trace* t0 = j->runs[0];
@@ -90,6 +110,7 @@ static bool summary_json(FILE* f, const void* data) {
   json_string(&w, "path", t0->path);
   json_string(&w, "animation", t0->animation ? t0->animation : "");
   json_string(&w, "debug_view", t0->debug_view);
+  json_field(&w, &t0->field);
   json_warnings(&w, t0->warnings, t0->warning_count);
   json_number(&w, "fps", t0->fps);
   json_uint(&w, "width", t0->width);

@@ -30,6 +30,16 @@ static void json_vec(json_writer* w, const char* key, const float* v, int n) {
   json_array_end(w);
 }
 
+/* --field in one line ("temperature [K] 0..250 viridis", the dashboard's
+ * run line); no key without a field. */
+static void json_field_line(json_writer* w, const play_field_info* f) {
+  if (!f->name) return;
+  char line[256];
+  snprintf(line, sizeof(line), f->units[0] ? "%s [%s] %.6g..%.6g %s" : "%s%s %.6g..%.6g %s", f->label, f->units, f->min,
+           f->max, f->colormap);
+  json_string(w, "field", line);
+}
+
 /* The settings block of trace.json (also the live server's run.json). */
 void trace_json_settings(json_writer* w, const play_trace* t) {
   json_string(w, "tool", t->tool_version);
@@ -51,6 +61,7 @@ void trace_json_settings(json_writer* w, const play_trace* t) {
   json_uint(w, "height", t->height);
   json_uint(w, "screenshot_every", t->screenshot_every);
   json_string(w, "debug_view", t->debug_view);
+  json_field_line(w, &t->field);
   json_uint(w, "frames_requested", t->frames_requested);
   json_array_begin(w, "objects");
   for (uint32_t i = 0; i < t->object_count; i++) {

@@ -113,6 +113,7 @@ int cmd_tessellate(int argc, char** argv) {
   if (tlod_context_create(&cd, &r.ctx) != TLOD_SUCCESS) return cli_error(CLI_FAILED, "cannot create a context");
   double start = cli_now_ms();
   rc = tessellate(&o, &r);
+  o.surface = r.scene.surface_type; /* auto resolved: the report and the stats name the type made */
   if (rc == CLI_OK) rc = write_output(&o, &r);
   r.t.total = cli_now_ms() - start;
   if (rc == CLI_OK && o.stats) rc = write_stats(&o, &r);

@@ -18,11 +18,14 @@ void tessellate_usage(FILE* f) {
           "  IN                  .gltf .glb .obj .ply file, or a built-in mesh (%s)\n"
           "  -o, --output OUT    .obj .ply .gltf .glb (format from the extension); attributes (UVs, colours)\n"
           "                      are kept; .gltf/.glb of a file keep its nodes, meshes, materials, textures\n"
-          "  --surface S         flat | phong | pn (default phong; pn splits quads into triangles)\n"
+          "  --surface S         auto (default) | phong | pn | flat | quadratic; auto: quadratic for VTK files\n"
+          "                      with second-order faces, else phong; pn splits quads into triangles and\n"
+          "                      ignores second-order nodes; quadratic on linear faces is their Phong surface\n"
           "  --alpha A           Phong shape factor in [0, 1] (default 0.75)\n"
           "  --level L           refinement level 0..%d: 2^L - 1 inserted vertices per edge (default 3)\n"
           "  --normals M         keep (given normals, normalised; default) | angle | area (recompute)\n"
           "  --crease DEG        with computed normals, split normals across edges sharper than DEG\n"
+          "                      (default: none; VTK files %.0f, so machined edges stay sharp)\n"
           "  --no-weld           keep each patch's own vertices, as a GPU draws them\n"
           "  --threads N         worker threads (default: all CPUs)\n"
           "  --stats FILE.json   write counts, repairs and timings (adaptive: levels per input face, ...)\n"
@@ -38,7 +41,7 @@ void tessellate_usage(FILE* f) {
           "  --policy P          error | silhouette | hybrid (default hybrid)\n"
           "  --max-level L       finest level allowed, 1..%d (default 6)\n"
           "  --no-stitch         leave out connection strips (shows the cracks)\n",
-          cli_demo_names(), TLOD_MAX_LEVEL, TLOD_MAX_LEVEL);
+          cli_demo_names(), TLOD_MAX_LEVEL, (double)CLI_VTK_CREASE_DEG, TLOD_MAX_LEVEL);
 }
 
 static int parse_vec3(int argc, char** argv, int* i, float* dst) {
@@ -89,8 +92,8 @@ static int parse_surface(int argc, char** argv, int* i, tess_options* o) {
   const char* v = NULL;
   int e;
   if (!strcmp(a, "--surface")) {
-    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, tool_surface_options)) < 0) return CLI_USAGE;
-    o->surface = (tlod_surface_type)(TLOD_SURFACE_FLAT + e);
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, tool_surface_auto_options)) < 0) return CLI_USAGE;
+    o->surface = (tlod_surface_type)e;
     return CLI_OK;
   }
   if (!strcmp(a, "--normals")) {
@@ -143,7 +146,8 @@ static int parse_argument(int argc, char** argv, int* i, tess_options* o) {
 }
 
 static void set_defaults(tess_options* o) {
-  *o = (tess_options){.surface = TLOD_SURFACE_PHONG, .alpha = 0.75f, .level = 3, .normals = TLOD_NORMALS_KEEP};
+  *o = (tess_options){
+      .surface = TLOD_SURFACE_DEFAULT, .alpha = 0.75f, .level = 3, .normals = TLOD_NORMALS_KEEP, .crease = -1.0f};
   o->ad = (adaptive_options){.cam = {.up = {0, 1, 0}, .fovy_deg = 45.0f, .target = {NAN, NAN, NAN}},
                              .width = 1280,
                              .height = 720,

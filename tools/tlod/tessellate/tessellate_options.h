@@ -22,11 +22,11 @@ typedef struct tess_options {
   const char* in;
   const char* out;
   const char* stats;
-  tlod_surface_type surface;
+  tlod_surface_type surface; /* DEFAULT: auto, resolved per input (the report and stats say which) */
   float alpha;
   uint32_t level, threads;
   tlod_normal_mode normals;
-  float crease;
+  float crease; /* negative: the input's default (cli_resolve_crease) */
   bool no_weld, quiet;
   adaptive_options ad;
 } tess_options;

@@ -35,7 +35,9 @@ int tessellate_part(tess_scene* s, uint32_t p, const tlod_draw_list* dl, uint32_
 
 static int make_part(tess_scene* s, uint32_t p) {
   const tess_options* o = s->o;
-  cli_part_options po = {.normals = o->normals, .crease_deg = o->crease, .split_quads = o->surface == TLOD_SURFACE_PN};
+  cli_part_options po = {.normals = o->normals,
+                         .crease_deg = o->crease < 0.0f ? 0.0f : o->crease,
+                         .split_quads = o->surface == TLOD_SURFACE_PN};
   int rc = cli_create_part_mesh(s->ctx, s->r, p, &po, &s->meshes[p]);
   if (rc != CLI_OK) return rc;
   tlod_surface_desc sd = {.type = o->surface, .alpha_mode = TLOD_ALPHA_GLOBAL, .alpha = o->alpha, .label = o->in};
