@@ -24,6 +24,7 @@ enum {
   VTK_HEXAHEDRON = 12,
   VTK_WEDGE = 13,
   VTK_PYRAMID = 14,
+  VTK_QUADRATIC_TETRA = 24,
   VTK_QUADRATIC_HEXAHEDRON = 25,
   VTK_TRIQUADRATIC_HEXAHEDRON = 29
 };
@@ -79,6 +80,9 @@ void vtk_build_hex_cylinder(vtk_model* m, double R, double H, uint32_t layers);
  * from the serendipity centre. */
 void vtk_build_quadratic_pair(vtk_model* m, uint8_t type);
 void vtk_warp(const double in[3], double out[3]);
+/* Two 10-node tetrahedra (VTK type 24) sharing a face, (0,0,0) (1,0,0) (0,1,0) (0,0,1) and that face
+ * with (1,1,1), nodes at the straight edges' midpoints, all warped by vtk_warp(). */
+void vtk_build_quadratic_tet_pair(vtk_model* m);
 /* [0,4]x[0,1]x[0,1]: a hexahedron, two wedges, six pyramids around a centre point, and one
  * pyramid plus ten tetrahedra around another centre point; conforming. Boundary: 11 quads and
  * 14 triangles. */
@@ -88,5 +92,8 @@ void vtk_build_mixed(vtk_model* m);
  * hexahedron (VTK 9.1's vtkTriQuadraticHexahedron::GetParametricCoords(); nodes 0..19 are
  * vtkQuadraticHexahedron's). Note that the mid-face order is x-, x+, y-, y+, z-, z+. */
 void vtk_hex_node_coords(uint32_t k, double out[3]);
+/* The same for node k (0..9) of a VTK quadratic tetrahedron (vtkQuadraticTetra): corners, then the
+ * edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3). */
+void vtk_tet_node_coords(uint32_t k, double out[3]);
 
 #endif

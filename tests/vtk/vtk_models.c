@@ -15,6 +15,12 @@ static const double hex_nodes[27][3] = {
 
 void vtk_hex_node_coords(uint32_t k, double out[3]) { memcpy(out, hex_nodes[k < 27 ? k : 26], sizeof hex_nodes[0]); }
 
+/* vtkQuadraticTetra::GetParametricCoords() */
+static const double tet_nodes[10][3] = {{0, 0, 0},   {1, 0, 0},  {0, 1, 0},  {0, 0, 1},   {.5, 0, 0},
+                                        {.5, .5, 0}, {0, .5, 0}, {0, 0, .5}, {.5, 0, .5}, {0, .5, .5}};
+
+void vtk_tet_node_coords(uint32_t k, double out[3]) { memcpy(out, tet_nodes[k < 10 ? k : 9], sizeof tet_nodes[0]); }
+
 /* A hexahedron from its bottom quad (counter-clockwise seen from the top) and top quad; inverted:
  * top and bottom swapped (negative orientation). */
 static void hex_cell(vtk_model* m, const uint32_t bottom[4], const uint32_t top[4], bool inverted) {
@@ -209,6 +215,37 @@ void vtk_build_quadratic_pair(vtk_model* m, uint8_t type) {
       cell[k] = grid[i][j][l];
     }
     vtk_model_cell(m, type, cell, nodes);
+  }
+}
+
+/* The point at unwarped position p, made (warped) once: a linear search, for a few nodes. */
+static uint32_t warped_point(vtk_model* m, double (*seen)[3], uint32_t* count, const double p[3]) {
+  for (uint32_t k = 0; k < *count; ++k)
+    if (seen[k][0] == p[0] && seen[k][1] == p[1] && seen[k][2] == p[2]) return k;
+  memcpy(seen[*count], p, sizeof seen[0]);
+  double w[3];
+  vtk_warp(p, w);
+  ++*count;
+  return vtk_model_point(m, w[0], w[1], w[2]);
+}
+
+void vtk_build_quadratic_tet_pair(vtk_model* m) {
+  memset(m, 0, sizeof *m);
+  static const double corners[2][4][3] = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+                                          {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}}};
+  double seen[32][3];
+  uint32_t count = 0;
+  for (int t = 0; t < 2; ++t) {
+    uint32_t cell[10];
+    for (int k = 0; k < 10; ++k) {
+      const double* n = tet_nodes[k];
+      double p[3];
+      for (int a = 0; a < 3; ++a)
+        p[a] = corners[t][0][a] + n[0] * (corners[t][1][a] - corners[t][0][a]) +
+               n[1] * (corners[t][2][a] - corners[t][0][a]) + n[2] * (corners[t][3][a] - corners[t][0][a]);
+      cell[k] = warped_point(m, seen, &count, p);
+    }
+    vtk_model_cell(m, VTK_QUADRATIC_TETRA, cell, 10);
   }
 }
 
