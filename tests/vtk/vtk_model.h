@@ -25,6 +25,7 @@ enum {
   VTK_WEDGE = 13,
   VTK_PYRAMID = 14,
   VTK_QUADRATIC_TETRA = 24,
+  VTK_QUADRATIC_WEDGE = 26,
   VTK_QUADRATIC_HEXAHEDRON = 25,
   VTK_TRIQUADRATIC_HEXAHEDRON = 29
 };
@@ -83,6 +84,9 @@ void vtk_warp(const double in[3], double out[3]);
 /* Two 10-node tetrahedra (VTK type 24) sharing a face, (0,0,0) (1,0,0) (0,1,0) (0,0,1) and that face
  * with (1,1,1), nodes at the straight edges' midpoints, all warped by vtk_warp(). */
 void vtk_build_quadratic_tet_pair(vtk_model* m);
+/* Two 15-node wedges (VTK type 26) filling [1,2]x[0,1]x[0,1] split by the plane x + y = 2 (as in
+ * vtk_build_mixed()), VTK-positive, nodes at the straight edges' midpoints, all warped. */
+void vtk_build_quadratic_wedge_pair(vtk_model* m);
 /* [0,4]x[0,1]x[0,1]: a hexahedron, two wedges, six pyramids around a centre point, and one
  * pyramid plus ten tetrahedra around another centre point; conforming. Boundary: 11 quads and
  * 14 triangles. */
@@ -95,5 +99,8 @@ void vtk_hex_node_coords(uint32_t k, double out[3]);
 /* The same for node k (0..9) of a VTK quadratic tetrahedron (vtkQuadraticTetra): corners, then the
  * edges (0,1) (1,2) (2,0) (0,3) (1,3) (2,3). */
 void vtk_tet_node_coords(uint32_t k, double out[3]);
+/* Node k (0..14) of a VTK quadratic wedge (vtkQuadraticWedge): corners 0..5, then the edges (0,1)
+ * (1,2) (2,0), (3,4) (4,5) (5,3), (0,3) (1,4) (2,5); (r, s) in the triangle, t along the extrusion. */
+void vtk_wedge_node_coords(uint32_t k, double out[3]);
 
 #endif

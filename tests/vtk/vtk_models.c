@@ -21,6 +21,15 @@ static const double tet_nodes[10][3] = {{0, 0, 0},   {1, 0, 0},  {0, 1, 0},  {0,
 
 void vtk_tet_node_coords(uint32_t k, double out[3]) { memcpy(out, tet_nodes[k < 10 ? k : 9], sizeof tet_nodes[0]); }
 
+/* vtkQuadraticWedge::GetParametricCoords() */
+static const double wedge_nodes[15][3] = {{0, 0, 0},   {1, 0, 0},  {0, 1, 0},   {0, 0, 1},  {1, 0, 1},
+                                          {0, 1, 1},   {.5, 0, 0}, {.5, .5, 0}, {0, .5, 0}, {.5, 0, 1},
+                                          {.5, .5, 1}, {0, .5, 1}, {0, 0, .5},  {1, 0, .5}, {0, 1, .5}};
+
+void vtk_wedge_node_coords(uint32_t k, double out[3]) {
+  memcpy(out, wedge_nodes[k < 15 ? k : 14], sizeof wedge_nodes[0]);
+}
+
 /* A hexahedron from its bottom quad (counter-clockwise seen from the top) and top quad; inverted:
  * top and bottom swapped (negative orientation). */
 static void hex_cell(vtk_model* m, const uint32_t bottom[4], const uint32_t top[4], bool inverted) {
@@ -246,6 +255,25 @@ void vtk_build_quadratic_tet_pair(vtk_model* m) {
       cell[k] = warped_point(m, seen, &count, p);
     }
     vtk_model_cell(m, VTK_QUADRATIC_TETRA, cell, 10);
+  }
+}
+
+void vtk_build_quadratic_wedge_pair(vtk_model* m) {
+  memset(m, 0, sizeof *m);
+  /* base corners 0, 1, 2 clockwise seen from +z (VTK's positive wedge), extruded by (0, 0, 1) */
+  static const double base[2][3][2] = {{{1, 0}, {1, 1}, {2, 0}}, {{2, 0}, {1, 1}, {2, 1}}};
+  double seen[32][3];
+  uint32_t count = 0;
+  for (int w = 0; w < 2; ++w) {
+    uint32_t cell[15];
+    for (int k = 0; k < 15; ++k) {
+      const double* n = wedge_nodes[k];
+      double p[3] = {0, 0, n[2]};
+      for (int a = 0; a < 2; ++a)
+        p[a] = base[w][0][a] + n[0] * (base[w][1][a] - base[w][0][a]) + n[1] * (base[w][2][a] - base[w][0][a]);
+      cell[k] = warped_point(m, seen, &count, p);
+    }
+    vtk_model_cell(m, VTK_QUADRATIC_WEDGE, cell, 15);
   }
 }
 
