@@ -166,6 +166,26 @@ TEST(test_quadratic_hexes) {
   vtk_model_free(&m);
 }
 
+/* A linear hexahedron against a quadratic one: its faces take the quadratic edge nodes they meet
+ * (4 edges), so the two stay closed at every level. */
+TEST(test_mixed_order) {
+  vtk_model m;
+  vtk_build_mixed_order(&m);
+  tlod_import_result* r = vtk_test_write_import(&m, work, "mixed_order.vtk", VTK_LEGACY_ASCII);
+  vtk_model_free(&m);
+  CHECK(r);
+  tlod_context* ctx = NULL;
+  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 1}, &ctx) == TLOD_SUCCESS);
+  tlod_mesh* mesh = vtk_test_mesh(ctx, r, 45, 0);
+  tlod_mesh_info info = mesh ? tlod_mesh_query_info(mesh) : (tlod_mesh_info){0};
+  tlod_mesh_destroy(mesh);
+  tlod_context_destroy(ctx);
+  CHECK_MSG(info.face_count == 14 && info.curved_faces == 9 && info.nodes_shared == 4,
+            "%u faces, %u curved, %u edges took a neighbour's node (14, 9, 4)", info.face_count, info.curved_faces,
+            info.nodes_shared);
+  import_case(r, "mixed_order.vtk", TLOD_SURFACE_QUADRATIC, 45);
+}
+
 /* sfepy's hsphere8.vtk (648 hexahedra, an eighth of a sphere: 432 boundary quads) and VTK's
  * Hexahedron.vtu (7 hexahedra), with the tools' VTK crease default (40 degrees). */
 TEST(test_data_hex_meshes) {
@@ -178,6 +198,7 @@ int main(int argc, char** argv) {
   RUN(test_hex_box);
   RUN(test_hex_cylinder);
   RUN(test_quadratic_hexes);
+  RUN(test_mixed_order);
   RUN(test_data_hex_meshes);
   TEST_END();
 }

@@ -81,6 +81,10 @@ void vtk_build_hex_cylinder(vtk_model* m, double R, double H, uint32_t layers);
  * from the serendipity centre. */
 void vtk_build_quadratic_pair(vtk_model* m, uint8_t type);
 void vtk_warp(const double in[3], double out[3]);
+/* vtk_build_quadratic_pair() (20 nodes) and a linear hexahedron on [2,3]x[0,1]x[0,1] (warped corners)
+ * against the second one's x+ face: the linear faces' four edges at x = 2 have no node of their own
+ * and must take the quadratic neighbour's (tlod_mesh_info.nodes_shared). */
+void vtk_build_mixed_order(vtk_model* m);
 /* Two 10-node tetrahedra (VTK type 24) sharing a face, (0,0,0) (1,0,0) (0,1,0) (0,0,1) and that face
  * with (1,1,1), nodes at the straight edges' midpoints, all warped by vtk_warp(). */
 void vtk_build_quadratic_tet_pair(vtk_model* m);

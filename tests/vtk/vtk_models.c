@@ -277,6 +277,22 @@ void vtk_build_quadratic_wedge_pair(vtk_model* m) {
   }
 }
 
+/* The point of m at warp(p) (made when absent). */
+static uint32_t warped_at(vtk_model* m, double x, double y, double z) {
+  double p[3] = {x, y, z}, w[3];
+  vtk_warp(p, w);
+  for (uint32_t k = 0; k < m->point_count; ++k)
+    if (!memcmp(m->points + 3 * (size_t)k, w, sizeof w)) return k;
+  return vtk_model_point(m, w[0], w[1], w[2]);
+}
+
+void vtk_build_mixed_order(vtk_model* m) {
+  vtk_build_quadratic_pair(m, VTK_QUADRATIC_HEXAHEDRON);
+  uint32_t lo[4] = {warped_at(m, 2, 0, 0), warped_at(m, 3, 0, 0), warped_at(m, 3, 1, 0), warped_at(m, 2, 1, 0)};
+  uint32_t hi[4] = {warped_at(m, 2, 0, 1), warped_at(m, 3, 0, 1), warped_at(m, 3, 1, 1), warped_at(m, 2, 1, 1)};
+  hex_cell(m, lo, hi, false);
+}
+
 /* ---- mixed ---- */
 
 /* The corner (x, y, z) of the unit cubes along x (x 0..4, y and z 0..1). */
