@@ -440,9 +440,67 @@ static void quad_power(const double (*net)[4][3], d3 a[4][4]) {
   }
 }
 
+/* A biquadratic (a quadratic face, degree-elevated to the bicubic net)
+ * S = sum c_pq u^p v^q, p, q <= 2. On a cell of size h at (a, b), in cell
+ * coordinates (x, y), S minus its linear interpolant on either of the
+ * cell's triangles is E[S] = h^2 E[A x^2 + B xy + C y^2] + h^3 E[(c21 + 2 c22 b)
+ * x^2 y + (c12 + 2 c22 a) x y^2] + h^4 E[c22 x^2 y^2], with A = c20 + c21 b +
+ * c22 b^2, B = c11 + 2 c21 a + 2 c12 b + 4 c22 a b, C = c02 + c12 a + c22 a^2
+ * (Taylor at (a, b), exact). So e(h) <= h^2 Q + h^3 Cb + h^4 D:
+ *  - Q: max |E| of the quadratic part over all (a, b). (A, B, C) is a
+ *    polynomial of bidegree (2, 2) in (a, b), so it lies in the convex hull
+ *    of its 3 x 3 Bezier net, and |E| is convex in it (E is linear): the
+ *    max over the net points of quad_shape_max, each triangle mapped to
+ *    the unit one (t1 = (0,0) (1,0) (1,1): Hessian (2A, 2A + B, 2(A + B +
+ *    C)); t2 = (0,0) (1,1) (0,1): (2(A + B + C), B + 2C, 2C)).
+ *  - max |E[x^2 y]| = max |E[x y^2]| = 2 / (3 sqrt 3) < 0.385 on both
+ *    triangles (x (1 - x^2) on the diagonal), max |E[x^2 y^2]| < 0.4726
+ *    (y (1 - y^3) at y^3 = 1/4); the cubic coefficients are affine in b (a),
+ *    so their norms peak at 0 or 1.
+ *  - the net's bicubic remainder (a_pq with p or q = 3, rounding only): each
+ *    such monomial errs by at most M/4 h^2 <= 3.75 h^2; counted 16 times. */
+typedef struct biquad_law {
+  double q, c, d; /* e(h) <= h^2 (q + h (c + h d)) */
+} biquad_law;
+
+static double biquad_at(const biquad_law* b, double h) { return h * h * (b->q + h * (b->c + h * b->d)); }
+
+static double d3_norm(const double* a) { return sqrt(d3_len2(a)); }
+
+/* The net point (i, j) of (A, B, C), in the two triangles' Hessians h[2][3]. */
+static void biquad_hessians(const d3 (*a)[4], int i, int j, d3 h[2][3]) {
+  double bi = 0.5 * i, bj = 0.5 * j; /* B is bilinear: its net is its values at (i/2, j/2) */
+  for (int k = 0; k < 3; k++) {
+    const double A = a[2][0][k] + (j > 0 ? 0.5 * a[2][1][k] : 0.0) + (j > 1 ? 0.5 * a[2][1][k] + a[2][2][k] : 0.0);
+    const double C = a[0][2][k] + (i > 0 ? 0.5 * a[1][2][k] : 0.0) + (i > 1 ? 0.5 * a[1][2][k] + a[2][2][k] : 0.0);
+    const double B = a[1][1][k] + 2.0 * a[2][1][k] * bi + 2.0 * a[1][2][k] * bj + 4.0 * a[2][2][k] * bi * bj;
+    h[0][0][k] = 2.0 * A, h[0][1][k] = 2.0 * A + B, h[0][2][k] = 2.0 * (A + B + C);
+    h[1][0][k] = 2.0 * (A + B + C), h[1][1][k] = B + 2.0 * C, h[1][2][k] = 2.0 * C;
+  }
+}
+
+static biquad_law biquad_bound(const d3 (*a)[4]) {
+  double m2 = 0.0, rest = 0.0, c21[3], c12[3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      d3 h[2][3];
+      biquad_hessians(a, i, j, h);
+      m2 = dmax(m2, dmax(quad_shape_m2(h[0][0], h[0][1], h[0][2]), quad_shape_m2(h[1][0], h[1][1], h[1][2])));
+    }
+  for (int p = 0; p < 4; p++)
+    for (int q = 0; q < 4; q++)
+      rest += (p == 3 || q == 3) ? d3_norm(a[p][q]) : 0.0;
+  for (int k = 0; k < 3; k++)
+    c21[k] = a[2][1][k] + 2.0 * a[2][2][k], c12[k] = a[1][2][k] + 2.0 * a[2][2][k];
+  double cub = 0.385 * (dmax(d3_norm(a[2][1]), d3_norm(c21)) + dmax(d3_norm(a[1][2]), d3_norm(c12)));
+  return (biquad_law){quad_shape_finish(m2) + 16.0 * 3.75 * rest, cub, 0.4726 * d3_norm(a[2][2])};
+}
+
 /* All cells of levels 0..K on the shared (QUAD_G + 1)^2 grid; between grid
- * points (sub-triangles with legs 1/G, R^2 = 1/(2 G^2)) at most M/(4 G^2). */
-static void phong_quad_table(const double (*net)[4][3], double slack, tlod_patch_info* info) {
+ * points (sub-triangles with legs 1/G, R^2 = 1/(2 G^2)) at most M/(4 G^2).
+ * A biquadratic (biquadratic true) also takes the h^2 law above, for the
+ * remainder, every level and the tail. */
+static void phong_quad_table(const double (*net)[4][3], bool biquadratic, double slack, tlod_patch_info* info) {
   enum { G = QUAD_G, S = G + 1 };
   d3 a[4][4];
   quad_power(net, a);
@@ -460,6 +518,7 @@ static void phong_quad_table(const double (*net)[4][3], double slack, tlod_patch
     }
   }
   double m = _tlod_quad_net_m(net), e[K + 1];
+  biquad_law law = biquadratic ? biquad_bound((const d3(*)[4])a) : (biquad_law){INFINITY, 0.0, 0.0};
   for (int l = 0; l <= K; l++) {
     int step = G >> l, cells = 1 << l;
     double inv = 1.0 / step, worst = 0.0;
@@ -482,10 +541,11 @@ static void phong_quad_table(const double (*net)[4][3], double slack, tlod_patch
         }
       }
     }
-    double sampled = sqrt(worst) + m / (4.0 * G * G);
-    e[l] = dmin(sampled, m / 4.0 * k_pow4[l]);
+    double sampled = sqrt(worst) + dmin(m / (4.0 * G * G), biquad_at(&law, 1.0 / G));
+    e[l] = dmin(dmin(sampled, m / 4.0 * k_pow4[l]), biquad_at(&law, k_pow4[l] * (1 << l)));
   }
-  finish(info, e, m / 4.0, slack);
+  /* l > K: h <= 2^-(K+1), so e(h) <= 4^-l (q + 2^-(K+1) (c + 2^-(K+1) d)). */
+  finish(info, e, dmin(m / 4.0, biquad_at(&law, 1.0 / (1 << (K + 1))) * (double)(1 << (2 * (K + 1)))), slack);
 }
 
 /* Bilinear: S = ... + u v (p0 - p1 + p2 - p3); on a cell's triangle the
@@ -528,7 +588,7 @@ void _tlod_error_table_quadratic_closed(const _tlod_corners* c, const double (*n
 void _tlod_error_table_quadratic(const _tlod_corners* c, const double (*dev)[3], const double (*quad_net)[4][3],
                                  const double (*nodes)[3], int node_n, tlod_patch_info* info) {
   if (c->n == 4)
-    phong_quad_table(quad_net, quadratic_slack(c, nodes, node_n), info);
+    phong_quad_table(quad_net, true, quadratic_slack(c, nodes, node_n), info);
   else
     quadratic_tri_table(dev, quadratic_slack(c, nodes, node_n), info);
 }
@@ -538,7 +598,7 @@ void _tlod_error_table(tlod_surface_type type, const _tlod_corners* c, const dou
   static const double zero[K + 1] = {0};
   if (c->n == 4) {
     if (quad_net)
-      phong_quad_table(quad_net, eval_slack(c, NULL, 0), info);
+      phong_quad_table(quad_net, false, eval_slack(c, NULL, 0), info);
     else
       flat_quad_table(c, info);
   } else if (type == TLOD_SURFACE_PN) {

@@ -87,7 +87,7 @@ void _tlod_mesh_share_nodes(tlod_mesh* m) {
     for (uint32_t e = 0; e < m->face_corners[f]; e++) {
       const tlod_edge_link* l = &m->links[f][e];
       if (l->face == _TLOD_NONE || m->face_nodes[f][e] != _TLOD_NONE) continue;
-      if (!(m->node_given[l->face] >> l->edge & 1u)) continue;
+      if (!(((uint32_t)m->node_given[l->face] >> l->edge) & 1u)) continue;
       m->face_nodes[f][e] = m->face_nodes[l->face][l->edge];
       shared++;
     }

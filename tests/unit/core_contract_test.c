@@ -321,7 +321,8 @@ TEST(null_handles) {
   tlod_mesh_vertex(NULL, 0, NULL, NULL);
   CHECK(tlod_mesh_edge_link(NULL, 0, 0).face == UINT32_MAX);
   CHECK(tlod_mesh_update(NULL, NULL, 0, NULL, 0) == TLOD_ERROR_INVALID_ARGUMENT);
-  CHECK(tlod_mesh_query_view(NULL).positions == NULL);
+  CHECK(tlod_mesh_update_attribute(NULL, 0, NULL, 0) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_mesh_query_view(NULL).positions == NULL && tlod_mesh_query_view(NULL).face_nodes == NULL);
 
   tlod_surface* s = (tlod_surface*)(uintptr_t)1;
   CHECK(tlod_surface_create(NULL, NULL, NULL, &s) == TLOD_ERROR_INVALID_ARGUMENT && s == NULL);

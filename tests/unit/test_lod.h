@@ -9,7 +9,10 @@
 #include "tesslod/lod.h"
 
 static inline const char* type_name(tlod_surface_type t) {
-  return t == TLOD_SURFACE_FLAT ? "flat" : t == TLOD_SURFACE_PN ? "pn" : "phong";
+  return t == TLOD_SURFACE_FLAT        ? "flat"
+         : t == TLOD_SURFACE_PN        ? "pn"
+         : t == TLOD_SURFACE_QUADRATIC ? "quadratic"
+                                       : "phong";
 }
 
 /* A scheduler, or NULL with the reason printed. */

@@ -437,7 +437,10 @@ typedef enum tlod_surface_type {
    * biquadratic with the serendipity centre, the same surface); a face
    * without a node on an edge takes the neighbour's node there, else the
    * Phong node (so a linear face is its Phong patch, docs/design.md
-   * "Quadratic faces"). Shading normal: interpolated corner normals. */
+   * "Quadratic faces"). Shading normal: interpolated corner normals
+   * (TLOD_SHADING_NORMAL_TRUE: from the analytic tangents). Edges use the
+   * canonical quadratic edge through the edge's node, so two faces sharing
+   * corners and node (given, shared or both Phong) agree bitwise there. */
   TLOD_SURFACE_QUADRATIC,
   TLOD_SURFACE_NUM,
   _TLOD_SURFACE_FORCE_U32 = 0x7FFFFFFF
@@ -502,10 +505,11 @@ typedef struct tlod_patch_info {
   /* Bound on the distance between the surface and its flat (level 0)
    * patch, world units. The level-l pattern deviates by at most
    * error_bound * 4^-l. PN: max(9/4 * d'_max (Schwarz et al.), the
-   * second-derivative bound); Phong: docs/design.md section 3.5.
+   * second-derivative bound); Phong: docs/design.md section 3.5; QUADRATIC: section 3.12.
    * Superseded by the error table below (tlod_patch_error_bound()). */
   float error_bound;
-  float d_max;     /* PN: max tangent control point distance; Phong: alpha-scaled max |d_e| */
+  float d_max;     /* PN: max tangent control point distance; Phong: alpha-scaled max |d_e|;
+                      QUADRATIC: max |2 (M_e - mid_e)| (triangles), = error_bound (quads) */
   float center[3]; /* bounding sphere of the curved patch */
   float radius;
   /* -- error tables (superseding error_bound; the scheduler's level rule
