@@ -19,7 +19,7 @@
 #include "vtk_test_util.h"
 
 /* cameras per mesh; meshes of more than 100 patches get a quarter (CI time: ASan runs this too) */
-#define CAMERAS 64
+#define CAMERAS 32
 #define MAX_LEVEL 5
 
 static const char* work = ".";
