@@ -69,6 +69,10 @@ bool vtk_model_write(const vtk_model* m, const char* path, vtk_format format);
  * swapped). Fields: "temperature" (point, 100 + 10x - 5y + z^2), "displacement" (point vector
  * (x, -2y, z/2)), "pressure" (cell: the cell's index). */
 void vtk_build_box(vtk_model* m, uint32_t nx, uint32_t ny, uint32_t nz, double a, double b, double c);
+/* One unit hexahedron whose point field "payload" holds, as big-endian doubles in a legacy binary
+ * file, the bytes of the text "\nPOINTS 999999999999 double\n" (finite values): a reader that scans
+ * binary data as words would take it for a header. */
+void vtk_build_payload_box(vtk_model* m);
 /* An icosphere of radius r (20 * 4^subdivisions triangles, vertices on the sphere) filled by one
  * tetrahedron per surface triangle with its apex at the centre; odd tets inverted. */
 void vtk_build_tet_sphere(vtk_model* m, uint32_t subdivisions, double r);

@@ -73,6 +73,23 @@ void vtk_build_box(vtk_model* m, uint32_t nx, uint32_t ny, uint32_t nz, double a
   box_fields(m);
 }
 
+void vtk_build_payload_box(vtk_model* m) {
+  vtk_build_box(m, 1, 1, 1, 1, 1, 1);
+  m->field_count = 0;
+  for (int k = 0; k < 3; ++k)
+    free(m->fields[k].data);
+  double* f = vtk_model_field_add(m, "payload", 1, false);
+  char text[64];
+  memset(text, ' ', sizeof text);
+  memcpy(text, "\nPOINTS 999999999999 double\n", 28);
+  for (int k = 0; k < 8; ++k) {
+    uint64_t v = 0; /* legacy binary is big-endian: byte 0 of the text is the double's top byte */
+    for (int b = 0; b < 8; ++b)
+      v = v << 8 | (uint8_t)text[8 * k + b];
+    memcpy(&f[k], &v, 8);
+  }
+}
+
 /* ---- tet sphere ---- */
 
 typedef struct edge_map {
