@@ -1,7 +1,8 @@
 # cmake -DIMPORT_C=tools/import/import.c -DFORMATS="gltf;glb;..." -P fuzz/check_importers.cmake
 # The ctest test fuzz_covers_importers: fails when tlod_import_file() dispatches a file
 # extension (a `_tlod_str_ends_with_nocase(path, ".ext")` in import.c) that has no fuzz target
-# in fuzz/CMakeLists.txt (tlod_fuzz_import_formats), i.e. an importer was added unfuzzed, or
+# in fuzz/CMakeLists.txt (tlod_fuzz_import_formats, or tlod_fuzz_vtk_formats: the formats
+# fuzz_vtk covers), i.e. an importer was added unfuzzed, or
 # when image_decode.h declares a decoder (_tlod_<format>_decode) that fuzz/fuzz_image.c never calls.
 cmake_minimum_required(VERSION 3.25)
 file(READ "${IMPORT_C}" text)

@@ -97,6 +97,34 @@ static void check_motion(const tlod_import_result* r) {
       fuzz_check(r->skins[s].joints[j] < r->node_count, "a skin joint that is not a node");
 }
 
+/* VTK (issue 14): nodes in range and not a corner of their face; fields finite within their ranges. */
+static void check_vtk(const tlod_import_result* r) {
+  size_t at = 0;
+  for (uint32_t f = 0; r->face_nodes && f < r->face_count; ++f) {
+    const uint32_t n = r->face_sizes ? r->face_sizes[f] : 3;
+    for (int k = 0; k < TLOD_FACE_NODES; ++k) {
+      const uint32_t node = r->face_nodes[(size_t)f * TLOD_FACE_NODES + (size_t)k];
+      fuzz_check(node == TLOD_NO_NODE || node < r->vertex_count, "a face node out of range");
+      for (uint32_t c = 0; node != TLOD_NO_NODE && c < n; ++c)
+        fuzz_check(node != r->indices[at + c], "a face node equal to a corner of its face");
+    }
+    at += n;
+  }
+  const size_t steps = r->step_count ? r->step_count : 1;
+  fuzz_check(r->field_count <= TLOD_IMPORT_MAX_FIELDS, "more than TLOD_IMPORT_MAX_FIELDS fields");
+  for (uint32_t i = 0; i < r->field_count; ++i) {
+    const tlod_import_field* f = &r->fields[i];
+    fuzz_check(f->components >= 1 && f->components <= TLOD_IMPORT_MAX_FIELD_COMPONENTS, "a field's components");
+    for (size_t v = 0; v < steps * r->vertex_count * f->components; ++v) {
+      const uint32_t c = (uint32_t)(v % f->components);
+      fuzz_check(isfinite(f->data[v]) && f->data[v] >= f->min[c] && f->data[v] <= f->max[c],
+                 "a field value not finite or outside its component's range");
+    }
+  }
+  for (size_t v = 0; r->step_positions && v < steps * r->vertex_count * 3; ++v)
+    fuzz_check(isfinite(r->step_positions[v]), "a non-finite step position");
+}
+
 void fuzz_check_import(tlod_result res, const tlod_import_result* r, const char* error, const char* path) {
   fuzz_check(res >= TLOD_SUCCESS && res <= TLOD_ERROR_PARSE && res != TLOD_ERROR_BACKEND,
              "a result code tlod_import_file() does not list");
@@ -114,4 +142,5 @@ void fuzz_check_import(tlod_result res, const tlod_import_result* r, const char*
   check_attributes(r);
   check_scene(r);
   check_motion(r);
+  check_vtk(r);
 }

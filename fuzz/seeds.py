@@ -14,7 +14,9 @@ Seeds come from the repository only:
   - tests/data/fuzz/<target>/: every crash found so far (not the open/ folder: those still
     crash and would stop a run at start).
 fuzz_mesh's inputs are an option byte and a file (fuzz/fuzz_mesh.c): its seeds are the small
-obj/ply/glb/gltf seeds behind a few option bytes.
+obj/ply/glb/gltf seeds behind a few option bytes. fuzz_vtk's inputs are a format byte and a
+file (fuzz/fuzz_vtk.c): the VTK files of tests/data and generated legacy files (ASCII and
+binary) holding one cell of every type the importer reads, with point and cell data.
 """
 import base64
 import json
@@ -27,7 +29,7 @@ import zlib
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DATA = ROOT / "tests" / "data"
 TARGETS = ["fuzz_gltf", "fuzz_glb", "fuzz_obj", "fuzz_ply", "fuzz_mesh", "fuzz_camera_path", "fuzz_gltf_camera",
-           "fuzz_image", "fuzz_run_trace"]
+           "fuzz_image", "fuzz_run_trace", "fuzz_vtk"]
 MAX_INLINE = 256 * 1024  # larger external buffers are left as they are
 MESH_SEED_MAX = 16 * 1024  # fuzz_mesh: only small meshes (fuzz_mesh.c skips big ones)
 
@@ -193,6 +195,64 @@ def mesh_seeds(out):
             n += 1
 
 
+VTK_EXT = {".vtk": 0, ".vtu": 1, ".vtp": 2, ".stl": 3, ".pvd": 6, ".pvtu": 7}  # fuzz/fuzz_vtk.c's format byte
+
+
+def vtk_cells():
+    """One cell of every type the importer reads: (VTK type, corner points, node count); the
+    nodes past the corners sit at the centre of the cell's corners (not exact, fine for fuzzing)."""
+    hexc = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    tet = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+    wedge = [(0, 0, 0), (0, 1, 0), (1, 0, 0), (0, 0, 1), (0, 1, 1), (1, 0, 1)]
+    pyr = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 0.5, 1)]
+    quad = hexc[:4]
+    return [(10, tet, 4), (12, hexc, 8), (11, hexc, 8), (13, wedge, 6), (14, pyr, 5), (24, tet, 10), (25, hexc, 20),
+            (29, hexc, 27), (33, hexc, 24), (26, wedge, 15), (32, wedge, 18), (31, wedge, 12), (27, pyr, 13),
+            (5, quad[:3], 3), (9, quad, 4), (8, quad, 4), (22, quad[:3], 6), (23, quad, 8), (28, quad, 9), (30, quad, 6),
+            (7, quad + [(0.5, -0.5, 0)], 5), (6, quad, 4), (3, quad[:2], 2), (1, quad[:1], 1)]
+
+
+def vtk_legacy(binary):
+    """Every cell of vtk_cells() (shifted apart) as a legacy 3.0 unstructured grid."""
+    pts, cells, types = [], [], []
+    for i, (t, corners, n) in enumerate(vtk_cells()):
+        base = len(pts)
+        c = [sum(p[k] for p in corners) / len(corners) for k in range(3)]
+        pts += [(x + 2 * i, y, z) for x, y, z in corners] + [(c[0] + 2 * i, c[1], c[2])] * (n - len(corners))
+        cells.append([n] + list(range(base, base + n)))
+        types.append(t)
+    size = sum(len(c) for c in cells)
+    head = "# vtk DataFile Version 3.0\nall cells\n%s\nDATASET UNSTRUCTURED_GRID\n" % ("BINARY" if binary else "ASCII")
+    if not binary:
+        body = "POINTS %d float\n" % len(pts) + "".join("%g %g %g\n" % p for p in pts)
+        body += "CELLS %d %d\n" % (len(cells), size) + "".join(" ".join(map(str, c)) + "\n" for c in cells)
+        body += "CELL_TYPES %d\n" % len(types) + "".join("%d\n" % t for t in types)
+        body += "POINT_DATA %d\nSCALARS temperature float 1\nLOOKUP_TABLE default\n" % len(pts)
+        body += "".join("%d\n" % i for i in range(len(pts)))
+        body += "VECTORS velocity float\n" + "".join("%d 1 0\n" % i for i in range(len(pts)))
+        body += "CELL_DATA %d\nFIELD f 1\nstress 2 %d double\n" % (len(types), len(types))
+        body += "".join("%d 0.5\n" % i for i in range(len(types)))
+        return (head + body).encode()
+    out = (head + "POINTS %d float\n" % len(pts)).encode() + b"".join(struct.pack(">3f", *p) for p in pts)
+    out += ("\nCELLS %d %d\n" % (len(cells), size)).encode() + b"".join(struct.pack(">%di" % len(c), *c) for c in cells)
+    out += ("\nCELL_TYPES %d\n" % len(types)).encode() + struct.pack(">%di" % len(types), *types)
+    out += ("\nPOINT_DATA %d\nSCALARS temperature float 1\nLOOKUP_TABLE default\n" % len(pts)).encode()
+    return out + struct.pack(">%df" % len(pts), *range(len(pts))) + b"\n"
+
+
+def vtk_seeds(out):
+    d = out["fuzz_vtk"]
+    for suffix, code in VTK_EXT.items():
+        for p in data_files(suffix):
+            (d / p.relative_to(DATA).as_posix().replace("/", "_")).write_bytes(bytes([code]) + p.read_bytes())
+    for binary in (False, True):
+        (d / ("all_cells_%s.vtk" % ("binary" if binary else "ascii"))).write_bytes(bytes([0]) + vtk_legacy(binary))
+    pvd = b'<?xml version="1.0"?><VTKFile type="Collection"><Collection><DataSet timestep="0" file="input.vtu"/>'
+    (d / "self.pvd").write_bytes(bytes([6]) + pvd + b"</Collection></VTKFile>\n")
+    pvtu = b'<?xml version="1.0"?><VTKFile type="PUnstructuredGrid"><PUnstructuredGrid><Piece Source="input.pvtu"/>'
+    (d / "self.pvtu").write_bytes(bytes([7]) + pvtu + b"</PUnstructuredGrid></VTKFile>\n")
+
+
 def png(width, height, color_type, depth, rows=None, interlace=0, extra=b""):
     """A PNG of this colour type and bit depth; rows: raw scanline bytes (filter byte added)."""
     channels = {0: 1, 2: 3, 3: 1, 4: 2, 6: 4}[color_type]
@@ -264,6 +324,7 @@ def main():
     camera_seeds(out)
     image_seeds(out)
     run_trace_seeds(out)
+    vtk_seeds(out)
     for t in TARGETS:
         copy_dir(ROOT / "fuzz" / "seeds" / t, out[t])
     mesh_seeds(out)

@@ -13,7 +13,35 @@
  *     - Wavefront OBJ: triangles and quads kept, larger polygons
  *       fan-triangulated, one output vertex per distinct (v, vt, vn);
  *     - PLY (ascii, binary little and big endian): vertex x y z [nx ny nz],
- *       face lists; triangles and quads kept, larger polygons fan-triangulated.
+ *       face lists; triangles and quads kept, larger polygons fan-triangulated;
+ *     - VTK (issue 14, docs/vtk.md; needs a build with TLOD_WITH_VTK, else
+ *       TLOD_ERROR_UNSUPPORTED "<file>: .vtu files need VTK: this build has
+ *       TLOD_WITH_VTK=OFF"): legacy .vtk (unstructured grid, polydata,
+ *       structured and rectilinear grids, structured points), .vtu, .vtp,
+ *       .pvtu (pieces merged, bitwise equal points welded), .stl (VTK reads
+ *       the file by its path: not from memory), and time series: .pvd, or
+ *       numbered files named with a '*' ("run_*.vtu": the folder's files with
+ *       digits there, by number). Volume cells (tetra, hexahedron, wedge,
+ *       pyramid, voxel and their second-order kinds: 10-node tetra, 20/24/27-
+ *       node hexahedron, 12/15/18-node wedge, 13-node pyramid) become their
+ *       boundary: faces keyed by sorted corners, used once = boundary, twice =
+ *       interior (dropped), more = non-manifold (kept once, a warning); each
+ *       cell oriented by its signed volume so faces point out even for
+ *       inverted cells (vtk->cells_reoriented). 2D cells are kept (quadratic
+ *       triangle/quad, biquadratic quad too; polygons over 4 corners fan-
+ *       triangulated, strips converted); quads stay quads. Second-order faces
+ *       give face_nodes (TLOD_FACE_NODES per face: mid-edge node of edge e from
+ *       corner e to e+1, centre of a 9-node face). Vertex and line cells are
+ *       ignored (counted). Only points used by a kept face or node become
+ *       vertices (file order). No normals (core computes them). Point data
+ *       and cell data (averaged to points) become fields[], "NAME [UNITS]" /
+ *       "NAME (UNITS)" split into name and units. Refused, naming the cell,
+ *       point, array or tuple: unsupported cell types (polyhedron, prisms,
+ *       Lagrange, Bezier, ...: "cell 17 (polyhedron): unsupported cell type
+ *       42"), a cell with the wrong point count or a point id out of range,
+ *       non-finite coordinates, an array of the wrong tuple count or with a
+ *       non-finite value, a series whose steps differ in cells. VTK's own
+ *       errors become the one message ("<file>: VTK: ..."); nothing is printed.
  *   Besides geometry (issue 11, "real assets"):
  *     - attributes[]: glTF TEXCOORD_0, TEXCOORD_1 (float or normalised u8/u16),
  *       COLOR_0 (VEC3 gets alpha 1, VEC4; float or normalised u8/u16) and
@@ -91,7 +119,14 @@
  *       levels, GLB chunks that do not fit the file, and integer fields of
  *       glTF (offsets, strides, counts, indices into arrays) that are not
  *       non-negative JSON integers, and OBJ numbers whose exponent has
- *       more than 4 significant digits (tinyobjloader would overflow an int).
+ *       more than 4 significant digits (tinyobjloader would overflow an int);
+ *     - for VTK files, before VTK allocates: every count a legacy file
+ *       declares (POINTS, CELLS, data arrays ...) against the bytes left in
+ *       the file and the budget, paired counts that disagree (CELL_TYPES vs
+ *       CELLS, POINT_DATA vs POINTS), XML Piece/DataArray counts against the
+ *       budget, a binary STL's triangle count against its size; VTK is given
+ *       bytes we read, never a path a file names (pieces, steps: the folder
+ *       rule above).
  *
  * STEP BY STEP
  *   1. char err[256];
@@ -260,7 +295,10 @@ typedef struct tlod_import_field {
   float magnitude_min, magnitude_max; /* of the Euclidean norm (1 component: |value|) */
 } tlod_import_field;
 
-/* What a VTK import read and did (issue 14, `tlod info`). */
+/* What a VTK import read and did (issue 14, `tlod info`; docs/vtk.md).
+ * cell_types: every type present, by increasing id (at most 32 listed).
+ * Timings: read_ms = VTK's reader and the conversion to arrays (all steps),
+ * boundary_ms = extraction and compaction, fields_ms = fields. */
 #define TLOD_IMPORT_MAX_CELL_TYPES 32
 typedef struct tlod_import_cell_count {
   uint32_t vtk_type; /* VTK cell type id (12 = hexahedron) */
@@ -275,7 +313,7 @@ typedef struct tlod_import_vtk_info {
   uint64_t boundary_triangles;            /* boundary (or surface) triangle faces kept */
   uint64_t boundary_quads;                /* boundary (or surface) quad faces kept */
   uint64_t second_order_faces;            /* faces with mid-edge nodes */
-  uint64_t interior_faces;                /* faces shared by two volume cells (dropped) */
+  uint64_t interior_faces;                /* faces shared by two volume cells (dropped; counted once per pair) */
   uint64_t non_manifold_faces;            /* faces of three or more cells (kept once, a warning) */
   uint64_t cells_reoriented;              /* volume cells given with negative orientation (faces flipped) */
   uint64_t degenerate_cells;              /* cells with repeated points, dropped */
@@ -359,14 +397,16 @@ typedef struct tlod_import_desc {
    * bind-pose warning (the caller animates). */
   bool keep_scene;
   /* Long imports (VTK): called with a stage ("read", "boundary", "fields",
-   * "step 3/10") and its done fraction 0..1, at most about 20 times a
-   * second, from the importing thread; NULL: none. */
+   * "step 3/10": reading a series' steps) and its done fraction 0..1 (not
+   * decreasing within a stage; "boundary" ends with 1), at most about 20
+   * times a second, from the importing thread; NULL: none. */
   void (*progress)(void* user, const char* stage, double fraction);
   void* progress_user;
 } tlod_import_desc;
 
 /* Reads a mesh file; the format comes from the extension (.gltf .glb .obj
- * .ply, case-insensitive; anything else: TLOD_ERROR_UNSUPPORTED).
+ * .ply .vtk .vtu .vtp .pvtu .pvd .stl, case-insensitive; anything else:
+ * TLOD_ERROR_UNSUPPORTED).
  *   path       file to read; external glTF buffers resolve relative to it
  *   allocator  for the result and its arrays; NULL (or both hooks NULL): malloc/free
  *   out        receives the result (free with tlod_import_free); NULL on failure

@@ -21,10 +21,13 @@ struct FaceRef {
   uint8_t face, flip, keep;
 };
 
+// A face's sorted corners packed into two words (a triangle's 4th corner is kNone), compared as
+// one 128-bit number, then by reference so that runs list their faces in cell order.
 struct FaceKey {
-  std::array<uint32_t, 4> v; // sorted corners; a triangle's [3] is kNone
+  uint64_t hi, lo;
   uint32_t ref;
-  bool operator<(const FaceKey& o) const { return v < o.v || (v == o.v && ref < o.ref); }
+  bool operator<(const FaceKey& o) const { return hi != o.hi ? hi < o.hi : lo != o.lo ? lo < o.lo : ref < o.ref; }
+  bool same_face(const FaceKey& o) const { return hi == o.hi && lo == o.lo; }
 };
 
 int corner_count(const CellKind& k) {
@@ -134,11 +137,11 @@ private:
     const bool flip = volume6(k, id, points_) < 0;
     out_.cells_reoriented += flip;
     for (int f = 0; f < k.face_count; ++f) {
-      FaceKey key{{kNone, kNone, kNone, kNone}, uint32_t(refs_.size())};
+      std::array<uint32_t, 4> v{kNone, kNone, kNone, kNone};
       for (int i = 0; i < k.faces[f].size; ++i)
-        key.v[i] = id[k.faces[f].corner[i]];
-      std::sort(key.v.begin(), key.v.begin() + k.faces[f].size);
-      keys_.push_back(key);
+        v[i] = id[k.faces[f].corner[i]];
+      std::sort(v.begin(), v.begin() + k.faces[f].size);
+      keys_.push_back({uint64_t(v[0]) << 32 | v[1], uint64_t(v[2]) << 32 | v[3], uint32_t(refs_.size())});
       refs_.push_back({c, uint8_t(f), uint8_t(flip), 0});
     }
   }
@@ -149,7 +152,7 @@ private:
     hooks_.progress(0.75);
     for (size_t i = 0; i < keys_.size();) {
       size_t j = i + 1;
-      while (j < keys_.size() && keys_[j].v == keys_[i].v)
+      while (j < keys_.size() && keys_[j].same_face(keys_[i]))
         ++j;
       if (j - i == 2) out_.interior_faces++;
       if (j - i > 2) out_.non_manifold_faces++;

@@ -56,9 +56,30 @@ void end_cell(Dataset& out, int type) {
   out.cells.offsets.push_back(out.cells.conn.size());
 }
 
+// VTK trusts a cell array's offsets (XML files and the 5.x legacy layout give them as data):
+// they must start at 0, never decrease and end at the connectivity's size, or iterating the
+// cells reads past the connectivity.
+void check_offsets(vtkCellArray* a) {
+  vtkDataArray* off = a->GetOffsetsArray();
+  const vtkIdType n = a->GetNumberOfCells();
+  if (!off || off->GetNumberOfTuples() != n + 1) fail(TLOD_ERROR_PARSE, "cell offsets: wrong count");
+  double last = 0;
+  for (vtkIdType i = 0; i <= n; ++i) {
+    const double o = off->GetTuple1(i);
+    if ((i == 0 && o != 0) || o < last)
+      fail(TLOD_ERROR_PARSE,
+           format("cell %lld: offset %.0f before the previous cell's %.0f", (long long)i - 1, o, last));
+    last = o;
+  }
+  if (last != double(a->GetNumberOfConnectivityIds()))
+    fail(TLOD_ERROR_PARSE, format("cell offsets end at %.0f, the connectivity holds %lld ids", last,
+                                  (long long)a->GetNumberOfConnectivityIds()));
+}
+
 // Cells of one vtkCellArray; type_of(n) gives the VTK type of an n-point cell.
 template <class TypeOf> void read_array(vtkCellArray* a, TypeOf type_of, Dataset& out) {
   if (!a) return;
+  check_offsets(a);
   vtkIdType n;
   const vtkIdType* ids;
   auto it = vtk::TakeSmartPointer(a->NewIterator());

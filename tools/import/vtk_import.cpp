@@ -355,6 +355,7 @@ private:
       take(v * k * 4, "fields");
       for (size_t j = 0; j < v; ++j)
         fields_[i].data.insert(fields_[i].data.end(), &f->values[used_[j] * k], &f->values[used_[j] * k] + k);
+      if (step == 0) progress("fields", double(i + 1) / double(fields_.size()));
     }
     info_.fields_ms += ms_since(t0);
   }

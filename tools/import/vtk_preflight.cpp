@@ -49,11 +49,14 @@ struct Words {
     return true;
   }
 
+  // The next word, lower-case (its first 24 characters); "" at the end. Words that cannot be
+  // keywords (not starting with a letter: numbers, binary data) come back as "0" unread.
   std::string word() {
     const char* w;
     size_t n;
     if (!next(&w, &n)) return "";
-    std::string s(w, n);
+    if (!std::isalpha(static_cast<unsigned char>(w[0]))) return "0";
+    std::string s(w, std::min<size_t>(n, 24));
     for (char& c : s)
       c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
@@ -108,6 +111,10 @@ public:
     const char* tnl = static_cast<const char*>(memchr(title, '\n', size_t(words_.end - title)));
     if (!tnl) fail(TLOD_ERROR_PARSE, "truncated header (no title line)");
     words_.p = tnl + 1;
+    const char* v = begin_ + 14;
+    while (v < nl && !(*v >= '0' && *v <= '9'))
+      ++v;
+    offsets_layout_ = v < nl && atoi(v) >= 5; // 5.x: CELLS n m counts n = cells + 1 offsets
     const std::string mode = words_.word();
     if (mode != "ascii" && mode != "binary") fail(TLOD_ERROR_PARSE, "line 3: expected ASCII or BINARY");
     binary_ = mode == "binary";
@@ -126,6 +133,15 @@ private:
   size_t room_;
   bool binary_ = false;
   uint64_t tuples_ = 0; // of the current POINT_DATA / CELL_DATA section
+  bool offsets_layout_ = false;
+  uint64_t points_ = UINT64_MAX, cells_ = UINT64_MAX; // as declared; UINT64_MAX: not yet
+
+  // VTK sizes one array by one declaration and fills it by another: they must agree.
+  void agree(const char* what, uint64_t n, const char* other, uint64_t m) {
+    if (m != UINT64_MAX && n != m)
+      fail(TLOD_ERROR_PARSE,
+           format("%s %llu disagrees with %s %llu", what, (unsigned long long)n, other, (unsigned long long)m));
+  }
 
   // values of width bytes (binary) must fit the rest of the file, and 8 bytes each the budget.
   void need(const std::string& what, uint64_t count, uint64_t per, size_t width) {
@@ -146,6 +162,8 @@ private:
   void counted(const std::string& upper, uint64_t per, bool typed) {
     uint64_t n;
     if (!words_.number(&n)) return;
+    if (upper == "POINTS") points_ = n;
+    if (upper == "CELL_TYPES") agree("CELL_TYPES", n, "the cell count of CELLS", cells_);
     const size_t width = typed ? type_size(words_.word()) : 4;
     need(upper, n, per, width);
   }
@@ -153,8 +171,45 @@ private:
   void cells(const std::string& upper) {
     uint64_t n, size;
     if (!words_.number(&n) || !words_.number(&size)) return;
+    if (upper == "CELLS") cells_ = offsets_layout_ && n > 0 ? n - 1 : n;
     need(upper, size, 1, 4);
     need(upper, n, 1, 1);
+    if (!offsets_layout_) walk_cells(upper, n, size);
+  }
+
+  // The classic layout: n cells as "count id id ..." in size values. VTK walks the counts
+  // without checking them against size (vtkCellArray::AppendLegacyFormat reads past its
+  // buffer on a count too large), so the walk is done here first: every count must fit.
+  void walk_cells(const std::string& upper, uint64_t n, uint64_t size) {
+    uint64_t at = 0;
+    const unsigned char* bin = nullptr;
+    if (binary_) {
+      const char* nl = static_cast<const char*>(memchr(words_.p, '\n', size_t(words_.end - words_.p)));
+      if (!nl) fail(TLOD_ERROR_PARSE, upper + ": no data");
+      bin = reinterpret_cast<const unsigned char*>(nl + 1);
+    }
+    for (uint64_t c = 0; c < n; ++c) {
+      uint64_t count;
+      if (at >= size || !value(bin, at, &count) || count > size - at - 1)
+        fail(TLOD_ERROR_PARSE, format("%s: cell %llu: its point count runs past the %llu values declared",
+                                      upper.c_str(), (unsigned long long)c, (unsigned long long)size));
+      at += 1 + count;
+      if (!bin) skip_values(count);
+    }
+    if (at != size)
+      fail(TLOD_ERROR_PARSE, format("%s: %llu cells use %llu of the %llu values declared", upper.c_str(),
+                                    (unsigned long long)n, (unsigned long long)at, (unsigned long long)size));
+    if (bin) words_.p = std::min(words_.end, reinterpret_cast<const char*>(bin) + size * 4);
+  }
+
+  // Value at of a cell list: binary big-endian int32 (bin), else the next ASCII word.
+  bool value(const unsigned char* bin, uint64_t at, uint64_t* v) {
+    if (!bin) return words_.number(v);
+    const unsigned char* q = bin + at * 4;
+    if (q + 4 > reinterpret_cast<const unsigned char*>(words_.end)) return false;
+    const int32_t x = int32_t(uint32_t(q[0]) << 24 | uint32_t(q[1]) << 16 | uint32_t(q[2]) << 8 | q[3]);
+    *v = uint64_t(x < 0 ? 0 : x);
+    return x >= 0;
   }
 
   // NAME TYPE (per tuple: per values) for SCALARS (NAME TYPE [NCOMP]), VECTORS, TENSORS ...
@@ -176,9 +231,12 @@ private:
     uint64_t n;
     if (!words_.number(&n)) return;
     for (uint64_t i = 0; i < n; ++i) {
-      const std::string name = words_.word();
+      const char* w;
+      size_t len;
+      if (!words_.next(&w, &len)) return;
+      const std::string name(w, std::min<size_t>(len, 64));
       uint64_t comps, count;
-      if (name.empty() || !words_.number(&comps) || !words_.number(&count)) return;
+      if (!words_.number(&comps) || !words_.number(&count)) return;
       const size_t width = type_size(words_.word());
       need("FIELD array '" + name + "'", count, comps, width);
       if (binary_) return; // data follows as bytes: the scan continues word by word
@@ -205,6 +263,7 @@ private:
   }
 
   void keyword(const std::string& w) {
+    if (!strchr("pctlvxyzdsngf", w[0])) return; // no keyword starts otherwise (most words of data)
     if (starts_with(w, "points")) return counted("POINTS", 3, true);
     if (starts_with(w, "cells")) return cells("CELLS");
     if (starts_with(w, "polygons")) return cells("POLYGONS");
@@ -217,6 +276,10 @@ private:
     if (starts_with(w, "dimensions")) return dimensions();
     if (starts_with(w, "point_data") || starts_with(w, "cell_data")) {
       if (!words_.number(&tuples_)) tuples_ = 0;
+      if (w[0] == 'p')
+        agree("POINT_DATA", tuples_, "POINTS", points_);
+      else
+        agree("CELL_DATA", tuples_, "the cell count of CELLS", cells_);
       return;
     }
     if (starts_with(w, "color_scalars")) {

@@ -2,11 +2,15 @@
 // emits while one of our reads runs ends up in that read's capture, never on the terminal:
 //   - the reader's own errors and warnings: ErrorEvent / WarningEvent observers on it;
 //   - messages of objects without observers (VTK's XML parser, data arrays): VTK sends those
-//     to its process-wide vtkOutputWindow. We install once (std::call_once) a window that
-//     appends them to the capture of the read running on the calling thread (thread_local)
-//     and drops them otherwise. That is a process-wide setting, acceptable because it only
-//     changes where VTK's diagnostics go: an application that wants VTK's own window can set
-//     it again after its first import (docs/vtk.md section 6).
+//     to its process-wide vtkOutputWindow, and some readers log straight to vtkLogger (which
+//     prints to stderr). We install once (std::call_once) a window and a vtkLogger callback
+//     that append them to the capture of the read running on the calling thread
+//     (thread_local), and turn vtkLogger's stderr output off. Those are process-wide
+//     settings, acceptable because they only change where VTK's diagnostics go (the tool
+//     prints ours instead); an application that wants VTK's own output can set it again
+//     after its first import (docs/vtk.md section 6).
+// A VTK warning that says "Error reading" (the legacy reader's "Error reading ascii data.
+// Possible mismatch of datasize with declaration.") is a failed read: it counts as an error.
 #include "vtk_read.hpp"
 
 #include <mutex>
@@ -14,6 +18,7 @@
 
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkOutputWindow.h>
 #include <vtkPolyDataReader.h>
@@ -54,8 +59,11 @@ std::string clean(const char* text) {
   return s;
 }
 
-void append(std::string& to, const char* text) {
+// One message into c (nothing when no read is capturing); see the header comment on "Error reading".
+void add(Capture* c, bool error, const char* text) {
+  if (!c) return;
   const std::string m = clean(text);
+  std::string& to = error || m.find("Error reading") != std::string::npos ? c->errors : c->warnings;
   if (m.empty() || to.find(m) != std::string::npos) return; // VTK repeats itself
   if (!to.empty()) to += "; ";
   to += m;
@@ -69,15 +77,16 @@ public:
     return w;
   }
   void DisplayText(const char*) override {}
-  void DisplayErrorText(const char* t) override {
-    if (tl_capture) append(tl_capture->errors, t);
-  }
-  void DisplayWarningText(const char* t) override {
-    if (tl_capture) append(tl_capture->warnings, t);
-  }
+  void DisplayErrorText(const char* t) override { add(tl_capture, true, t); }
+  void DisplayWarningText(const char* t) override { add(tl_capture, false, t); }
   void DisplayGenericWarningText(const char* t) override { DisplayWarningText(t); }
   void DisplayDebugText(const char*) override {}
 };
+
+void on_log(void*, const vtkLogger::Message& m) {
+  if (m.verbosity <= vtkLogger::VERBOSITY_WARNING)
+    add(tl_capture, m.verbosity < vtkLogger::VERBOSITY_WARNING, m.message);
+}
 
 void install_quiet_window() {
   static std::once_flag once;
@@ -85,12 +94,13 @@ void install_quiet_window() {
     QuietWindow* w = QuietWindow::New();
     vtkOutputWindow::SetInstance(w);
     w->Delete();
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+    vtkLogger::AddCallback("tesslod-import", on_log, nullptr, vtkLogger::VERBOSITY_WARNING);
   });
 }
 
 void on_message(vtkObject*, unsigned long event, void* client, void* call) {
-  Capture* c = static_cast<Capture*>(client);
-  append(event == vtkCommand::ErrorEvent ? c->errors : c->warnings, static_cast<const char*>(call));
+  add(static_cast<Capture*>(client), event == vtkCommand::ErrorEvent, static_cast<const char*>(call));
 }
 
 void on_progress(vtkObject*, unsigned long, void* client, void* call) {
