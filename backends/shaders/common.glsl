@@ -9,8 +9,10 @@
 vec3 world_position(vec3 pos) { return (u_model * vec4(pos, 1.0)).xyz; }
 vec3 world_normal(vec3 nrm) { return u_normal_matrix * nrm; }
 
-// The canonical edge point from a to b at t (a has the smaller welded id).
-void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, float t, out vec3 pos, out vec3 nrm);
+// The canonical edge point from a to b at t (a has the smaller welded id);
+// m is the edge's node (Patch.b[e]: the quadratic surface's mid-edge node,
+// direction-free; the other types ignore it).
+void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, vec3 m, float t, out vec3 pos, out vec3 nrm);
 // A surface point inside the patch at (u, v).
 void interior_point(Patch P, vec2 uv, out vec3 pos, out vec3 nrm);
 
@@ -21,9 +23,9 @@ void patch_edge_point(Patch P, uint e, uint num, out vec3 pos, out vec3 nrm) {
   if (num == u_grid) { pos = P.p[b].xyz; nrm = P.n[b].xyz; return; }
   precise float t = float(num) / float(u_grid);
   if (P.weld[a] < P.weld[b]) {
-    edge_point(P.p[a].xyz, P.n[a].xyz, P.p[a].w, P.p[b].xyz, P.n[b].xyz, P.p[b].w, t, pos, nrm);
+    edge_point(P.p[a].xyz, P.n[a].xyz, P.p[a].w, P.p[b].xyz, P.n[b].xyz, P.p[b].w, P.b[e].xyz, t, pos, nrm);
   } else {
-    edge_point(P.p[b].xyz, P.n[b].xyz, P.p[b].w, P.p[a].xyz, P.n[a].xyz, P.p[a].w, 1.0 - t, pos, nrm);
+    edge_point(P.p[b].xyz, P.n[b].xyz, P.p[b].w, P.p[a].xyz, P.n[a].xyz, P.p[a].w, P.b[e].xyz, 1.0 - t, pos, nrm);
   }
 }
 

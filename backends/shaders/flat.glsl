@@ -1,6 +1,7 @@
 // The flat patch: the input triangle, the bilinear quad.
 
-void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, float t, out vec3 pos, out vec3 nrm) {
+void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, vec3 m, float t, out vec3 pos,
+                out vec3 nrm) {
   precise float s = 1.0 - t;
   pos = pa * s + pb * t;
   nrm = safe_normalize(na * s + nb * t, na);

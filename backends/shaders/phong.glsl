@@ -2,7 +2,8 @@
 
 vec3 project_onto(vec3 q, vec3 p, vec3 n) { return q - dot(q - p, n) * n; }
 
-void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, float t, out vec3 pos, out vec3 nrm) {
+void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, vec3 m, float t, out vec3 pos,
+                out vec3 nrm) {
   precise float s = 1.0 - t;
   precise vec3 p = pa * s + pb * t;
   precise float alpha = aa * s + ab * t;

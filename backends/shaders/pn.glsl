@@ -14,7 +14,8 @@ vec3 mid_normal(vec3 pi, vec3 ni, vec3 pj, vec3 nj) {
   return safe_normalize(sum - d * v, ni);
 }
 
-void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, float t, out vec3 pos, out vec3 nrm) {
+void edge_point(vec3 pa, vec3 na, float aa, vec3 pb, vec3 nb, float ab, vec3 m, float t, out vec3 pos,
+                out vec3 nrm) {
   precise float s = 1.0 - t;
   precise vec3 bab = tangent_point(pa, na, pb);
   precise vec3 bba = tangent_point(pb, nb, pa);

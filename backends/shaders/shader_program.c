@@ -16,7 +16,16 @@ const char* _tlod_shader_corners(int corners) {
 }
 
 const char* _tlod_shader_surface(tlod_surface_type type) {
-  return type == TLOD_SURFACE_PN ? _tlod_shader_pn : type == TLOD_SURFACE_FLAT ? _tlod_shader_flat : _tlod_shader_phong;
+  switch (type) {
+  case TLOD_SURFACE_PN:
+    return _tlod_shader_pn;
+  case TLOD_SURFACE_FLAT:
+    return _tlod_shader_flat;
+  case TLOD_SURFACE_QUADRATIC:
+    return _tlod_shader_quadratic;
+  default:
+    return _tlod_shader_phong;
+  }
 }
 
 int _tlod_shader_vertex_side(const char* out[_TLOD_SHADER_STAGE_SOURCES], const char* defines, const char* corners,

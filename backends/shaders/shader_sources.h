@@ -17,6 +17,7 @@ extern const char* const _tlod_shader_common;
 extern const char* const _tlod_shader_phong;
 extern const char* const _tlod_shader_pn;
 extern const char* const _tlod_shader_flat;
+extern const char* const _tlod_shader_quadratic;
 extern const char* const _tlod_shader_pattern_vert;
 extern const char* const _tlod_shader_strip_vert;
 extern const char* const _tlod_shader_shade_frag;

@@ -65,8 +65,8 @@ static void emit_table(const walk* w) {
 }
 
 static void walk_variants(walk* w) {
-  const tlod_surface_type types[3] = {TLOD_SURFACE_FLAT, TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
-  for (int t = 0; t < 3 && !w->failed; t++)
+  const tlod_surface_type types[4] = {TLOD_SURFACE_FLAT, TLOD_SURFACE_PHONG, TLOD_SURFACE_PN, TLOD_SURFACE_QUADRATIC};
+  for (int t = 0; t < 4 && !w->failed; t++)
     for (int variant = 0; variant < 3 && !w->failed; variant++) {
       _tlod_shader_variant v = {.vulkan = true, .texcoord = variant != 0, .mask = variant == 2};
       _tlod_shader_each_stage(types[t], &v, NULL, true, emit_stage, w);

@@ -67,11 +67,11 @@ def vtu(path, points, cells, point_data=(), cell_data=()):
 
 
 def flat_quad(path):
-    """One quad (VTK_QUAD) x, y in [-1, 1] at z = 0 facing +z; temperature [K] = x, velocity = (x, 2, 0)."""
+    """One quad (VTK_QUAD) x, y in [-1, 1] at z = 0 facing +z; temperature [K] = x, velocity = (x + 1, 2, 0)."""
     pts = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]
     return vtu(path, pts, [(9, [0, 1, 2, 3])],
                point_data=[("temperature [K]", 1, [p[0] for p in pts]),
-                           ("velocity", 3, [c for p in pts for c in (p[0], 2.0, 0.0)])])
+                           ("velocity", 3, [c for p in pts for c in (p[0] + 1.0, 2.0, 0.0)])])
 
 
 def hex_pair(path):
@@ -195,12 +195,13 @@ def rendered(backend):
         check_legend("gl diverging", img, [(0.0, COOL_WARM[0.0]), (1.0, COOL_WARM[1.0])])
     f = summary.get("field", {}) if isinstance(summary, dict) else {}
     check("default --range is the field's range", f.get("min") == -1.0 and f.get("max") == 1.0, f)
-    # A vector's magnitude: |(x, 2, 0)| from 2 (x = 0) to sqrt(5); component 1 is 2 everywhere (the map's middle).
+    # A vector's magnitude at the corners: |(x + 1, 2, 0)| is 2 (x = -1) and sqrt(8) (x = 1); component y is 2
+    # everywhere (the map's middle with --range 0,4).
     _, summary = play_shot("gl-magnitude", quad, backend, "--field", "velocity")
     f = summary.get("field", {}) if isinstance(summary, dict) else {}
     check("a vector field defaults to its magnitude",
           f.get("component") == "magnitude" and abs(f.get("min", 0) - 2.0) < 1e-5
-          and abs(f.get("max", 0) - math.sqrt(5)) < 1e-5, f)
+          and abs(f.get("max", 0) - math.sqrt(8)) < 1e-5, f)
     img, _ = play_shot("gl-component", quad, backend, "--field", "velocity:y", "--range", "0,4")
     if img:
         check_field_pixels("gl velocity:y", img, [(-0.5, rgb(VIRIDIS[0.5])), (0.5, rgb(VIRIDIS[0.5]))])
@@ -284,6 +285,13 @@ def info():
           re.search(r"height: 1 component, point data, range \[0, 1\]", so) is not None, so)
     check("info hex pair: the cell field, averaged", re.search(r"pressure: 1 component, cell", so) is not None, so)
     check("info hex pair: auto draws phong", "auto draws phong" in so, so)
+    # The 2x1x1 box's 16 edge segments (8 along x, 8 along y and z) are sharp under the VTK default of 40 degrees;
+    # the 4 seams between the hexes' coplanar faces are not.
+    check("info hex pair: the VTK crease default splits the box's 16 edges",
+          re.search(r"0 non-manifold, 16 crease edges", so) is not None, so)
+    rc, so0, se = run("info", os.path.join(WORK, "hex2.vtu"), "--crease", "0")
+    check("info hex pair: --crease 0 turns the default off", re.search(r"0 non-manifold, 0 crease edges", so0) is not None,
+          so0)
     check("info hex pair: the import's timings", re.search(r"vtk time:\s+read [0-9.]+ ms", so) is not None, so)
     q = quadratic_hex(os.path.join(WORK, "hex20.vtu"))
     rc, so, se = run("info", q)
@@ -294,6 +302,11 @@ def info():
     rc, so, se = run("tessellate", q, "-o", os.path.join(WORK, "hex20.obj"))
     check("tessellate --surface auto picks quadratic for a quadratic file", rc == 0 and "-> quadratic" in so,
           (so, se))
+    out = os.path.join(WORK, "hex20-play")
+    rc, so, se = run("play", q, "--backend", "gl" if HAS_GL else "null", "--frames", "2", "--out", out, "-q")
+    s = load_json(os.path.join(out, "summary.json"))
+    check("play --surface auto plays quadratic for a quadratic file",
+          rc == 0 and isinstance(s, dict) and s.get("surface") == "quadratic", (se, s))
     rc, so, se = run("tessellate", q, "-o", os.path.join(WORK, "hex20p.obj"), "--surface", "phong")
     check("tessellate --surface phong overrides auto", rc == 0 and "-> phong" in so, (so, se))
 

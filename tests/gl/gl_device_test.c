@@ -154,12 +154,13 @@ TEST(test_one_device_many_objects) {
 }
 
 /* Identity model == no model, bitwise; has_color reaches the pixels; the
- * default device links 2 programs per surface type (3 types). */
+ * default device links 2 programs per surface type (4 types). */
 TEST(test_model_and_colour) {
   gl_session gs;
   CHECK_MSG(gl_session_open(&gs, W, H, MAX_LEVEL, "gl_model", (tlod_device_gl_desc){0}),
             "no GL context or device (see above)");
-  CHECK_MSG(tlod_device_query_stats(gs.dev).gl.program_links == 6, "default device: %u links (flat, phong, pn: 6)",
+  CHECK_MSG(tlod_device_query_stats(gs.dev).gl.program_links == 8,
+            "default device: %u links (flat, phong, pn, quadratic: 8)",
             tlod_device_query_stats(gs.dev).gl.program_links);
   shape sph = shape_torus(16, 10);
   fixture fx;

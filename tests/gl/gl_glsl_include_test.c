@@ -1,7 +1,7 @@
 /*
  * gl_glsl_include_test.c -- the GLSL shipped for engines (docs/shaders.md:
- * layout.h, uniforms.glsl, common.glsl, attributes.glsl, then phong.glsl, pn.glsl or
- * flat.glsl, installed under share/tesslod/glsl) compiles into an engine's
+ * layout.h, uniforms.glsl, common.glsl, attributes.glsl, then phong.glsl, pn.glsl,
+ * flat.glsl or quadratic.glsl, installed under share/tesslod/glsl) compiles into an engine's
  * own vertex shader and evaluates patches as the library does (owned by
  * the GL tests). Public API only, plus the shader files of the source tree.
  *
@@ -11,7 +11,8 @@
  * attributes (tlod_mesh_patch_attributes, TLOD_GL_BINDING_ATTRIBUTES),
  * captured by transform feedback; positions and normals are compared with
  * tlod_surface_eval(), the UV attribute with the barycentric blend of the
- * corners' UVs computed here, for Phong, PN and flat surfaces.
+ * corners' UVs computed here, for Phong, PN, flat and quadratic surfaces
+ * (the sphere has no nodes: its quadratic surface takes the Phong nodes).
  */
 #include "gl_test.h"
 #include "tesslod/gl.h"
@@ -161,9 +162,10 @@ TEST(test_engine_shader_evaluates_patches) {
   CHECK_MSG(gl_session_open(&gs, 16, 16, 5, "gl_glsl_include", (tlod_device_gl_desc){0}), "no GL context");
   uv_sphere us;
   CHECK(uv_sphere_make(&us, NLAT, NLON));
-  static const char* const files[3] = {"phong.glsl", "pn.glsl", "flat.glsl"};
-  static const tlod_surface_type types[3] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN, TLOD_SURFACE_FLAT};
-  for (int t = 0; t < 3; t++) {
+  static const char* const files[4] = {"phong.glsl", "pn.glsl", "flat.glsl", "quadratic.glsl"};
+  static const tlod_surface_type types[4] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN, TLOD_SURFACE_FLAT,
+                                             TLOD_SURFACE_QUADRATIC};
+  for (int t = 0; t < 4; t++) {
     fixture fx;
     CHECK(fixture_make_desc(&fx, gs.ctx, &us.desc, types[t], gs.pat, NULL));
     uint32_t patches = tlod_surface_patch_count(fx.surf);

@@ -4,7 +4,8 @@
  * tests). Public API only.
  *
  * For icosphere(2), torus(16, 10) and cube_soft (split normals), under
- * Phong and PN surfaces, in two modes:
+ * Phong and PN surfaces, and quadratic_cube.h's curved second-order cube
+ * under TLOD_SURFACE_QUADRATIC (its silhouette), in two modes:
  *   adaptive: tlod_scheduler with its defaults (HYBRID, TIME geomorphs),
  *             a far frame then a nearer one 60 ms later, so the second
  *             draw list carries fractional geomorph blends;
@@ -33,6 +34,7 @@
  *     CPU leaves out, which a GPU draws as zero-area).
  */
 #include "gl_test.h"
+#include "quadratic_cube.h"
 
 #define W 256
 #define H 256
@@ -117,6 +119,47 @@ static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const 
             what, 100.0 * colour_fraction, c.covered_both, c.max_colour_diff);
 }
 
+/* One surface on dev (a new device surface on the same device), both
+ * modes, both cameras. */
+static void one_surface(gl_env* env, tlod_device* dev, tlod_context* ctx, const tlod_patterns* pat,
+                        const tlod_mesh_desc* md, tlod_surface_type type) {
+  fixture fx;
+  CHECK_MSG(fixture_make_desc(&fx, ctx, md, type, pat, dev), "fixture %s %s", md->label, type_name(type));
+  for (int mode = 0; mode < 2; ++mode) {
+    tlod_scheduler_desc sd = {.max_level = MAX_LEVEL};
+    if (mode == 1)
+      sd = (tlod_scheduler_desc){
+          .policy = TLOD_POLICY_ERROR, .epsilon_px = 1e-6f, .max_level = 3, .morph = TLOD_MORPH_NONE};
+    tlod_scheduler* sch = new_scheduler(&fx, sd);
+    CHECK(sch);
+    /* two cameras: an oblique one, then a closer grazing one (the
+     * adaptive second frame morphs for 60 of 200 ms) */
+    camera cams[2] = {camera_look(2.6, -3.4, 1.9, 0, 0, 0, 45, W, H),
+                      camera_look(1.25, 1.9, 0.35, 0.15, 0.1, 0.05, 60, W, H)};
+    for (int ci = 0; ci < 2; ++ci) {
+      tlod_view_desc v = make_view(&cams[ci]);
+      const tlod_draw_list* dl = plan(&fx, sch, &v, ci == 0 ? 0.0f : 60.0f);
+      CHECK(dl);
+      char what[96];
+      snprintf(what, sizeof what, "%s %s %s cam %d", md->label, type_name(type), mode ? "uniform" : "adaptive", ci);
+      if (mode == 1) {
+        uint32_t at_max = dl->level_histogram[3], visible = dl->instance_count;
+        CHECK_MSG(at_max * 10 >= visible * 9, "%s: uniform mode has only %u of %u patches at level 3", what, at_max,
+                  visible);
+      }
+      int failed_before = _test_checks_failed;
+      compare_one(env, dev, &fx, dl, &v, what);
+      if (_test_checks_failed != failed_before) {
+        char buf[256];
+        camera_print(&cams[ci], buf, sizeof buf);
+        fprintf(stderr, "  camera: %s\n", buf);
+      }
+    }
+    tlod_scheduler_destroy(sch);
+  }
+  fixture_free(&fx);
+}
+
 TEST(test_parity) {
   char err[512] = "";
   gl_env env = {0};
@@ -139,45 +182,13 @@ TEST(test_parity) {
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
   for (int si = 0; si < 3; ++si)
     for (int ti = 0; ti < 2; ++ti) {
-      fixture fx;
-      /* a new device surface on the same device */
-      CHECK_MSG(fixture_make(&fx, ctx, &shapes[si], types[ti], pat, dev), "fixture %s %s", shapes[si].name,
-                type_name(types[ti]));
-      for (int mode = 0; mode < 2; ++mode) {
-        tlod_scheduler_desc sd = {.max_level = MAX_LEVEL};
-        if (mode == 1)
-          sd = (tlod_scheduler_desc){
-              .policy = TLOD_POLICY_ERROR, .epsilon_px = 1e-6f, .max_level = 3, .morph = TLOD_MORPH_NONE};
-        tlod_scheduler* sch = new_scheduler(&fx, sd);
-        CHECK(sch);
-        /* two cameras: an oblique one, then a closer grazing one (the
-         * adaptive second frame morphs for 60 of 200 ms) */
-        camera cams[2] = {camera_look(2.6, -3.4, 1.9, 0, 0, 0, 45, W, H),
-                          camera_look(1.25, 1.9, 0.35, 0.15, 0.1, 0.05, 60, W, H)};
-        for (int ci = 0; ci < 2; ++ci) {
-          tlod_view_desc v = make_view(&cams[ci]);
-          const tlod_draw_list* dl = plan(&fx, sch, &v, ci == 0 ? 0.0f : 60.0f);
-          CHECK(dl);
-          char what[96];
-          snprintf(what, sizeof what, "%s %s %s cam %d", shapes[si].name, type_name(types[ti]),
-                   mode ? "uniform" : "adaptive", ci);
-          if (mode == 1) {
-            uint32_t at_max = dl->level_histogram[3], visible = dl->instance_count;
-            CHECK_MSG(at_max * 10 >= visible * 9, "%s: uniform mode has only %u of %u patches at level 3", what, at_max,
-                      visible);
-          }
-          int failed_before = _test_checks_failed;
-          compare_one(&env, dev, &fx, dl, &v, what);
-          if (_test_checks_failed != failed_before) {
-            char buf[256];
-            camera_print(&cams[ci], buf, sizeof buf);
-            fprintf(stderr, "  camera: %s\n", buf);
-          }
-        }
-        tlod_scheduler_destroy(sch);
-      }
-      fixture_free(&fx);
+      tlod_mesh_desc md = shape_mesh_desc(&shapes[si]);
+      CALL(one_surface(&env, dev, ctx, pat, &md, types[ti]));
     }
+  /* second-order faces: quadratic_cube.h's curved cube (9- and 8-node quads, 6-node triangles) */
+  qcube q;
+  qcube_make(&q);
+  CALL(one_surface(&env, dev, ctx, pat, &q.desc, TLOD_SURFACE_QUADRATIC));
   CHECK_MSG(s_totals.morphing > 0, "no draw list had a geomorph blend < 1: morph parity not exercised");
   printf("  %u comparisons, %llu triangles, %u morphing instances: coverage differs on %llu of %llu covered pixels "
          "(%.4f%%), %llu off the "

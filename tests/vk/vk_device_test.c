@@ -12,12 +12,15 @@
  *     surface destroyed while frames are in flight: every host allocation
  *     (tesslod's and Vulkan's, routed through the context) freed at destroy;
  *   - tlod_device_update_surface reaches every frame slot (each slot has its
- *     own copy: the moved object shows in slot 0 and in slot 1);
+ *     own copy: the moved object shows in slot 0 and in slot 1), and so
+ *     does an attribute replaced by tlod_mesh_update_attribute (a quadratic
+ *     surface on a device of that type only);
  *   - two draws in one frame (same frame index) append to the ring: both
  *     halves of the image are drawn.
  */
 #include <vulkan/vulkan.h>
 
+#include "quadratic_cube.h"
 #include "test_alloc.h"
 #include "vk_test.h"
 
@@ -357,6 +360,57 @@ TEST(test_update_reaches_every_slot) {
   CALL(object_close(&o));
 }
 
+/* A field's next time step (tlod_mesh_update_attribute) reaches every frame
+ * slot at tlod_device_update_surface(), on a device of the quadratic type
+ * only (the mask bit), through a fragment hook showing attribute 0. */
+static bool centre_is(const uint8_t* rgba, const float rgb[3]) {
+  const uint8_t* px = rgba + 4 * (W * (H / 2) + W / 2);
+  for (int c = 0; c < 3; c++)
+    if (abs((int)px[c] - (int)lroundf(rgb[c] * 255.0f)) > 2) return false;
+  return true;
+}
+
+TEST(test_attribute_update_reaches_every_slot) {
+  const float a[3] = {0.2f, 0.6f, 0.9f}, b[3] = {0.9f, 0.3f, 0.1f};
+  vk_session s;
+  tlod_device_vk_desc opt = {.surface_types = 1u << TLOD_SURFACE_QUADRATIC,
+                             .fragment_hook =
+                                 "vec4 tlod_shade(tlod_fragment f) { return vec4(f.attributes[0].rgb, 1.0); }\n"};
+  CHECK_MSG(vk_session_open(&s, W, H, 3, "vk_device", true, opt), "no Vulkan device");
+  qcube_coloured c;
+  qcube_coloured_make(&c, a);
+  fixture fx;
+  CHECK(fixture_make_desc(&fx, s.ctx, &c.q.desc, TLOD_SURFACE_QUADRATIC, s.pat, s.dev));
+  tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = 3});
+  camera cam = front_camera();
+  tlod_view_desc v = make_view(&cam);
+  const tlod_draw_list* dl = NULL;
+  CHECK(sch && (dl = plan(&fx, sch, &v, 16.0f)));
+  one_draw od;
+  one_draw_make(&od, fx.ds, dl, &v);
+  uint8_t* rgba = malloc(4 * W * H);
+  CHECK(rgba);
+  bool want_a[4], want_b[4];
+  float next[QCUBE_VERTICES][3];
+  for (int k = 0; k < QCUBE_VERTICES; k++)
+    memcpy(next[k], b, sizeof b);
+  for (int f = 0; f < 4; f++) {
+    if (f == 2) {
+      CHECK(tlod_mesh_update_attribute(fx.mesh, 0, &next[0][0], 0) == TLOD_SUCCESS);
+      CHECK(tlod_device_update_surface(s.dev, fx.ds) == TLOD_SUCCESS);
+    }
+    CHECK(vk_draw_frame(s.platform, s.dev, s.ctx, &od.desc, rgba));
+    want_a[f] = centre_is(rgba, a), want_b[f] = centre_is(rgba, b);
+  }
+  printf("  attribute update: frames 0-1 the first step %d %d, frames 2-3 (both slots) the next %d %d\n", want_a[0],
+         want_a[1], want_b[2], want_b[3]);
+  CHECK_MSG(want_a[0] && want_a[1] && want_b[2] && want_b[3], "the attribute update did not reach every slot");
+  free(rgba);
+  tlod_scheduler_destroy(sch);
+  fixture_free(&fx);
+  CALL(close_clean(&s));
+}
+
 /* Two views in one frame: the second draw appends to the frame's ring (it
  * must not overwrite what the first recorded). */
 TEST(test_two_draws_in_one_frame) {
@@ -452,6 +506,7 @@ int main(void) {
   RUN(test_draw_fields_refused);
   RUN(test_destroy_frees_everything);
   RUN(test_update_reaches_every_slot);
+  RUN(test_attribute_update_reaches_every_slot);
   RUN(test_two_draws_in_one_frame);
   RUN(test_debug_views_and_wireframe);
   RUN(test_hook_error_names_line);

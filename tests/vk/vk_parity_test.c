@@ -10,7 +10,8 @@
  * to pure blue, read back top row first. For each case the SAME draw desc
  * (same draw list, view, projection, items) is drawn by both devices:
  *   shapes:  icosphere(2), torus(16, 10), cube_soft (split normals) under
- *            Phong and PN, and the icosphere flat; two cameras each (an
+ *            Phong and PN, the icosphere flat, quadratic_cube.h's curved
+ *            cube under TLOD_SURFACE_QUADRATIC; two cameras each (an
  *            oblique one, then a closer grazing one 60 ms later, so the
  *            second list carries fractional geomorph blends);
  *   scene:   four items with model matrices, colours, a light direction, a
@@ -18,8 +19,9 @@
  *            transparent texels cut away), a BLEND item, back-face culling;
  *            drawn shaded, with the LEVELS debug view and with wireframe
  *            (line pixels compared by count, see mask_lines).
- *   hardware path: icosphere and torus, Phong and PN, the two cameras, on
- *            devices with hardware_tessellation (GL against Vulkan only);
+ *   hardware path: icosphere and torus, Phong and PN, and the quadratic
+ *            cube, the two cameras, on devices with hardware_tessellation
+ *            (GL against Vulkan only);
  * Besides, each shape frame's draw list is realised by tlod_cpu_tessellate
  * and drawn by gl_test.h's independent mesh renderer (image R).
  *
@@ -39,6 +41,7 @@
  *     coverage may differ on R's silhouette band only (at most 0.5%), and
  *     colour within 8/255 on >= 99% of the commonly covered pixels.
  */
+#include "quadratic_cube.h"
 #include "vk_gl_test.h"
 
 #define W 192
@@ -119,9 +122,9 @@ static void draw_reference(parity_env* env, const fixture* fx, const tlod_draw_l
 
 /* with_cpu: also against the CPU mesh (not on the hardware path: its
  * triangles are the tessellator's, not the draw list's). */
-static void one_shape(parity_env* env, const shape* s, tlod_surface_type type, bool with_cpu) {
+static void one_surface(parity_env* env, const tlod_mesh_desc* md, tlod_surface_type type, bool with_cpu) {
   fixture fx;
-  CHECK(fixture_make(&fx, env->b.ctx, s, type, env->b.pat, env->gl_dev));
+  CHECK(fixture_make_desc(&fx, env->b.ctx, md, type, env->b.pat, env->gl_dev));
   tlod_device_surface* vds = NULL;
   tlod_result r = tlod_device_create_surface(env->vk_dev, fx.surf, &vds);
   CHECK_MSG(r == TLOD_SUCCESS, "vulkan surface: %s: %s", tlod_result_string(r), tlod_context_last_error(env->b.ctx));
@@ -134,7 +137,7 @@ static void one_shape(parity_env* env, const shape* s, tlod_surface_type type, b
     const tlod_draw_list* dl = plan(&fx, sch, &v, ci == 0 ? 0.0f : 60.0f);
     CHECK(dl);
     char what[96];
-    snprintf(what, sizeof what, "%s %s cam %d", s->name, type_name(type), ci);
+    snprintf(what, sizeof what, "%s %s cam %d", md->label, type_name(type), ci);
     one_draw d;
     one_draw_make(&d, fx.ds, dl, &v);
     tlod_draw_item vi = d.item;
@@ -165,6 +168,18 @@ static bool env_open(parity_env* env, bool hardware) {
   return env->vk_dev != NULL;
 }
 
+static void one_shape(parity_env* env, const shape* s, tlod_surface_type type, bool with_cpu) {
+  tlod_mesh_desc md = shape_mesh_desc(s);
+  one_surface(env, &md, type, with_cpu);
+}
+
+/* quadratic_cube.h's curved second-order cube under TLOD_SURFACE_QUADRATIC. */
+static void quadratic_cube_case(parity_env* env, bool with_cpu) {
+  qcube q;
+  qcube_make(&q);
+  one_surface(env, &q.desc, TLOD_SURFACE_QUADRATIC, with_cpu);
+}
+
 static void env_close(parity_env* env) {
   if (env->b.vk) tlod_platform_finish(env->b.vk);
   if (env->b.gl) tlod_platform_bind(env->b.gl);
@@ -186,6 +201,7 @@ TEST(test_shapes_match_gl_and_cpu) {
     for (int ti = 0; ti < 2; ++ti)
       CALL(one_shape(&env, &shapes[si], types[ti], true));
   CALL(one_shape(&env, &shapes[0], TLOD_SURFACE_FLAT, true));
+  CALL(quadratic_cube_case(&env, true));
   for (int k = 0; k < 3; ++k)
     shape_free(&shapes[k]);
   env_close(&env);
@@ -362,6 +378,7 @@ TEST(test_hardware_path_matches_gl) {
   for (int si = 0; si < 2; ++si)
     for (int ti = 0; ti < 2; ++ti)
       CALL(one_shape(&env, &shapes[si], types[ti], false));
+  CALL(quadratic_cube_case(&env, false));
   for (int k = 0; k < 2; ++k)
     shape_free(&shapes[k]);
   env_close(&env);

@@ -61,7 +61,7 @@ static void print_fields(const tlod_import_result* r) {
     for (uint32_t c = 0; c < f->components && c < TLOD_IMPORT_MAX_FIELD_COMPONENTS; c++)
       printf(" [%g, %g]", (double)f->min[c], (double)f->max[c]);
     if (f->components > 1) printf(", magnitude [%g, %g]", (double)f->magnitude_min, (double)f->magnitude_max);
-    printf("%s%s%s\n", f->units[0] ? ", units " : "", f->units, "");
+    printf("%s%s\n", f->units[0] ? ", units " : "", f->units);
   }
   if (r->step_count >= 2 && r->step_times)
     printf("  series:    %u steps, t = %g .. %g s\n", r->step_count, (double)r->step_times[0],

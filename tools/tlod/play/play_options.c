@@ -20,7 +20,8 @@ void play_usage(FILE* f) {
       f,
       "usage: tlod play [SCENE] [options]\n"
       "Plays SCENE along a camera path with a fixed time step and records per-frame timings.\n"
-      "  SCENE               .gltf .glb .obj .ply file, a built-in mesh (%s), or nothing /\n"
+      "  SCENE               .gltf .glb .obj .ply file, a VTK file (.vtk .vtu .vtp .pvtu .stl, a .pvd series or\n"
+      "                      numbered files NAME_*.vtu), a built-in mesh (%s), or nothing /\n"
       "                      demo:scene for the built-in demo scene (the VTK cow beside a creased cylinder)\n"
       "  --backend B         gl (default when a GL context can be made, else cpu) | cpu | null (draws nothing)\n"
       "                      | vulkan (headless or --window; an error when it cannot start, never a fallback)\n"

@@ -22,8 +22,6 @@ int play_series_setup(play_scene* s) {
   play_surface* sf = series_surface(s);
   if (!sf) return CLI_OK;
   const tlod_import_result* r = sf->setup.in.source;
-  if (sf->setup.in.vertex_count != r->vertex_count)
-    return cli_error(CLI_FAILED, "%s: a series cannot be played with split quads (--surface pn)", s->name);
   s->series = (play_series){.count = r->step_count};
   if (s->field.on && !(s->series.scalars = malloc(sizeof(float) * ((size_t)r->vertex_count + 1))))
     return cli_error(CLI_FAILED, "%s: out of memory for the series' field", s->name);

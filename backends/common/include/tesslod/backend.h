@@ -124,10 +124,12 @@ typedef struct tlod_device_gl_desc {
    * Links two more programs per surface type. */
   bool hardware_tessellation;
   /* Surface types the device links programs for, as a mask of
-   * 1u << tlod_surface_type (FLAT, PHONG, PN; DEFAULT counts as PHONG).
-   * 0 == all three. A device surface of a type outside the mask is
-   * TLOD_ERROR_UNSUPPORTED. Each type costs two program links (four with
-   * hardware_tessellation) at creation, none later. */
+   * 1u << tlod_surface_type (FLAT, PHONG, PN, QUADRATIC; DEFAULT counts as
+   * PHONG). 0 == all four; bits past TLOD_SURFACE_NUM are
+   * TLOD_ERROR_INVALID_ARGUMENT. A device surface of a type outside the mask
+   * is TLOD_ERROR_UNSUPPORTED. Each type costs two program links (four with
+   * hardware_tessellation) at creation, none later: the default device
+   * links 8 (16). */
   uint32_t surface_types;
   /* GLSL (version 450 core) defining `vec4 tlod_shade(tlod_fragment f)`,
    * the material of every item drawn by this device; NULL: the built-in
@@ -197,8 +199,10 @@ TLOD_API const char* tlod_device_backend(const tlod_device* dev);
  * buffer). The surface must outlive the device surface. */
 TLOD_API tlod_result tlod_device_create_surface(tlod_device* dev, const tlod_surface* surface,
                                                 tlod_device_surface** out);
-/* Uploads the surface again, after tlod_mesh_update() + tlod_surface_refresh()
- * (same patch count: topology never changes). */
+/* Uploads the surface again: its patch records and its mesh's attributes,
+ * after tlod_mesh_update() + tlod_surface_refresh() and after
+ * tlod_mesh_update_attribute() (a time series' field; no refresh needed for
+ * attributes alone). Same patch count: topology never changes. */
 TLOD_API tlod_result tlod_device_update_surface(tlod_device* dev, tlod_device_surface* ds);
 /* NULL is a no-op. A device surface of another device is not destroyed (the
  * context's last error says so). */

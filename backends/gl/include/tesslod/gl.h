@@ -44,7 +44,8 @@
  * GL OBJECTS
  *   Per device (tlod_device_create .. tlod_device_destroy):
  *     programs     pattern + strip per surface type in desc.gl.surface_types
- *                  (0 == flat, phong, pn), + two tessellation programs
+ *                  (0 == flat, phong, pn, quadratic: 8 programs), + two
+ *                  tessellation programs
  *                  (triangles, quads) per type with hardware_tessellation;
  *                  uniform locations looked up once, at link. These
  *                  (the PLAIN variant) carry no texture coordinates, no

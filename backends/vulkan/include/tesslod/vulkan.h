@@ -39,7 +39,9 @@
  *      .queue_family, .color_format, .depth_format, .host_query_reset = true,
  *      .shader_cache_dir = "..." } }, &dev): checks the features and
  *      formats, uploads the pattern buffers (one submit on desc.vk.queue and
- *      a fence wait), compiles the PLAIN shader stages of every surface type;
+ *      a fence wait), compiles the PLAIN shader stages of every surface type
+ *      in desc.vk.surface_types (0 == flat, phong, pn, quadratic: 2 vertex
+ *      stages each, 6 more with hardware_tessellation, + 1 fragment);
  *   3. per object tlod_device_create_surface(); per image
  *      tlod_device_create_texture() (one upload submit + fence wait each);
  *   4. per frame: wait for the frame slot's fence (the engine's), begin the
