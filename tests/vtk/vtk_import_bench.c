@@ -9,14 +9,17 @@
  *   vtk_import_bench import FILE    imports it once and prints wall seconds, the importer's stage
  *                                   times (tlod_import_vtk_info), the boundary counts and the peak RSS
  *   vtk_import_bench check N WORK   gen + import in one run, exit 1 unless the boundary has 6 N^2
- *                                   quads, 0 triangles, N^3 / 5 cells reoriented and every progress
- *                                   report is a named stage with a fraction in [0, 1]
+ *                                   quads, 0 triangles and the 6 N^2 + 2 points on it, every fifth
+ *                                   cell was reoriented, every progress report is a named stage with
+ *                                   a fraction in [0, 1], and the peak RSS stayed within 64 MiB + 8x
+ *                                   the file (the file is removed afterwards)
  * gen and import are separate processes so that the import's peak RSS is the import's own.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 
 #include "tlod_import.h"
 #include "vtk_model.h"
@@ -97,21 +100,34 @@ static tlod_import_result* import(const char* path, progress_log* log) {
   return r;
 }
 
+static double peak_rss_bytes(void) {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss * 1024.0;
+}
+
 static int check(uint32_t n, const char* work) {
   char path[1024], name[32];
   snprintf(path, sizeof path, "%s/block%u.vtk", work, n);
   snprintf(name, sizeof name, "block%u", n);
   if (gen(name, path)) return 1;
+  struct stat st;
+  double file = stat(path, &st) == 0 ? (double)st.st_size : 0;
   progress_log log = {0};
   tlod_import_result* r = import(path, &log);
+  remove(path);
   if (!r) return 1;
   const tlod_import_vtk_info* v = r->vtk;
-  uint64_t cells = (uint64_t)n * n * n;
-  bool ok = v && v->cells == cells && v->boundary_quads == 6ull * n * n && v->boundary_triangles == 0 &&
-            v->cells_reoriented == cells / 5 && v->interior_faces == (6 * cells - 6ull * n * n) / 2 && log.bad == 0;
+  uint64_t cells = (uint64_t)n * n * n, quads = 6ull * n * n;
+  bool ok = v && v->cells == cells && v->boundary_quads == quads && v->boundary_triangles == 0 &&
+            r->face_count == quads && r->vertex_count == quads + 2 && v->cells_reoriented == (cells + 1) / 5 &&
+            v->interior_faces == (6 * cells - quads) / 2 && log.bad == 0;
   tlod_import_free(r);
-  printf("%s\n", ok ? "ok   block counts and progress" : "FAIL block counts or progress (see above)");
-  return ok ? 0 : 1;
+  double rss = peak_rss_bytes(), bound = 64.0 * 1024 * 1024 + 8 * file;
+  printf("%s block counts and progress\n", ok ? "ok  " : "FAIL");
+  printf("%s peak RSS %.0f MiB, bound %.0f MiB (64 MiB + 8x the file)\n", rss <= bound ? "ok  " : "FAIL", rss / 1048576,
+         bound / 1048576);
+  return ok && rss <= bound ? 0 : 1;
 }
 
 int main(int argc, char** argv) {
