@@ -5,7 +5,7 @@
  *                                   .vtk): MODEL blockN is an N x N x N hexahedron block (unit cube;
  *                                   point fields temperature and displacement, cell field pressure;
  *                                   every fifth cell inverted), or box, sphere, cylinder, hex20,
- *                                   hex27, mixed, payload (vtk_model.h)
+ *                                   hex27, mixed, payload, pie (vtk_model.h)
  *   vtk_import_bench import FILE    imports it once and prints wall seconds, the importer's stage
  *                                   times (tlod_import_vtk_info), the boundary counts and the peak RSS
  *   vtk_import_bench check N WORK   gen + import in one run, exit 1 unless the boundary has 6 N^2
@@ -55,6 +55,8 @@ static bool build(const char* name, vtk_model* m) {
     vtk_build_mixed(m);
   } else if (strcmp(name, "payload") == 0) {
     vtk_build_payload_box(m);
+  } else if (strcmp(name, "pie") == 0) {
+    vtk_build_collapsed_pie(m);
   } else {
     return false;
   }

@@ -73,6 +73,9 @@ void vtk_build_box(vtk_model* m, uint32_t nx, uint32_t ny, uint32_t nz, double a
  * file, the bytes of the text "\nPOINTS 999999999999 double\n" (finite values): a reader that scans
  * binary data as words would take it for a header. */
 void vtk_build_payload_box(vtk_model* m);
+/* A unit-radius disc of height 1 as 12 pie sectors, each a hexahedron collapsed at the axis (nodes
+ * 0 and 3, 4 and 7 repeated: how many FE exporters write wedges); VTK draws it, 36 boundary faces. */
+void vtk_build_collapsed_pie(vtk_model* m);
 /* An icosphere of radius r (20 * 4^subdivisions triangles, vertices on the sphere) filled by one
  * tetrahedron per surface triangle with its apex at the centre; odd tets inverted. */
 void vtk_build_tet_sphere(vtk_model* m, uint32_t subdivisions, double r);

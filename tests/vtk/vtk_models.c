@@ -90,6 +90,21 @@ void vtk_build_payload_box(vtk_model* m) {
   }
 }
 
+void vtk_build_collapsed_pie(vtk_model* m) {
+  memset(m, 0, sizeof *m);
+  uint32_t c[2], p[2][12];
+  for (int l = 0; l < 2; ++l) {
+    c[l] = vtk_model_point(m, 0, 0, l);
+    for (int k = 0; k < 12; ++k)
+      p[l][k] = vtk_model_point(m, cos(k * M_PI / 6), sin(k * M_PI / 6), l);
+  }
+  for (int k = 0; k < 12; ++k) {
+    int k1 = (k + 1) % 12;
+    uint32_t n[8] = {c[0], p[0][k], p[0][k1], c[0], c[1], p[1][k], p[1][k1], c[1]};
+    vtk_model_cell(m, VTK_HEXAHEDRON, n, 8);
+  }
+}
+
 /* ---- tet sphere ---- */
 
 typedef struct edge_map {
