@@ -8,7 +8,7 @@ by vtk_import_bench gen, tessellated by `tlod tessellate` with the tool's VTK de
     position into a closed, consistently oriented mesh (closed_after_weld, as tests/cli checks its
     meshes; not `tlod info`, which drops the zero-area strip triangles of flat faces as degenerate).
 Usage: vtk_cli_test.py TLOD VTK_IMPORT_BENCH WORK_DIR"""
-import json, math, os, random, subprocess, sys
+import hashlib, json, math, os, random, subprocess, sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
 from tlod_cli import check, closed_after_weld, finish, init, read_obj, run  # noqa: E402
@@ -32,8 +32,13 @@ for model, (name, *_rest) in MODELS.items():
     check("generate %s" % name, p.returncode == 0, p.stderr)
 
 
+def out_path(model, args):
+    """One output file per (model, arguments), the same in every run."""
+    return os.path.join(WORK, "%s_%s.obj" % (model, hashlib.sha1(" ".join(args).encode()).hexdigest()[:12]))
+
+
 def tessellate(model, *args):
-    out = os.path.join(WORK, "%s_%d.obj" % (model, abs(hash(args)) % 100000))
+    out = out_path(model, args)
     st = out + ".json"
     rc, _, err = run("tessellate", paths[model], "-o", out, "--stats", st, "-q", *args)
     stats = json.load(open(st)) if rc == 0 else {}
@@ -56,8 +61,8 @@ for model, want, other in (("hex20", "quadratic", "phong"), ("hex27", "quadratic
           ok and read_bytes(auto) == read_bytes(same) and (model == "cylinder" or read_bytes(auto) != read_bytes(diff)),
           e1 + e2 + e3)
     rc, _, _, err = tessellate(model, "--level", "3")
-    check("%s: auto is the default for VTK input" % model, rc == 0 and read_bytes(auto) == read_bytes(
-        os.path.join(WORK, "%s_%d.obj" % (model, abs(hash(("--level", "3"))) % 100000))), err)
+    check("%s: auto is the default for VTK input" % model,
+          rc == 0 and read_bytes(auto) == read_bytes(out_path(model, ("--level", "3"))), err)
 
 # quads kept as quads
 for model, (name, tris, quads, _c, _r) in MODELS.items():
