@@ -259,63 +259,43 @@ void vtk_build_quadratic_pair(vtk_model* m, uint8_t type) {
   }
 }
 
-/* The point at unwarped position p, made (warped) once: a linear search, for a few nodes. */
-static uint32_t warped_point(vtk_model* m, double (*seen)[3], uint32_t* count, const double p[3]) {
-  for (uint32_t k = 0; k < *count; ++k)
-    if (seen[k][0] == p[0] && seen[k][1] == p[1] && seen[k][2] == p[2]) return k;
-  memcpy(seen[*count], p, sizeof seen[0]);
-  double w[3];
-  vtk_warp(p, w);
-  ++*count;
-  return vtk_model_point(m, w[0], w[1], w[2]);
-}
-
-void vtk_build_quadratic_tet_pair(vtk_model* m) {
-  memset(m, 0, sizeof *m);
-  static const double corners[2][4][3] = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
-                                          {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}}};
-  double seen[32][3];
-  uint32_t count = 0;
-  for (int t = 0; t < 2; ++t) {
-    uint32_t cell[10];
-    for (int k = 0; k < 10; ++k) {
-      const double* n = tet_nodes[k];
-      double p[3];
-      for (int a = 0; a < 3; ++a)
-        p[a] = corners[t][0][a] + n[0] * (corners[t][1][a] - corners[t][0][a]) +
-               n[1] * (corners[t][2][a] - corners[t][0][a]) + n[2] * (corners[t][3][a] - corners[t][0][a]);
-      cell[k] = warped_point(m, seen, &count, p);
-    }
-    vtk_model_cell(m, VTK_QUADRATIC_TETRA, cell, 10);
-  }
-}
-
-void vtk_build_quadratic_wedge_pair(vtk_model* m) {
-  memset(m, 0, sizeof *m);
-  /* base corners 0, 1, 2 clockwise seen from +z (VTK's positive wedge), extruded by (0, 0, 1) */
-  static const double base[2][3][2] = {{{1, 0}, {1, 1}, {2, 0}}, {{2, 0}, {1, 1}, {2, 1}}};
-  double seen[32][3];
-  uint32_t count = 0;
-  for (int w = 0; w < 2; ++w) {
-    uint32_t cell[15];
-    for (int k = 0; k < 15; ++k) {
-      const double* n = wedge_nodes[k];
-      double p[3] = {0, 0, n[2]};
-      for (int a = 0; a < 2; ++a)
-        p[a] = base[w][0][a] + n[0] * (base[w][1][a] - base[w][0][a]) + n[1] * (base[w][2][a] - base[w][0][a]);
-      cell[k] = warped_point(m, seen, &count, p);
-    }
-    vtk_model_cell(m, VTK_QUADRATIC_WEDGE, cell, 15);
-  }
-}
-
-/* The point of m at warp(p) (made when absent). */
+/* The point of m at warp(p) (made when absent; positions are multiples of 1/2, so exact). */
 static uint32_t warped_at(vtk_model* m, double x, double y, double z) {
   double p[3] = {x, y, z}, w[3];
   vtk_warp(p, w);
   for (uint32_t k = 0; k < m->point_count; ++k)
     if (!memcmp(m->points + 3 * (size_t)k, w, sizeof w)) return k;
   return vtk_model_point(m, w[0], w[1], w[2]);
+}
+
+/* A cell of `count` nodes at natural coordinates nodes[k], placed by o + n0 A + n1 B + n2 C, warped. */
+static void affine_cell(vtk_model* m, uint8_t type, const double (*nodes)[3], int count, const double o[3],
+                        const double axes[3][3]) {
+  uint32_t cell[27];
+  for (int k = 0; k < count && k < 27; ++k) {
+    double p[3];
+    for (int a = 0; a < 3; ++a)
+      p[a] = o[a] + nodes[k][0] * axes[0][a] + nodes[k][1] * axes[1][a] + nodes[k][2] * axes[2][a];
+    cell[k] = warped_at(m, p[0], p[1], p[2]);
+  }
+  vtk_model_cell(m, type, cell, (uint32_t)count);
+}
+
+void vtk_build_quadratic_tet_pair(vtk_model* m) {
+  memset(m, 0, sizeof *m);
+  static const double o[2][3] = {{0, 0, 0}, {1, 0, 0}};
+  static const double axes[2][3][3] = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{-1, 1, 0}, {-1, 0, 1}, {0, 1, 1}}};
+  for (int t = 0; t < 2; ++t)
+    affine_cell(m, VTK_QUADRATIC_TETRA, tet_nodes, 10, o[t], axes[t]);
+}
+
+void vtk_build_quadratic_wedge_pair(vtk_model* m) {
+  memset(m, 0, sizeof *m);
+  /* base corners 0, 1, 2 clockwise seen from +z (VTK's positive wedge), extruded by (0, 0, 1) */
+  static const double o[2][3] = {{1, 0, 0}, {2, 0, 0}};
+  static const double axes[2][3][3] = {{{0, 1, 0}, {1, 0, 0}, {0, 0, 1}}, {{-1, 1, 0}, {0, 1, 0}, {0, 0, 1}}};
+  for (int w = 0; w < 2; ++w)
+    affine_cell(m, VTK_QUADRATIC_WEDGE, wedge_nodes, 15, o[w], axes[w]);
 }
 
 void vtk_build_mixed_order(vtk_model* m) {
