@@ -12,7 +12,7 @@
  *                                   quads, 0 triangles and the 6 N^2 + 2 points on it, every fifth
  *                                   cell was reoriented, every progress report is a named stage with
  *                                   a fraction in [0, 1], and the peak RSS stayed within 64 MiB + 8x
- *                                   the file (the file is removed afterwards)
+ *                                   the file (not under a sanitizer; the file is removed afterwards)
  * gen and import are separate processes so that the import's peak RSS is the import's own.
  */
 #include <stdio.h>
@@ -23,6 +23,14 @@
 
 #include "tlod_import.h"
 #include "vtk_model.h"
+
+/* A sanitizer's shadow memory makes the peak RSS meaningless: the bound is checked without one
+ * (TLOD_TEST_SANITIZED: 1 in TLOD_SANITIZE builds, tests/vtk/CMakeLists.txt). */
+#if defined(TLOD_TEST_SANITIZED) && TLOD_TEST_SANITIZED
+#define RSS_CHECKED 0
+#else
+#define RSS_CHECKED 1
+#endif
 
 typedef struct progress_log {
   uint32_t calls, bad;
@@ -127,9 +135,10 @@ static int check(uint32_t n, const char* work) {
   tlod_import_free(r);
   double rss = peak_rss_bytes(), bound = 64.0 * 1024 * 1024 + 8 * file;
   printf("%s block counts and progress\n", ok ? "ok  " : "FAIL");
-  printf("%s peak RSS %.0f MiB, bound %.0f MiB (64 MiB + 8x the file)\n", rss <= bound ? "ok  " : "FAIL", rss / 1048576,
-         bound / 1048576);
-  return ok && rss <= bound ? 0 : 1;
+  bool rss_ok = !RSS_CHECKED || rss <= bound;
+  printf("%s peak RSS %.0f MiB, bound %.0f MiB (64 MiB + 8x the file)%s\n", rss_ok ? "ok  " : "FAIL", rss / 1048576,
+         bound / 1048576, RSS_CHECKED ? "" : ", not checked under a sanitizer");
+  return ok && rss_ok ? 0 : 1;
 }
 
 int main(int argc, char** argv) {
