@@ -12,10 +12,6 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const char* path = fuzz_input_file(TLOD_FUZZ_EXT, data, size);
-  char error[256];
-  tlod_import_result* r = NULL;
-  tlod_result res = tlod_import_file(path, NULL, &r, error, sizeof error);
-  fuzz_check_import(res, r, error, path);
-  tlod_import_free(r);
+  fuzz_import_and_check(path);
   return 0;
 }

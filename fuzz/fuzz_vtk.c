@@ -10,10 +10,6 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const char* const ext[8] = {".vtk", ".vtu", ".vtp", ".stl", ".vtk", ".vtu", ".pvd", ".pvtu"};
   if (size < 1) return 0;
   const char* path = fuzz_input_file(ext[data[0] & 7], data + 1, size - 1);
-  char error[256];
-  tlod_import_result* r = NULL;
-  tlod_result res = tlod_import_file(path, NULL, &r, error, sizeof error);
-  fuzz_check_import(res, r, error, path);
-  tlod_import_free(r);
+  fuzz_import_and_check(path);
   return 0;
 }

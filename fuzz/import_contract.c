@@ -144,3 +144,11 @@ void fuzz_check_import(tlod_result res, const tlod_import_result* r, const char*
   check_motion(r);
   check_vtk(r);
 }
+
+void fuzz_import_and_check(const char* path) {
+  char error[256];
+  tlod_import_result* r = NULL;
+  const tlod_result res = tlod_import_file(path, NULL, &r, error, sizeof error);
+  fuzz_check_import(res, r, error, path);
+  tlod_import_free(r);
+}

@@ -11,4 +11,7 @@
  * indices, and parts inside the arrays. */
 void fuzz_check_import(tlod_result res, const tlod_import_result* r, const char* error, const char* path);
 
+/* tlod_import_file(path) with the default options, held to the contract above, freed. */
+void fuzz_import_and_check(const char* path);
+
 #endif

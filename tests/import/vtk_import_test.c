@@ -258,6 +258,29 @@ TEST(ugridex_mixed_cells_and_point_scalars) {
   CHECK(counts);
 }
 
+/* Files VTK's own writers made (tests/data/vtk, SOURCES.md section 3): METADATA, bit and string
+ * arrays, structured points and rectilinear grids must pass the pre-flight scan. */
+TEST(files_vtk_writes_import) {
+  static const struct {
+    const char* file;
+    uint32_t vertices, quads;
+  } k[] = {{"w_ascii.vtk", 8, 6},
+           {"w_bin.vtk", 8, 6},
+           {"w42_bin.vtk", 8, 6},
+           {"sp_bin.vtk", 26, 24},
+           {"rg_ascii.vtk", 12, 10}};
+  for (size_t i = 0; i < sizeof k / sizeof k[0]; ++i) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/vtk/%s", TLOD_TEST_DATA_DIR, k[i].file);
+    tlod_import_result* r = NULL;
+    CHECK_MSG(import_path(path, &r) == TLOD_SUCCESS, "%s", g_err);
+    const int ok = r->vertex_count == k[i].vertices && r->face_count == k[i].quads && count_quads(r) == k[i].quads;
+    const int fields = i > 2 || r->field_count >= 3; /* temp, velocity, flag (bit), mat (cell) */
+    tlod_import_free(r);
+    CHECK_MSG(ok && fields, "%s", k[i].file);
+  }
+}
+
 /* ---- single cells of every volume type, upright and mirrored ---- */
 
 /* A legacy ASCII file of one cell: points (n x 3), its type. mirror: x -> -x (inverts the cell). */
@@ -404,6 +427,21 @@ TEST(second_order_cells_give_face_nodes) {
   CALL(check_second_order((const double(*)[3])p, n, 27, 5, 4, 0, 1.0 / 3));
 }
 
+/* A 10-node tetra whose first mid-edge node is its corner 0: dropped as degenerate (a face node
+ * equal to a corner would fail core's node check), the linear tetra next to it kept. */
+TEST(second_order_node_on_a_corner_is_degenerate) {
+  char t[1024];
+  snprintf(t, sizeof t,
+           "%sPOINTS 10 float\n0 0 0 1 0 0 0 1 0 0 0 1 .5 0 0 .5 .5 0 0 .5 0 0 0 .5 .5 0 .5 0 .5 .5\n"
+           "CELLS 2 16\n10 0 1 2 3 0 5 6 7 8 9\n4 0 1 2 3\nCELL_TYPES 2\n24\n10\n",
+           "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n");
+  tlod_import_result* r = NULL;
+  CHECK_MSG(import_text("node_on_corner.vtk", t, &r) == TLOD_SUCCESS, "%s", g_err);
+  const int ok = r->vtk->degenerate_cells == 1 && r->face_count == 4 && r->face_nodes == NULL && r->vertex_count == 4;
+  tlod_import_free(r);
+  CHECK(ok);
+}
+
 /* 2D second-order cells: quadratic triangle (6), quadratic quad (8), biquadratic quad (9). */
 TEST(second_order_surface_cells) {
   static const double quad[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
@@ -463,9 +501,39 @@ TEST(declared_counts_that_disagree_refused) {
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 8\n3 0 1 2\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("types.vtk", t, strlen(t), TLOD_ERROR_PARSE,
                      "CELL_TYPES 1 disagrees with the cell count of CELLS 2"));
-  /* Fewer values than declared: VTK's own message ("Error reading ascii data"), captured. */
+  /* Fewer values than declared: our own scan of the ASCII data names the value. */
   snprintf(t, sizeof t, "%sPOINTS 4 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n", k_head);
-  CALL(check_refused("short.vtk", t, strlen(t), TLOD_ERROR_PARSE, "VTK: "));
+  CALL(check_refused("short.vtk", t, strlen(t), TLOD_ERROR_PARSE, "POINTS: value 9 'CELLS' is not a finite number"));
+  /* A garbled keyword: VTK's reader leaked what it had read (fuzz_vtk: unknown_keyword_after_cells.vtk). */
+  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TY:PES 1\n5\n", k_head);
+  CALL(check_refused("garbled.vtk", t, strlen(t), TLOD_ERROR_PARSE,
+                     "unknown keyword 'cell_ty:pes' where a section should start"));
+  /* An empty binary array of a type VTK does not know: our scan divided by its width 0 (SIGFPE;
+   * fuzz_vtk: empty_array_unknown_type.vtk). */
+  snprintf(t, sizeof t,
+           "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 0 float\nCELLS 0 0\n"
+           "CELL_TYPES 0\nPOINT_DATA 0\nSCALARS s flaot 1\nLOOKUP_TABLE default\n");
+  tlod_import_result* r0 = NULL;
+  CHECK(import_text("empty.vtk", t, &r0) != TLOD_SUCCESS && r0 == NULL && strstr(g_err, "empty.vtk: "));
+  /* A cell type VTK's stream reader cannot take whole (fuzz_vtk: cell_type_with_nul_bytes.vtk). */
+  snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5.5\n", k_head);
+  CALL(check_refused("type.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CELL_TYPES: value 0 '5.5' is not a finite integer"));
+  /* Points that are not xyz: VTK's XML reader leaked its points (fuzz_vtk: points_two_components.vtu). */
+  snprintf(t, sizeof t,
+           "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">"
+           "<Points><DataArray type=\"Float32\" NumberOfComponents=\"2\" format=\"ascii\">0 0</DataArray></Points>"
+           "</Piece></UnstructuredGrid></VTKFile>");
+  CALL(check_refused("xy.vtu", t, strlen(t), TLOD_ERROR_PARSE, "Piece 0: Points: NumberOfComponents 2 (must be 3)"));
+  /* Malformed XML: VTK's own message (its XML parser's), captured into ours. */
+  snprintf(t, sizeof t, "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"3\">");
+  CALL(check_refused("open.vtu", t, strlen(t), TLOD_ERROR_PARSE, "open.vtu: VTK: vtkXMLDataParser: "));
+  /* 5.x layout, a connectivity value that is not a number: VTK's reader leaked its cell array
+   * (LeakSanitizer, fuzz_vtk: tests/data/fuzz/fuzz_vtk/connectivity_not_a_number.vtk). */
+  snprintf(t, sizeof t,
+           "# vtk DataFile Version 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+           "CELLS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1x 2\nCELL_TYPES 1\n5\n");
+  CALL(
+      check_refused("conn.vtk", t, strlen(t), TLOD_ERROR_PARSE, "CONNECTIVITY: value 1 is not a non-negative integer"));
   /* A cell's point count past the declared size: VTK's vtkCellArray::AppendLegacyFormat read past
    * its buffer (fuzz_vtk, tests/data/fuzz/fuzz_vtk/cell_count_past_size.vtk). */
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 5\n3 0 1 2\n900 0\nCELL_TYPES 2\n5\n5\n", k_head);
@@ -473,6 +541,24 @@ TEST(declared_counts_that_disagree_refused) {
                      "CELLS: cell 1: its point count runs past the 5 values declared"));
   snprintf(t, sizeof t, "%sPOINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 7\nCELL_TYPES 1\n5\n", k_head);
   CALL(check_refused("ids.vtk", t, strlen(t), TLOD_ERROR_INVALID_MESH, "cell 0: point id 7 out of range (3 points)"));
+}
+
+/* An appended array whose raw header announces 4 GB: VTK allocated what the header says
+ * (fuzz_vtk: tests/data/fuzz/fuzz_vtk/appended_header_huge.vtp). */
+TEST(xml_array_header_past_the_file_refused) {
+  size_t size = 0;
+  char* text = test_read_file(TLOD_TEST_DATA_DIR "/vtk-data/Hexahedron.vtu", &size);
+  CHECK(text);
+  char* app = strstr(text, "<AppendedData");
+  char* u = app ? strchr(app, '_') : NULL;
+  if (u) memcpy(u + 1, "\xf0\xff\xff\xff", 4);
+  tlod_import_result* r = NULL;
+  const tlod_result res = u ? tlod_import_memory("huge.vtu", text, size, NULL, &r, g_err, sizeof g_err) : TLOD_SUCCESS;
+  free(text);
+  CHECK(u);
+  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL && strstr(g_err, "huge.vtu: DataArray ") &&
+                strstr(g_err, ": its header announces 4294967280 bytes"),
+            "%s", g_err);
 }
 
 TEST(unsupported_cell_type_named) {
@@ -655,6 +741,14 @@ TEST(stl_merged) {
   const int ok = r->face_count == 4 && r->vertex_count == 4 && fabs(surface_volume(r) - 1.0 / 6) < 1e-6;
   tlod_import_free(r);
   CHECK(ok);
+  /* "solid" but a byte above 127 in its header: VTK reads it as binary and believed its count
+   * (13.9 GB asked; fuzz_vtk: stl_solid_but_binary.stl). */
+  unsigned char bin[100] = "solid x";
+  bin[20] = 0xff;
+  memcpy(bin + 80, "\xff\xff\xff\x0f", 4);
+  CHECK(write_file("fake.stl", bin, sizeof bin));
+  CHECK(import_path("fake.stl", &r) == TLOD_ERROR_PARSE && r == NULL);
+  CHECK_MSG(strstr(g_err, "fake.stl: binary STL: declares 268435455 triangles"), "%s", g_err);
 }
 
 /* ---- progress ---- */
@@ -692,11 +786,14 @@ int main(void) {
   RUN(sfepy_hsphere_boundary_quads_kept);
   RUN(hexahedron_vtu_boundary);
   RUN(ugridex_mixed_cells_and_point_scalars);
+  RUN(files_vtk_writes_import);
   RUN(every_volume_cell_faces_out_even_inverted);
   RUN(second_order_cells_give_face_nodes);
+  RUN(second_order_node_on_a_corner_is_degenerate);
   RUN(second_order_surface_cells);
   RUN(truncated_file_refused);
   RUN(declared_counts_that_disagree_refused);
+  RUN(xml_array_header_past_the_file_refused);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);

@@ -45,6 +45,16 @@ bool repeats(const uint32_t* ids, int n) {
   return false;
 }
 
+// A second-order cell must not repeat any of its nodes (a node on a corner would be a face node
+// equal to a corner, which core refuses); a linear one its corners.
+bool degenerate(const CellKind& k, const uint32_t* ids, int corners) {
+  if (k.edge_node_count == 0) return repeats(ids, corners);
+  std::array<uint32_t, 32> s{};
+  std::copy(ids, ids + k.nodes, s.begin());
+  std::sort(s.begin(), s.begin() + k.nodes);
+  return std::adjacent_find(s.begin(), s.begin() + k.nodes) != s.begin() + k.nodes;
+}
+
 // Six times the signed volume of a cell, by the divergence theorem over its faces (fans),
 // relative to its first corner so that large coordinates do not cancel.
 double volume6(const CellKind& k, const uint32_t* ids, const double* p) {
@@ -129,7 +139,7 @@ private:
 
   void add_volume(uint32_t c, const CellKind& k) {
     const uint32_t* id = ids(c);
-    if (repeats(id, corners_[k.vtk_type])) {
+    if (degenerate(k, id, corners_[k.vtk_type])) {
       out_.degenerate_cells++;
       return;
     }
@@ -217,7 +227,7 @@ private:
   }
 
   void surface_cell(uint32_t c, const CellKind& k) {
-    if (repeats(ids(c), k.faces[0].size)) {
+    if (degenerate(k, ids(c), k.faces[0].size)) {
       out_.degenerate_cells++;
       return;
     }

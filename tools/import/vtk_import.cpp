@@ -170,6 +170,7 @@ private:
     VtkFormat format_id;
     if (!vtk_format_of(name, &format_id))
       fail(TLOD_ERROR_UNSUPPORTED, "not a file VTK reads here (.vtk, .vtu, .vtp, .stl)");
+    take(b.size, "VTK's copy of the file"); // its readers copy the bytes they are given
     const VtkSource src{name, format_id, reinterpret_cast<const char*>(b.data.get()), b.size,
                         path.empty() ? nullptr : path.c_str()};
     vtkSmartPointer<vtkDataSet> ds = read_vtk(

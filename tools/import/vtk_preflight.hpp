@@ -21,6 +21,11 @@ void preflight_legacy(const char* data, size_t size, size_t room, std::string* d
 // may be compressed, so the file size bounds nothing).
 void preflight_xml(const char* data, size_t size, size_t room);
 
+// XML binary and appended arrays: the byte count each array's data header announces (the
+// uncompressed size of compressed data) against room, raw data against the file
+// (vtk_preflight_xml.cpp). preflight_xml() calls it.
+void preflight_xml_headers(const char* data, size_t size, size_t room);
+
 // STL: a binary file's triangle count against its size.
 void preflight_stl(const char* data, size_t size);
 

@@ -42,16 +42,21 @@ struct Capture {
 
 thread_local Capture* tl_capture = nullptr;
 
-// "ERROR: In /path/vtkFoo.cxx, line 12\nvtkFoo (0x55d0): message\n\n" -> "vtkFoo: message".
+// "ERROR: In /path/vtkFoo.cxx, line 12\nvtkFoo (0x55d0): message\n\n" -> "vtkFoo: message"; object
+// addresses dropped everywhere, and a pipeline's dump of its request cut after its first words.
 std::string clean(const char* text) {
   std::string s(text ? text : "");
   if (s.rfind("ERROR: In ", 0) == 0 || s.rfind("Warning: In ", 0) == 0 || s.rfind("Generic Warning: In ", 0) == 0) {
     const size_t nl = s.find('\n');
     s = nl == std::string::npos ? "" : s.substr(nl + 1);
   }
-  const size_t open = s.find(" (0x");
-  const size_t close = open == std::string::npos ? open : s.find("): ", open);
-  if (close != std::string::npos) s.erase(open, close + 1 - open);
+  const size_t dump = s.find(" returned failure for request");
+  if (dump != std::string::npos) s.erase(dump + 29);
+  for (size_t at; (at = s.find("(0x")) != std::string::npos;) {
+    const size_t from = at > 0 && s[at - 1] == ' ' ? at - 1 : at;
+    const size_t close = s.find(')', at);
+    s.erase(from, close == std::string::npos ? std::string::npos : close + 1 - from);
+  }
   for (char& c : s)
     if (c == '\n' || c == '\r') c = ' ';
   while (!s.empty() && s.back() == ' ')

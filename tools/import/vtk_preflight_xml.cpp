@@ -1,0 +1,173 @@
+// vtk_preflight_xml.cpp -- the binary headers of an XML VTK file's arrays, checked before VTK
+// reads them (docs/vtk.md section 7). A binary or appended DataArray starts with a header
+// (UInt32 or UInt64 words, the file's byte order) giving its byte count, or for compressed data
+// [blocks, block size, last block size, compressed sizes...]; VTK allocates the uncompressed
+// size it announces. That size must fit the remaining budget, and raw uncompressed data must
+// fit the file. The header itself must lie inside the file.
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+#include "import_error.hpp"
+#include "vtk_preflight.hpp"
+
+namespace tlod_import_detail {
+namespace {
+
+int base64_value(char c) {
+  if (c >= 'A' && c <= 'Z') return c - 'A';
+  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+  if (c >= '0' && c <= '9') return c - '0' + 52;
+  return c == '+' ? 62 : c == '/' ? 63 : -1;
+}
+
+// Decodes up to want bytes of base64 text at [p, end) (whitespace skipped) into out.
+std::string base64_prefix(const char* p, const char* end, size_t want) {
+  std::string out;
+  uint32_t acc = 0;
+  int bits = 0;
+  for (; p < end && out.size() < want; ++p) {
+    const int v = base64_value(*p);
+    if (v < 0) {
+      if (*p == '=' || *p == '<') break;
+      continue;
+    }
+    acc = (acc << 6) | uint32_t(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(char((acc >> bits) & 0xff));
+    }
+  }
+  return out;
+}
+
+class XmlHeaders {
+public:
+  XmlHeaders(const char* data, size_t size, size_t room) : data_(data), end_(data + size), room_(room) {}
+
+  void run() {
+    file_attributes();
+    xml_tags(data_, size_t(end_ - data_), "DataArray", [this](const char* b, const char* e) { array(b, e); });
+  }
+
+private:
+  const char* data_;
+  const char* end_;
+  size_t room_;
+  size_t word_ = 4;
+  bool big_endian_ = false, compressed_ = false, appended_base64_ = false;
+  const char* appended_ = nullptr;     // first byte after the '_' of <AppendedData>
+  uint64_t index_ = 0;                 // DataArray number, for messages
+  uint64_t connectivity_ = UINT64_MAX; // ids of the last connectivity array (UINT64_MAX: none pending)
+
+  void file_attributes() {
+    xml_tags(data_, size_t(end_ - data_), "VTKFile", [this](const char* b, const char* e) {
+      std::string v;
+      if (xml_attribute(b, e, "header_type", &v)) word_ = v == "UInt64" ? 8 : 4;
+      if (xml_attribute(b, e, "byte_order", &v)) big_endian_ = v == "BigEndian";
+      compressed_ = xml_attribute(b, e, "compressor", &v) && !v.empty();
+    });
+    const char* tag = static_cast<const char*>(memmem(data_, size_t(end_ - data_), "<AppendedData", 13));
+    if (!tag) return;
+    const char* close = static_cast<const char*>(memchr(tag, '>', size_t(end_ - tag)));
+    if (!close) return;
+    std::string enc;
+    appended_base64_ = xml_attribute(tag, close, "encoding", &enc) && enc == "base64";
+    const char* u = static_cast<const char*>(memchr(close, '_', size_t(end_ - close)));
+    appended_ = u ? u + 1 : nullptr;
+  }
+
+  uint64_t word(const std::string& h, size_t i) const {
+    uint64_t v = 0;
+    for (size_t k = 0; k < word_; ++k) {
+      const uint64_t byte = static_cast<unsigned char>(h[i * word_ + (big_endian_ ? k : word_ - 1 - k)]);
+      v = v << 8 | byte;
+    }
+    return v;
+  }
+
+  // The header's first 3 words (compressed) or 1 (raw) at p; raw binary: also where data starts.
+  std::string header(const char* p, bool base64, size_t words) const {
+    const size_t want = words * word_;
+    if (base64) return base64_prefix(p, end_, want);
+    if (size_t(end_ - p) < want) return std::string();
+    return std::string(p, want);
+  }
+
+  void array(const char* b, const char* e) {
+    const uint64_t i = index_++;
+    std::string fmt, off;
+    if (!xml_attribute(b, e, "format", &fmt) || (fmt != "binary" && fmt != "appended")) return;
+    const char* p = e + 1;
+    bool base64 = true;
+    if (fmt == "appended") {
+      char* stop = nullptr;
+      if (!appended_ || !xml_attribute(b, e, "offset", &off)) return; // VTK reports it
+      const unsigned long long o = strtoull(off.c_str(), &stop, 10);
+      if (off.empty() || *stop || o > uint64_t(end_ - appended_))
+        fail(TLOD_ERROR_PARSE,
+             format("DataArray %llu: offset \"%.32s\" outside the appended data", (unsigned long long)i, off.c_str()));
+      p = appended_ + o;
+      base64 = appended_base64_;
+    }
+    const size_t words = compressed_ ? 3 : 1;
+    const std::string h = header(p, base64, words);
+    if (h.size() < words * word_)
+      fail(TLOD_ERROR_PARSE, format("DataArray %llu: its data header runs past the file", (unsigned long long)i));
+    check(i, h, p, base64);
+    if (!compressed_) cells(i, b, e, word(h, 0), p, base64);
+  }
+
+  // VTK sizes a cell array's connectivity by its last offset before reading the connectivity: a
+  // last offset past the connectivity's own size (its header) would make VTK allocate it. Checked
+  // where the data is not compressed (the values can be read without inflating).
+  void cells(uint64_t i, const char* b, const char* e, uint64_t bytes, const char* p, bool base64) {
+    std::string name, type;
+    if (!xml_attribute(b, e, "Name", &name) || (name != "offsets" && name != "connectivity")) return;
+    xml_attribute(b, e, "type", &type);
+    const size_t size = type == "Int64" || type == "UInt64" ? 8 : type == "Int32" || type == "UInt32" ? 4 : 0;
+    if (size == 0 || bytes < size) return;
+    if (name == "connectivity") {
+      connectivity_ = bytes / size;
+      return;
+    }
+    const std::string all = base64 ? base64_prefix(p, end_, word_ + bytes) : std::string();
+    const char* last = base64 ? all.data() + word_ + bytes - size : p + word_ + bytes - size;
+    if ((base64 && all.size() < word_ + bytes) || connectivity_ == UINT64_MAX) return;
+    uint64_t v = 0;
+    for (size_t k = 0; k < size; ++k)
+      v = v << 8 | static_cast<unsigned char>(last[big_endian_ ? k : size - 1 - k]);
+    if (v > connectivity_)
+      fail(TLOD_ERROR_PARSE, format("DataArray %llu (offsets): the last offset %llu is past the %llu connectivity ids",
+                                    (unsigned long long)i, (unsigned long long)v, (unsigned long long)connectivity_));
+    connectivity_ = UINT64_MAX;
+  }
+
+  void check(uint64_t i, const std::string& h, const char* p, bool base64) {
+    uint64_t bytes;
+    if (!compressed_) {
+      bytes = word(h, 0);
+      if (!base64 && bytes > uint64_t(end_ - p) - word_)
+        fail(TLOD_ERROR_PARSE,
+             format("DataArray %llu: its header announces %llu bytes, the file has %llu left", (unsigned long long)i,
+                    (unsigned long long)bytes, (unsigned long long)(end_ - p)));
+    } else {
+      const uint64_t blocks = word(h, 0), block = word(h, 1), last = word(h, 2);
+      if (blocks > (uint64_t(1) << 32) || (blocks && __builtin_mul_overflow(blocks - 1, block, &bytes)) ||
+          __builtin_add_overflow(blocks ? bytes : 0, last ? last : (blocks ? block : 0), &bytes))
+        bytes = UINT64_MAX;
+    }
+    if (bytes > room_)
+      fail(TLOD_ERROR_OUT_OF_MEMORY,
+           format("DataArray %llu: its header announces %llu bytes, more than the import's memory budget (%zu "
+                  "bytes; tlod_import_desc.memory_limit)",
+                  (unsigned long long)i, (unsigned long long)bytes, room_));
+  }
+};
+
+} // namespace
+
+void preflight_xml_headers(const char* data, size_t size, size_t room) { XmlHeaders(data, size, room).run(); }
+
+} // namespace tlod_import_detail
