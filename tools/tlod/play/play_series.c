@@ -15,7 +15,7 @@
 static play_surface* series_surface(play_scene* s) {
   if (s->surface_count != 1 || s->count != 1 || play_scene_is_gltf(s->name)) return NULL;
   const tlod_import_result* r = s->surfaces[0].setup.in.source;
-  return r && r->step_count >= 2 && r->step_positions ? &s->surfaces[0] : NULL;
+  return r && r->step_count >= 2 && r->step_positions && r->step_times ? &s->surfaces[0] : NULL;
 }
 
 int play_series_setup(play_scene* s) {
