@@ -70,8 +70,8 @@ bool vtk_model_write(const vtk_model* m, const char* path, vtk_format format);
  * (x, -2y, z/2)), "pressure" (cell: the cell's index). */
 void vtk_build_box(vtk_model* m, uint32_t nx, uint32_t ny, uint32_t nz, double a, double b, double c);
 /* One unit hexahedron whose point field "payload" holds, as big-endian doubles in a legacy binary
- * file, the bytes of the text "\nPOINTS 999999999999 double\n" (finite values): a reader that scans
- * binary data as words would take it for a header. */
+ * file, the bytes of the text "\nPOINTS 999999999999     double\n" (values finite as floats): a reader
+ * that scans binary data as words would take it for a header. */
 void vtk_build_payload_box(vtk_model* m);
 /* A unit-radius disc of height 1 as 12 pie sectors, each a hexahedron collapsed at the axis (nodes
  * 0 and 3, 4 and 7 repeated: how many FE exporters write wedges); VTK draws it, 36 boundary faces. */

@@ -81,7 +81,8 @@ void vtk_build_payload_box(vtk_model* m) {
   double* f = vtk_model_field_add(m, "payload", 1, false);
   char text[64];
   memset(text, ' ', sizeof text);
-  memcpy(text, "\nPOINTS 999999999999 double\n", 28);
+  /* each 8 bytes start with a control, space or digit byte: finite doubles that are finite floats */
+  memcpy(text, "\nPOINTS 999999999999     double\n", 32);
   for (int k = 0; k < 8; ++k) {
     uint64_t v = 0; /* legacy binary is big-endian: byte 0 of the text is the double's top byte */
     for (int b = 0; b < 8; ++b)

@@ -206,6 +206,24 @@ TEST(test_box_fields) {
   vtk_model_free(&m);
 }
 
+/* Binary data is data: a legacy binary field whose bytes spell a POINTS header (an importer of
+ * a4669f9 refused the file: "POINTS: declares 999999999999 x 3 values, more than the 38 bytes left"). */
+TEST(test_binary_payload_is_data) {
+  vtk_model m;
+  vtk_build_payload_box(&m);
+  tlod_import_result* r = vtk_test_write_import(&m, work, "payload.vtk", VTK_LEGACY_BINARY);
+  CHECK_MSG(r, "a valid file refused (see above)");
+  const tlod_import_field* f = field_named(r, "payload");
+  bool ok = f && r->vtk && r->vtk->boundary_quads == 6 && r->vertex_count == 8;
+  for (uint32_t v = 0; ok && v < r->vertex_count; ++v) {
+    uint32_t q = model_point(&m, r->positions + 3 * (size_t)v);
+    ok = q != UINT32_MAX && f->data[v] == (float)m.fields[0].data[q];
+  }
+  tlod_import_free(r);
+  vtk_model_free(&m);
+  CHECK_MSG(ok, "payload field or boundary not as written");
+}
+
 /* ---- tet sphere ---- */
 
 TEST(test_tet_sphere) {
@@ -334,6 +352,7 @@ int main(int argc, char** argv) {
   if (argc > 1) work = argv[1];
   RUN(test_box_all_formats);
   RUN(test_box_fields);
+  RUN(test_binary_payload_is_data);
   RUN(test_tet_sphere);
   RUN(test_mixed);
   RUN(test_hex_cylinder_phong);
