@@ -2,7 +2,7 @@
 """End-to-end tests of the tlod command: exit codes, one-line errors, no
 half-written outputs, closed output for closed input, stats contents.
 Usage: cli_test.py TLOD DATA_DIR WORK_DIR"""
-import json, os, struct, subprocess, sys, glob
+import json, os, subprocess, sys, glob
 
 from tlod_cli import check, closed_after_weld, finish, init, one_error_line, read_obj, run
 
