@@ -2,45 +2,13 @@
 """End-to-end tests of the tlod command: exit codes, one-line errors, no
 half-written outputs, closed output for closed input, stats contents.
 Usage: cli_test.py TLOD DATA_DIR WORK_DIR"""
-import json, os, struct, subprocess, sys, glob
+import json, os, subprocess, sys, glob
 
-from tlod_cli import check, finish, init, one_error_line, run
+from tlod_cli import check, closed_after_weld, finish, init, one_error_line, read_obj, run
 
 TLOD, DATA, WORK = sys.argv[1:4]
 init(TLOD)
 os.makedirs(WORK, exist_ok=True)
-
-
-def read_obj(path):
-    verts, tris = [], []
-    with open(path) as f:
-        for line in f:
-            t = line.split()
-            if not t:
-                continue
-            if t[0] == "v":
-                verts.append(tuple(struct.unpack("<3I", struct.pack("<3f", *map(float, t[1:4])))))
-            elif t[0] == "f":
-                tris.append(tuple(int(x.split("/")[0]) - 1 for x in t[1:4]))
-    return verts, tris
-
-
-def closed_after_weld(verts, tris):
-    """Welds by exact float bits; every undirected edge must have exactly two
-    triangles, traversed in opposite directions."""
-    ids = {}
-    weld = [ids.setdefault(v, len(ids)) for v in verts]
-    directed = {}
-    for a, b, c in tris:
-        a, b, c = weld[a], weld[b], weld[c]
-        if a == b or b == c or c == a:
-            return False, "degenerate triangle after welding"
-        for e in ((a, b), (b, c), (c, a)):
-            directed[e] = directed.get(e, 0) + 1
-    for (a, b), n in directed.items():
-        if n != 1 or directed.get((b, a), 0) != 1:
-            return False, "edge %d-%d used %d/%d times" % (a, b, n, directed.get((b, a), 0))
-    return True, ""
 
 
 # usage errors
