@@ -27,8 +27,13 @@
  *       boundary: faces keyed by sorted corners, used once = boundary, twice =
  *       interior (dropped), more = non-manifold (kept once, a warning); each
  *       cell oriented by its signed volume so faces point out even for
- *       inverted cells (vtk->cells_reoriented). 2D cells are kept (quadratic
- *       triangle/quad, biquadratic quad too; polygons over 4 corners fan-
+ *       inverted cells (vtk->cells_reoriented). A linear cell with repeated
+ *       point ids (a hexahedron written for a wedge, pyramid or tetra; a quad
+ *       for a triangle) is the solid it collapses to: each face's repeated
+ *       consecutive corners merged, faces left with < 3 corners dropped
+ *       (vtk->cells_collapsed); collapsed flat (no volume) or second-order
+ *       with repeated nodes: dropped (vtk->degenerate_cells). 2D cells are
+ *       kept (quadratic triangle/quad, biquadratic quad too; polygons over 4 corners fan-
  *       triangulated, strips converted); quads stay quads. Second-order faces
  *       give face_nodes (TLOD_FACE_NODES per face: mid-edge node of edge e from
  *       corner e to e+1, centre of a 9-node face). Vertex and line cells are
@@ -309,17 +314,18 @@ typedef struct tlod_import_vtk_info {
   uint64_t points, cells; /* as in the file (a series: step 0) */
   uint32_t cell_type_count;
   tlod_import_cell_count cell_types[TLOD_IMPORT_MAX_CELL_TYPES];
-  uint64_t volume_cells;                  /* 3D cells whose faces were collected */
-  uint64_t boundary_triangles;            /* boundary (or surface) triangle faces kept */
-  uint64_t boundary_quads;                /* boundary (or surface) quad faces kept */
-  uint64_t second_order_faces;            /* faces with mid-edge nodes */
-  uint64_t interior_faces;                /* faces shared by two volume cells (dropped; counted once per pair) */
-  uint64_t non_manifold_faces;            /* faces of three or more cells (kept once, a warning) */
-  uint64_t cells_reoriented;              /* volume cells given with negative orientation (faces flipped) */
-  uint64_t degenerate_cells;              /* cells with repeated points, dropped */
-  uint64_t polygons_triangulated;         /* polygons with > 4 corners fan-triangulated */
-  uint64_t strips_converted;              /* triangle strips converted to triangles */
-  uint64_t cells_ignored;                 /* vertex and line cells (no surface) */
+  uint64_t volume_cells;          /* 3D cells whose faces were collected */
+  uint64_t boundary_triangles;    /* boundary (or surface) triangle faces kept */
+  uint64_t boundary_quads;        /* boundary (or surface) quad faces kept */
+  uint64_t second_order_faces;    /* faces with mid-edge nodes */
+  uint64_t interior_faces;        /* faces shared by two volume cells (dropped; counted once per pair) */
+  uint64_t non_manifold_faces;    /* faces of three or more cells (kept once, a warning) */
+  uint64_t cells_reoriented;      /* volume cells given with negative orientation (faces flipped) */
+  uint64_t degenerate_cells;      /* cells with repeated points that collapse flat (or second-order), dropped */
+  uint64_t cells_collapsed;       /* linear cells with repeated points kept as the solid/face they collapse to */
+  uint64_t polygons_triangulated; /* polygons with > 4 corners fan-triangulated */
+  uint64_t strips_converted;      /* triangle strips converted to triangles */
+  uint64_t cells_ignored;         /* vertex and line cells (no surface) */
   double read_ms, boundary_ms, fields_ms; /* time in VTK's reader, in boundary extraction, in fields */
 } tlod_import_vtk_info;
 

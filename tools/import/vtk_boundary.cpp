@@ -3,10 +3,15 @@
 // interior face (dropped), three or more times non-manifold (kept once). Each cell's faces are
 // oriented by the sign of the cell's volume (divergence theorem over our face table), so an
 // inverted cell still gives outward faces. Faces come out in cell order (deterministic).
+// A linear cell with repeated corners (a hexahedron written for a wedge, pyramid or tetra) is
+// the solid it collapses to: its faces lose repeated consecutive corners, and faces left with
+// fewer than 3 corners vanish; its volume is the collapsed solid's, since the fan triangles of a
+// collapsed face that repeat a corner contribute exactly 0.
 #include "vtk_boundary.hpp"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "import_error.hpp"
 #include "vtk_cells.hpp"
@@ -45,14 +50,44 @@ bool repeats(const uint32_t* ids, int n) {
   return false;
 }
 
-// A second-order cell must not repeat any of its nodes (a node on a corner would be a face node
-// equal to a corner, which core refuses); a linear one its corners.
-bool degenerate(const CellKind& k, const uint32_t* ids, int corners) {
-  if (k.edge_node_count == 0) return repeats(ids, corners);
+// A second-order cell must not repeat any of its nodes: a node on a corner would be a face node
+// equal to a corner (core refuses it), and collapsed nodes no longer define an isoparametric map.
+bool degenerate_second_order(const CellKind& k, const uint32_t* ids) {
   std::array<uint32_t, 32> s{};
   std::copy(ids, ids + k.nodes, s.begin());
   std::sort(s.begin(), s.begin() + k.nodes);
   return std::adjacent_find(s.begin(), s.begin() + k.nodes) != s.begin() + k.nodes;
+}
+
+// Face lc (n local corners) with repeated consecutive corners (cyclically) merged into out:
+// the corner count left, or 0 when fewer than 3 are left or a corner still repeats (a face of
+// no area, folded on itself).
+int collapse_face(const uint32_t* id, const int* lc, int n, int* out) {
+  int m = 0;
+  for (int i = 0; i < n; ++i)
+    if (id[lc[i]] != id[lc[(i + 1) % n]]) out[m++] = lc[i];
+  for (int i = 1; i < m; ++i)
+    for (int j = 0; j < i; ++j)
+      if (id[out[i]] == id[out[j]]) return 0;
+  return m < 3 ? 0 : m;
+}
+
+// Insertion sort of a face's n <= 4 corner ids (std::sort of a run of unknown length inside a
+// 4-array trips GCC's -Warray-bounds).
+void sort_corners(std::array<uint32_t, 4>& v, int n) {
+  for (int i = 1; i < n && i < 4; ++i)
+    for (int j = i; j > 0 && v[j - 1] > v[j]; --j)
+      std::swap(v[j - 1], v[j]);
+}
+
+// A collapsed cell of no volume: |6V| within rounding of the cube of its extent.
+bool flat(double v6, const uint32_t* ids, int corners, const double* p) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (int i = 0; i < corners; ++i)
+    for (int a = 0; a < 3; ++a)
+      lo[a] = std::min(lo[a], p[3 * size_t(ids[i]) + a]), hi[a] = std::max(hi[a], p[3 * size_t(ids[i]) + a]);
+  const double ext = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  return !(std::fabs(v6) > 1e-12 * ext * ext * ext);
 }
 
 // Six times the signed volume of a cell, by the divergence theorem over its faces (fans),
@@ -137,20 +172,48 @@ private:
     }
   }
 
+  // Corners of face f of cell c with repeats merged (collapse_face), into lc; their count or 0.
+  int face_corners(uint32_t c, const CellKind& k, int f, int* lc) const {
+    const CellFace& cf = k.faces[f];
+    int given[4];
+    std::copy(cf.corner, cf.corner + cf.size, given);
+    return collapse_face(ids(c), given, cf.size, lc);
+  }
+
+  // A cell with repeated ids is kept when linear and what it collapses to is a solid.
+  bool keep_volume(uint32_t c, const CellKind& k, double v6) {
+    const uint32_t* id = ids(c);
+    if (!repeats(id, corners_[k.vtk_type])) return true;
+    int faces = 0, lc[4];
+    for (int f = 0; f < k.face_count; ++f)
+      faces += face_corners(c, k, f, lc) > 0;
+    if (faces < 4 || flat(v6, id, corners_[k.vtk_type], points_)) {
+      out_.degenerate_cells++;
+      return false;
+    }
+    out_.cells_collapsed++;
+    return true;
+  }
+
   void add_volume(uint32_t c, const CellKind& k) {
     const uint32_t* id = ids(c);
-    if (degenerate(k, id, corners_[k.vtk_type])) {
+    if (k.edge_node_count && degenerate_second_order(k, id)) {
       out_.degenerate_cells++;
       return;
     }
+    const double v6 = volume6(k, id, points_);
+    if (!keep_volume(c, k, v6)) return;
     out_.volume_cells++;
-    const bool flip = volume6(k, id, points_) < 0;
+    const bool flip = v6 < 0;
     out_.cells_reoriented += flip;
     for (int f = 0; f < k.face_count; ++f) {
+      int lc[4];
+      const int n = face_corners(c, k, f, lc);
+      if (n == 0) continue;
       std::array<uint32_t, 4> v{kNone, kNone, kNone, kNone};
-      for (int i = 0; i < k.faces[f].size; ++i)
-        v[i] = id[k.faces[f].corner[i]];
-      std::sort(v.begin(), v.begin() + k.faces[f].size);
+      for (int i = 0; i < n; ++i)
+        v[i] = id[lc[i]];
+      sort_corners(v, n);
       keys_.push_back({uint64_t(v[0]) << 32 | v[1], uint64_t(v[2]) << 32 | v[3], uint32_t(refs_.size())});
       refs_.push_back({c, uint8_t(f), uint8_t(flip), 0});
     }
@@ -189,12 +252,14 @@ private:
     (n == 3 ? out_.triangles : out_.quads)++;
   }
 
+  // Face f as output: reversed when flip (same first corner), repeated corners merged.
   void table_face(uint32_t c, const CellKind& k, int f, bool flip) {
     const CellFace& cf = k.faces[f];
-    int lc[4];
+    int given[4], lc[4];
     for (int i = 0; i < cf.size; ++i)
-      lc[i] = cf.corner[flip && i ? cf.size - i : i]; // reversed, same first corner
-    face(c, k, lc, cf.size, cf.centre);
+      given[i] = cf.corner[flip && i ? cf.size - i : i];
+    const int n = collapse_face(ids(c), given, cf.size, lc);
+    if (n) face(c, k, lc, n, cf.centre);
   }
 
   void polygon(uint32_t c, const CellKind& k) {
@@ -226,11 +291,15 @@ private:
     }
   }
 
+  // A linear quad with a repeated corner is the triangle it collapses to.
   void surface_cell(uint32_t c, const CellKind& k) {
-    if (degenerate(k, ids(c), k.faces[0].size)) {
+    const bool repeated = repeats(ids(c), k.faces[0].size);
+    int lc[4];
+    if (k.edge_node_count ? degenerate_second_order(k, ids(c)) : repeated && !face_corners(c, k, 0, lc)) {
       out_.degenerate_cells++;
       return;
     }
+    out_.cells_collapsed += repeated;
     table_face(c, k, 0, false);
   }
 

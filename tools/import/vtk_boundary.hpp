@@ -26,7 +26,7 @@ struct Surface {
   std::vector<uint64_t> type_counts = std::vector<uint64_t>(256, 0);
   uint64_t volume_cells = 0, triangles = 0, quads = 0, second_order_faces = 0, interior_faces = 0;
   uint64_t non_manifold_faces = 0, cells_reoriented = 0, degenerate_cells = 0, polygons_triangulated = 0;
-  uint64_t strips_converted = 0, cells_ignored = 0;
+  uint64_t strips_converted = 0, cells_ignored = 0, cells_collapsed = 0;
 };
 
 // What extract_surface() asks of its caller: take bytes from the memory budget (throws

@@ -326,6 +326,7 @@ private:
     info_.non_manifold_faces = s.non_manifold_faces;
     info_.cells_reoriented = s.cells_reoriented;
     info_.degenerate_cells = s.degenerate_cells;
+    info_.cells_collapsed = s.cells_collapsed;
     info_.polygons_triangulated = s.polygons_triangulated;
     info_.strips_converted = s.strips_converted;
     info_.cells_ignored = s.cells_ignored;

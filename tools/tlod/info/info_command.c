@@ -44,11 +44,12 @@ static void print_cells(const tlod_import_vtk_info* v) {
          (unsigned long long)v->boundary_triangles, (unsigned long long)v->boundary_quads,
          (unsigned long long)v->second_order_faces, (unsigned long long)v->volume_cells,
          (unsigned long long)v->interior_faces);
-  printf("  vtk fixes: %llu cells reoriented, %llu degenerate cells dropped, %llu non-manifold faces, %llu polygons "
-         "triangulated, %llu strips converted, %llu vertex/line cells ignored\n",
-         (unsigned long long)v->cells_reoriented, (unsigned long long)v->degenerate_cells,
-         (unsigned long long)v->non_manifold_faces, (unsigned long long)v->polygons_triangulated,
-         (unsigned long long)v->strips_converted, (unsigned long long)v->cells_ignored);
+  printf("  vtk fixes: %llu cells reoriented, %llu collapsed cells kept, %llu degenerate cells dropped, %llu "
+         "non-manifold faces, %llu polygons triangulated, %llu strips converted, %llu vertex/line cells ignored\n",
+         (unsigned long long)v->cells_reoriented, (unsigned long long)v->cells_collapsed,
+         (unsigned long long)v->degenerate_cells, (unsigned long long)v->non_manifold_faces,
+         (unsigned long long)v->polygons_triangulated, (unsigned long long)v->strips_converted,
+         (unsigned long long)v->cells_ignored);
   printf("  vtk time:  read %.1f ms, boundary %.1f ms, fields %.1f ms\n", v->read_ms, v->boundary_ms, v->fields_ms);
 }
 
