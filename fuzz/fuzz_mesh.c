@@ -7,8 +7,16 @@
  *   bits 4-5  normal mode: DEFAULT, KEEP, ANGLE, AREA
  *   bit 6     crease angle 30 degrees (else none)
  *   bit 7     weld epsilon 1e-3 (else bitwise-equal positions only)
+ * A file that starts as VTK's do ("# vtk DataFile", or "<?xml" / "<VTKFile" with a
+ * VTKFile tag in its first 256 bytes) is read as .vtk, or .vtp (type "PolyData") / .vtu,
+ * whatever bits 0-1 say: none of the other four formats can start so, so older inputs keep
+ * their meaning. For those, bits 2-3 pick FLAT, PHONG, QUADRATIC, QUADRATIC with TRUE
+ * shading normals, and the import's face_nodes go into the mesh, so core's node validation
+ * and sharing see the nodes of hostile second-order cells.
  * Meshes past kMaxFaces are left out: the surface build does work per patch (error tables),
  * so a big mesh is slow by design, not a finding; fuzz_obj & co. still read them. */
+
+#include <string.h>
 
 #include "fuzz_common.h"
 #include "import_contract.h"
@@ -18,6 +26,27 @@ enum { kMaxFaces = 4096, kEvalPatches = 8 };
 static const char* const kExt[4] = {".obj", ".ply", ".glb", ".gltf"};
 static const tlod_surface_type kSurface[4] = {TLOD_SURFACE_FLAT, TLOD_SURFACE_PHONG, TLOD_SURFACE_PN,
                                               TLOD_SURFACE_PHONG};
+static const tlod_surface_type kVtkSurface[4] = {TLOD_SURFACE_FLAT, TLOD_SURFACE_PHONG, TLOD_SURFACE_QUADRATIC,
+                                                 TLOD_SURFACE_QUADRATIC};
+
+static int starts_with(const uint8_t* d, size_t n, const char* s) {
+  const size_t k = strlen(s);
+  return n >= k && memcmp(d, s, k) == 0;
+}
+
+static int contains(const uint8_t* d, size_t n, const char* s) {
+  for (size_t i = 0; i < n; ++i)
+    if (starts_with(d + i, n - i, s)) return 1;
+  return 0;
+}
+
+/* The VTK extension the file's first bytes call for, or NULL (see the top). */
+static const char* vtk_ext(const uint8_t* d, size_t n) {
+  if (starts_with(d, n, "# vtk DataFile")) return ".vtk";
+  const size_t head = n < 256 ? n : 256;
+  if (!(starts_with(d, n, "<?xml") || starts_with(d, n, "<VTKFile")) || !contains(d, head, "<VTKFile")) return NULL;
+  return contains(d, head, "\"PolyData\"") ? ".vtp" : ".vtu";
+}
 
 static tlod_mesh* make_mesh(tlod_context* ctx, const tlod_import_result* r, uint8_t opt) {
   tlod_mesh_desc desc = {
@@ -32,6 +61,7 @@ static tlod_mesh* make_mesh(tlod_context* ctx, const tlod_import_result* r, uint
       .normal_mode = (tlod_normal_mode)((opt >> 4) & 3u),
       .crease_angle_deg = (opt & 0x40u) ? 30.0f : 0.0f,
       .weld_epsilon = (opt & 0x80u) ? 1e-3f : 0.0f,
+      .face_nodes = r->face_nodes,
   };
   tlod_mesh* mesh = NULL;
   if (tlod_mesh_create(ctx, &desc, &mesh) != TLOD_SUCCESS) {
@@ -42,8 +72,8 @@ static tlod_mesh* make_mesh(tlod_context* ctx, const tlod_import_result* r, uint
   return mesh;
 }
 
-static void surface(tlod_context* ctx, const tlod_mesh* mesh, uint8_t opt) {
-  tlod_surface_desc desc = {.type = kSurface[(opt >> 2) & 3u]};
+static void surface(tlod_context* ctx, const tlod_mesh* mesh, uint8_t opt, int vtk) {
+  tlod_surface_desc desc = {.type = (vtk ? kVtkSurface : kSurface)[(opt >> 2) & 3u]};
   if (((opt >> 2) & 3u) == 3u) desc.shading_normal = TLOD_SHADING_NORMAL_TRUE;
   tlod_surface* s = NULL;
   if (tlod_surface_create(ctx, mesh, &desc, &s) != TLOD_SUCCESS) {
@@ -65,7 +95,8 @@ static void surface(tlod_context* ctx, const tlod_mesh* mesh, uint8_t opt) {
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   const uint8_t opt = data[0];
-  const char* path = fuzz_input_file(kExt[opt & 3u], data + 1, size - 1);
+  const char* vtk = vtk_ext(data + 1, size - 1);
+  const char* path = fuzz_input_file(vtk ? vtk : kExt[opt & 3u], data + 1, size - 1);
   char error[256];
   tlod_import_result* r = NULL;
   tlod_result res = tlod_import_file(path, NULL, &r, error, sizeof error);
@@ -78,7 +109,7 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz_check(tlod_context_create(&(tlod_context_desc){.thread_count = 1}, &ctx) == TLOD_SUCCESS,
              "tlod_context_create failed");
   tlod_mesh* mesh = make_mesh(ctx, r, opt);
-  if (mesh) surface(ctx, mesh, opt);
+  if (mesh) surface(ctx, mesh, opt, vtk != NULL);
   tlod_mesh_destroy(mesh);
   tlod_context_destroy(ctx);
   tlod_import_free(r);

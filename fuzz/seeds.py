@@ -14,7 +14,7 @@ Seeds come from the repository only:
   - tests/data/fuzz/<target>/: every crash found so far (not the open/ folder: those still
     crash and would stop a run at start).
 fuzz_mesh's inputs are an option byte and a file (fuzz/fuzz_mesh.c): its seeds are the small
-obj/ply/glb/gltf seeds behind a few option bytes. fuzz_vtk's inputs are a format byte and a
+obj/ply/glb/gltf seeds and the small VTK seeds behind a few option bytes. fuzz_vtk's inputs are a format byte and a
 file (fuzz/fuzz_vtk.c): the VTK files of tests/data and generated legacy files (ASCII and
 binary) holding one cell of every type the importer reads, with point and cell data.
 """
@@ -193,6 +193,14 @@ def mesh_seeds(out):
             for opt in (options[n % 6], options[(n + 3) % 6]):
                 (out["fuzz_mesh"] / ("%02x_%s" % (opt | fmt, p.name))).write_bytes(bytes([opt | fmt]) + body)
             n += 1
+    # VTK files go in as they are (fuzz_mesh.c reads them as VTK by their first bytes), so the
+    # second-order cells' face_nodes reach core; bits 2-3 = 2/3 pick QUADRATIC surfaces.
+    for p in sorted(out["fuzz_vtk"].iterdir()):
+        body = p.read_bytes()[1:]
+        if len(body) > MESH_SEED_MAX or not (body.startswith(b"# vtk DataFile") or body.startswith(b"<?xml")):
+            continue
+        for opt in (0x08, 0x0C | 0x40, 0x04 | 0x80):
+            (out["fuzz_mesh"] / ("%02x_vtk_%s" % (opt, p.name))).write_bytes(bytes([opt]) + body)
 
 
 VTK_EXT = {".vtk": 0, ".vtu": 1, ".vtp": 2, ".stl": 3, ".pvd": 6, ".pvtu": 7}  # fuzz/fuzz_vtk.c's format byte
