@@ -26,5 +26,8 @@ void commands_usage(FILE* f) {
   fprintf(f, "usage: tlod COMMAND [options]   (tlod COMMAND --help for its options)\n\ncommands:\n");
   for (int i = 0; i < COMMAND_COUNT; i++)
     fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].summary);
-  fprintf(f, "\nInputs are .gltf .glb .obj .ply files or built-in meshes: %s\n", cli_demo_names());
+  fprintf(f,
+          "\nInputs are .gltf .glb .obj .ply files, VTK files (.vtk .vtu .vtp .pvtu .stl, a .pvd series or\n"
+          "numbered files NAME_*.vtu) or built-in meshes: %s\n",
+          cli_demo_names());
 }

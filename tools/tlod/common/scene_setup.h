@@ -9,7 +9,7 @@
 #include "tesslod/lod.h"
 
 typedef struct scene_setup_desc {
-  const char* input;          /* a .gltf .glb .obj .ply file or "demo:NAME" */
+  const char* input;          /* a .gltf .glb .obj .ply or VTK file (cli_load) or "demo:NAME" */
   const char* label;          /* the surface's label; NULL: input */
   tlod_surface_type surface;  /* PN splits quads into triangles; DEFAULT: auto (cli_resolve_surface) */
   tlod_alpha_mode alpha_mode; /* as tlod_surface_desc: default 0.75 everywhere */

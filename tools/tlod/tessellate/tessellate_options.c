@@ -15,8 +15,8 @@ void tessellate_usage(FILE* f) {
   fprintf(f,
           "usage: tlod tessellate IN -o OUT [options]\n"
           "Tessellates every face of IN at one level and writes the result.\n"
-          "  IN                  .gltf .glb .obj .ply file, a VTK file (.vtk .vtu .vtp .pvtu .stl .pvd; a series:\n"
-          "                      its first step), or a built-in mesh (%s)\n"
+          "  IN                  .gltf .glb .obj .ply file, a VTK file (.vtk .vtu .vtp .pvtu .stl; a series, .pvd\n"
+          "                      or numbered files NAME_*.vtu: its first step), or a built-in mesh (%s)\n"
           "  -o, --output OUT    .obj .ply .gltf .glb (format from the extension); attributes (UVs, colours)\n"
           "                      are kept; .gltf/.glb of a file keep its nodes, meshes, materials, textures\n"
           "  --surface S         auto (default) | phong | pn | flat | quadratic; auto: quadratic for VTK files\n"
