@@ -8,9 +8,15 @@
  * tessellation paper's choice) or by face area. Sums run in face order, in
  * double, so equal inputs give bitwise equal normals.
  *
+ * Curved faces (a given mid-edge node on an edge at the corner) use per
+ * corner the tangents of the quadratic edges there, dQ/dt(0) = 4 M - 3 P_i
+ * - P_j, for the corner's normal and angle: the true normal of the
+ * quadratic face at its corner. Edges without a given node stay flat (a
+ * Phong node comes from the normals and must not feed back).
+ *
  * Creases (crease_angle_deg > 0): each face corner sums only the faces
- * around its position whose normal is within the crease angle of its own
- * face's. One input vertex can then need several normals; at creation the
+ * around its position whose corner normal is within the crease angle of its
+ * own. One input vertex can then need several normals; at creation the
  * corners of a vertex are grouped by their (bitwise) normal and each group
  * past the first gets a new vertex, appended after the input ones, with the
  * source's position and alpha. Later recomputations (tlod_mesh_update) keep
@@ -33,16 +39,16 @@
  * that fails has not written a normal yet. */
 typedef struct normal_job {
   tlod_mesh* m;
-  bool area;           /* face area weights, else corner angles */
-  bool creases;        /* crease_angle_deg > 0 */
-  double cos_crease;   /* faces with dot(n_f, n_g) >= this are on the same side */
-  double (*face_n)[3]; /* unit face normal, zero when the face has none */
-  double* weight;      /* per corner slot face * 4 + corner */
-  uint32_t* w_first;   /* corner slots of welded position w: w_slots[w_first[w] .. w_first[w+1]) */
-  uint32_t* w_slots;   /* in face order */
-  double (*w_sum)[4];  /* no creases: weighted sum and total weight per welded position */
-  uint8_t* state;      /* creases: 0 no corner seen, 1 corners agree, 2 they differ */
-  double (*mean)[3];   /* creases: sum of the unit corner normals of a vertex */
+  bool area;             /* face area weights, else corner angles */
+  bool creases;          /* crease_angle_deg > 0 */
+  double cos_crease;     /* corners with dot(n_f, n_g) >= this are on the same side */
+  double (*corner_n)[3]; /* per corner slot: unit normal, zero when there is none */
+  double* weight;        /* per corner slot face * 4 + corner */
+  uint32_t* w_first;     /* corner slots of welded position w: w_slots[w_first[w] .. w_first[w+1]) */
+  uint32_t* w_slots;     /* in face order */
+  double (*w_sum)[4];    /* no creases: weighted sum and total weight per welded position */
+  uint8_t* state;        /* creases: 0 no corner seen, 1 corners agree, 2 they differ */
+  double (*mean)[3];     /* creases: sum of the unit corner normals of a vertex */
 } normal_job;
 
 /* Node-only vertices (no corner of any face) never get a computed normal. */
@@ -71,13 +77,43 @@ static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + 
 
 static double length3(const double a[3]) { return sqrt(dot3(a, a)); }
 
-/* Interior angle at corner i; atan2 stays accurate near 0 and pi. */
-static double corner_angle(float (*p)[3], const uint32_t* c, uint32_t k, uint32_t i) {
-  double a[3], b[3], x[3];
-  sub3(p[c[(i + 1) % k]], p[c[i]], a);
-  sub3(p[c[(i + k - 1) % k]], p[c[i]], b);
+static bool node_given(const tlod_mesh* m, uint32_t f, uint32_t slot) {
+  return m->node_given && ((uint32_t)m->node_given[f] >> slot & 1u);
+}
+
+/* Tangent at corner i of face f towards corner to, along the edge with
+ * node slot s: the quadratic edge's dQ/dt(0) when the node is given, else
+ * the flat edge. Shared nodes are not used: they are resolved with the
+ * adjacency, after the normals, and the result must not depend on that. */
+static void edge_tangent(const tlod_mesh* m, uint32_t f, uint32_t i, uint32_t to, uint32_t s, double out[3]) {
+  const float* p = m->positions[m->faces[f][i]];
+  const float* q = m->positions[m->faces[f][to]];
+  if (!node_given(m, f, s)) {
+    sub3(q, p, out);
+    return;
+  }
+  const float* n = m->positions[m->face_nodes[f][s]];
+  for (int c = 0; c < 3; c++)
+    out[c] = 4.0 * (double)n[c] - 3.0 * (double)p[c] - (double)q[c];
+}
+
+/* a towards the next corner, b towards the previous one. */
+static void corner_tangents(const tlod_mesh* m, uint32_t f, uint32_t i, double a[3], double b[3]) {
+  uint32_t k = m->face_corners[f], prev = (i + k - 1) % k;
+  edge_tangent(m, f, i, (i + 1) % k, i, a);
+  edge_tangent(m, f, i, prev, prev, b);
+}
+
+/* Interior angle between the tangents; atan2 stays accurate near 0 and pi. */
+static double corner_angle(const double a[3], const double b[3]) {
+  double x[3];
   cross3(a, b, x);
   return atan2(length3(x), dot3(a, b));
+}
+
+/* A face with a given node on some edge has curved corners. */
+static bool curved_face(const tlod_mesh* m, uint32_t f) {
+  return m->node_given && (m->node_given[f] & ((1u << m->face_corners[f]) - 1u)) != 0;
 }
 
 /* Twice the area vector. Quads: the cross product of the diagonals (exact
@@ -105,19 +141,37 @@ static void face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[
   cross3(a, b, out);
 }
 
+/* x / |x|, zero when x is. */
+static void unit3(const double x[3], double out[3]) {
+  double len = length3(x);
+  for (int i = 0; i < 3; i++)
+    out[i] = len > 0.0 ? x[i] / len : 0.0;
+}
+
+/* Corner i of face f: its weight, and on a curved face its own normal
+ * (the face normal n stands otherwise). */
+static void corner_geometry(normal_job* j, uint32_t f, uint32_t i, double area2, bool curved) {
+  double a[3], b[3], x[3];
+  corner_tangents(j->m, f, i, a, b);
+  j->weight[f * 4 + i] = j->area ? 0.5 * area2 : corner_angle(a, b);
+  if (!curved) return;
+  cross3(a, b, x);
+  unit3(x, j->corner_n[f * 4 + i]);
+}
+
+/* Corner normals and weights of face f. Area weights stay the flat area. */
 static void face_geometry(normal_job* j, uint32_t f) {
   const tlod_mesh* m = j->m;
   uint32_t k = m->face_corners[f];
-  double x[3];
+  double x[3], n[3];
   face_cross(m->positions, m->faces[f], k, x);
-  double len = length3(x);
-  for (int i = 0; i < 3; i++)
-    j->face_n[f][i] = len > 0.0 ? x[i] / len : 0.0;
+  unit3(x, n);
   for (uint32_t i = 0; i < 4; i++) {
-    double w = 0.0;
-    if (i < k) w = j->area ? 0.5 * len : corner_angle(m->positions, m->faces[f], k, i);
-    j->weight[f * 4 + i] = w;
+    memcpy(j->corner_n[f * 4 + i], n, sizeof(n));
+    j->weight[f * 4 + i] = 0.0;
   }
+  for (uint32_t i = 0; i < k; i++)
+    corner_geometry(j, f, i, length3(x), curved_face(m, f));
 }
 
 /* ------------------------------------------------------------------------ */
@@ -126,7 +180,7 @@ static void face_geometry(normal_job* j, uint32_t f) {
 
 static void job_free(normal_job* j) {
   const tlod_context* ctx = j->m->ctx;
-  _tlod_free(ctx, j->face_n);
+  _tlod_free(ctx, j->corner_n);
   _tlod_free(ctx, j->weight);
   _tlod_free(ctx, j->w_first);
   _tlod_free(ctx, j->w_slots);
@@ -139,11 +193,11 @@ static tlod_result job_alloc(normal_job* j) {
   tlod_mesh* m = j->m;
   const tlod_context* ctx = m->ctx;
   size_t nf = m->face_count, nv = m->vertex_count;
-  j->face_n = _tlod_calloc(ctx, nf, sizeof(*j->face_n));
+  j->corner_n = _tlod_calloc(ctx, nf * 4, sizeof(*j->corner_n));
   j->weight = _tlod_calloc(ctx, nf * 4, sizeof(double));
   j->w_first = _tlod_calloc(ctx, nv + 1, sizeof(uint32_t));
   j->w_slots = _tlod_calloc(ctx, nf * 4, sizeof(uint32_t));
-  bool ok = j->face_n && j->weight && j->w_first && j->w_slots;
+  bool ok = j->corner_n && j->weight && j->w_first && j->w_slots;
   if (ok && !j->creases) {
     j->w_sum = _tlod_calloc(ctx, nv, sizeof(*j->w_sum));
     ok = j->w_sum != NULL;
@@ -184,7 +238,7 @@ static void sum_positions(normal_job* j) {
       uint32_t slot = j->w_slots[s];
       double wt = j->weight[slot];
       for (int i = 0; i < 3; i++)
-        j->w_sum[w][i] += wt * j->face_n[slot / 4][i];
+        j->w_sum[w][i] += wt * j->corner_n[slot][i];
       j->w_sum[w][3] += wt;
     }
 }
@@ -212,13 +266,13 @@ static tlod_result job_start(normal_job* j, tlod_mesh* m) {
 
 static bool nonzero(const double n[3]) { return n[0] != 0.0 || n[1] != 0.0 || n[2] != 0.0; }
 
-/* When the faces cancel out (or there are none): the own face's normal,
- * else the first face at the position with one, else +z. */
-static void fallback_normal(const normal_job* j, uint32_t w, uint32_t own_face, float out[3]) {
+/* When the faces cancel out (or there are none): the own corner's normal,
+ * else the first corner at the position with one, else +z. */
+static void fallback_normal(const normal_job* j, uint32_t w, uint32_t own_slot, float out[3]) {
   const double* n = NULL;
-  if (own_face != _TLOD_NONE && nonzero(j->face_n[own_face])) n = j->face_n[own_face];
+  if (own_slot != _TLOD_NONE && nonzero(j->corner_n[own_slot])) n = j->corner_n[own_slot];
   for (uint32_t s = j->w_first[w]; !n && s < j->w_first[w + 1]; s++)
-    if (nonzero(j->face_n[j->w_slots[s] / 4])) n = j->face_n[j->w_slots[s] / 4];
+    if (nonzero(j->corner_n[j->w_slots[s]])) n = j->corner_n[j->w_slots[s]];
   out[0] = n ? (float)n[0] : 0.0f;
   out[1] = n ? (float)n[1] : 0.0f;
   out[2] = n ? (float)n[2] : 1.0f;
@@ -239,17 +293,17 @@ static void unit_from_sum(const normal_job* j, const double sum[4], uint32_t w, 
 /* With creases: the normal of face corner slot, whose vertex sits at welded
  * position w, from the faces there on its side of the crease. */
 static void corner_normal(const normal_job* j, uint32_t slot, uint32_t w, float out[3]) {
-  const double* own = j->face_n[slot / 4];
+  const double* own = j->corner_n[slot];
   double sum[4] = {0.0, 0.0, 0.0, 0.0};
   for (uint32_t s = j->w_first[w]; s < j->w_first[w + 1]; s++) {
-    const double* n = j->face_n[j->w_slots[s] / 4];
+    const double* n = j->corner_n[j->w_slots[s]];
     if (dot3(own, n) < j->cos_crease) continue;
     double wt = j->weight[j->w_slots[s]];
     for (int i = 0; i < 3; i++)
       sum[i] += wt * n[i];
     sum[3] += wt;
   }
-  unit_from_sum(j, sum, w, slot / 4, out);
+  unit_from_sum(j, sum, w, slot, out);
 }
 
 /* A vertex no kept face uses: the normal of all faces at its position. */
@@ -259,7 +313,7 @@ static void unused_normal(const normal_job* j, uint32_t v, float out[3]) {
   for (uint32_t s = j->w_first[w]; s < j->w_first[w + 1]; s++) {
     uint32_t slot = j->w_slots[s];
     for (int i = 0; i < 3; i++)
-      sum[i] += j->weight[slot] * j->face_n[slot / 4][i];
+      sum[i] += j->weight[slot] * j->corner_n[slot][i];
     sum[3] += j->weight[slot];
   }
   unit_from_sum(j, sum, w, _TLOD_NONE, out);

@@ -14,7 +14,10 @@
  *   - a linear mesh under QUADRATIC within float rounding of PHONG;
  *   - the error tables >= the dense true deviation, and their tightness;
  *   - hostile nodes refused naming face and node; refresh after
- *     tlod_mesh_update; tlod_mesh_update_attribute.
+ *     tlod_mesh_update; tlod_mesh_update_attribute;
+ *   - computed corner normals of curved faces (6 quads around a cylinder)
+ *     against the shape functions' Q_u x Q_v, with creases and after an
+ *     update.
  */
 #include <float.h>
 #include <stdint.h>
@@ -322,7 +325,9 @@ TEST(test_hex_records) {
 }
 
 /* tlod_mesh_update moves an edge node: the two faces sharing it are
- * recomputed and follow the shape functions of the moved element. */
+ * recomputed and follow the shape functions of the moved element. The
+ * computed normals at the edge's two corners follow the curved edge, so the
+ * two other faces at those corners are rebuilt too: 4 patches. */
 TEST(test_hex_refresh) {
   hex_mesh m;
   bool made = hex_mesh_make(&m, false, 9, (tlod_surface_desc){0});
@@ -338,7 +343,7 @@ TEST(test_hex_refresh) {
   }
   hex_mesh_free(&m);
   CHECK(made);
-  CHECK_MSG(updated == 2, "%u patches refreshed (want 2)", updated);
+  CHECK_MSG(updated == 4, "%u patches refreshed (want 4)", updated);
   CHECK_MSG(err <= 16.0 && corner_bad == 0, "%.2f ulps after the update", err);
 }
 
@@ -961,6 +966,181 @@ TEST(test_update_attribute) {
   CHECK_NEAR(after[2][0], 20.0, 1e-5);
 }
 
+/* ------------------------------------------------------------------------ */
+/* Computed corner normals of curved faces                                  */
+/* ------------------------------------------------------------------------ */
+
+/* 6 biquadratic quads around the unit cylinder, z in [0, h], spans of 40 to
+ * 80 degrees so the flat normals are off the radial direction; every node
+ * on the cylinder. Vertices: bottom corners 0..5, top 6..11, side mids
+ * 12..17, per quad bottom mid 18 + q, top mid 24 + q, centre 30 + q. */
+#define CYL_Q 6
+#define CYL_V 36
+static const double k_cyl_deg[CYL_Q + 1] = {0, 40, 120, 180, 240, 280, 360};
+static float g_cyl_pos[CYL_V][3];
+static uint32_t g_cyl_idx[CYL_Q * 4], g_cyl_nodes[CYL_Q * 5];
+
+static void cyl_point(double deg, double z, float out[3]) {
+  double a = deg * (3.14159265358979323846 / 180.0);
+  out[0] = (float)cos(a);
+  out[1] = (float)sin(a);
+  out[2] = (float)z;
+}
+
+static void cyl_make(double h) {
+  for (int q = 0; q < CYL_Q; q++) {
+    double a = k_cyl_deg[q], mid = 0.5 * (a + k_cyl_deg[q + 1]);
+    cyl_point(a, 0, g_cyl_pos[q]);
+    cyl_point(a, h, g_cyl_pos[6 + q]);
+    cyl_point(a, 0.5 * h, g_cyl_pos[12 + q]);
+    cyl_point(mid, 0, g_cyl_pos[18 + q]);
+    cyl_point(mid, h, g_cyl_pos[24 + q]);
+    cyl_point(mid, 0.5 * h, g_cyl_pos[30 + q]);
+    uint32_t n = (uint32_t)(q + 1) % CYL_Q, c[4] = {(uint32_t)q, n, 6 + n, 6 + (uint32_t)q};
+    uint32_t nodes[5] = {18 + (uint32_t)q, 12 + n, 24 + (uint32_t)q, 12 + (uint32_t)q, 30 + (uint32_t)q};
+    memcpy(g_cyl_idx + 4 * q, c, sizeof c);
+    memcpy(g_cyl_nodes + 5 * q, nodes, sizeof nodes);
+  }
+}
+
+static tlod_mesh* cyl_mesh(tlod_context* ctx, bool nodes, float crease) {
+  tlod_mesh_desc d = {.positions = &g_cyl_pos[0][0],
+                      .vertex_count = CYL_V,
+                      .indices = g_cyl_idx,
+                      .index_count = CYL_Q * 4,
+                      .face_type = TLOD_FACE_QUADS,
+                      .face_nodes = nodes ? g_cyl_nodes : NULL,
+                      .normal_mode = TLOD_NORMALS_ANGLE,
+                      .crease_angle_deg = crease,
+                      .label = "cylinder"};
+  tlod_mesh* m = NULL;
+  if (tlod_mesh_create(ctx, &d, &m) != TLOD_SUCCESS) fprintf(stderr, "  %s\n", tlod_context_last_error(ctx));
+  return m;
+}
+
+/* Lagrange basis on nodes 0, 1/2, 1 (index 0, 1 = mid, 2) and derivatives. */
+static double lag3(int a, double t) {
+  return a == 0 ? (1 - t) * (1 - 2 * t) : a == 1 ? 4 * t * (1 - t) : t * (2 * t - 1);
+}
+static double lag3_d(int a, double t) { return a == 0 ? 4 * t - 3 : a == 1 ? 4 - 8 * t : 4 * t - 1; }
+
+/* The vertex at grid (a, b) of quad q (a, b in 0, 1 = mid, 2). */
+static uint32_t cyl_node(int q, int a, int b) {
+  static const int8_t slot[3][3] = {{-1, 3, -4}, {0, 4, 2}, {-2, 1, -3}}; /* corner -(i+1) or node slot */
+  int s = slot[a][b];
+  return s < 0 ? g_cyl_idx[4 * q - s - 1] : g_cyl_nodes[5 * q + s];
+}
+
+/* Corner (ca, cb) of quad q, from the shape functions: the unit normal
+ * Q_u x Q_v and the interior angle between the edge tangents there. */
+static double cyl_corner(int q, int ca, int cb, double n[3]) {
+  double du[3] = {0, 0, 0}, dv[3] = {0, 0, 0}, u = ca / 2.0, v = cb / 2.0;
+  for (int a = 0; a < 3; a++)
+    for (int b = 0; b < 3; b++)
+      for (int c = 0; c < 3; c++) {
+        double x = g_cyl_pos[cyl_node(q, a, b)][c];
+        du[c] += lag3_d(a, u) * lag3(b, v) * x;
+        dv[c] += lag3(a, u) * lag3_d(b, v) * x;
+      }
+  double x[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]};
+  double len = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]), dot = 0;
+  for (int c = 0; c < 3; c++) {
+    n[c] = x[c] / len;
+    dot += (ca ? -du[c] : du[c]) * (cb ? -dv[c] : dv[c]);
+  }
+  return atan2(len, dot);
+}
+
+/* Angle-weighted mean of the corner normals at bottom/top corner j. */
+static void cyl_expected(int j, bool top, double out[3]) {
+  double n0[3], n1[3];
+  int p = (j + CYL_Q - 1) % CYL_Q, cb = top ? 2 : 0;
+  double w0 = cyl_corner(j, 0, cb, n0), w1 = cyl_corner(p, 2, cb, n1), len = 0;
+  for (int c = 0; c < 3; c++) {
+    out[c] = w0 * n0[c] + w1 * n1[c];
+    len += out[c] * out[c];
+  }
+  for (int c = 0; c < 3; c++)
+    out[c] /= sqrt(len);
+}
+
+static double angle_deg(const double a[3], const float b[3]) {
+  double d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
+  return atan2(sqrt(x * x + y * y + z * z), d) * (180.0 / 3.14159265358979323846);
+}
+
+typedef struct cyl_err {
+  double expected; /* largest |n - expected| (curved faces only) */
+  double curved;   /* largest angle to the cylinder normal, degrees */
+} cyl_err;
+
+static cyl_err cyl_check(const tlod_mesh* m) {
+  tlod_mesh_view v = tlod_mesh_query_view(m);
+  cyl_err e = {0, 0};
+  for (int i = 0; i < 12; i++) {
+    float r[3];
+    cyl_point(k_cyl_deg[i % 6], 0, r);
+    double x[3], radial[3] = {r[0], r[1], 0};
+    cyl_expected(i % 6, i >= 6, x);
+    e.expected = fmax(e.expected, dist3(x, v.normals[i]));
+    e.curved = fmax(e.curved, angle_deg(radial, v.normals[i]));
+  }
+  return e;
+}
+
+/* Normals of the curved and the flat cylinder, created and after an update
+ * stretching it along z (the update recomputes them the same way). */
+typedef struct cyl_run {
+  bool made, updated;
+  cyl_err e, e_creased, e_updated, e_creased_updated;
+  double flat_deg;
+  uint32_t creased_vertices, flat_creased_vertices;
+} cyl_run;
+
+static uint32_t cyl_vertices(const tlod_mesh* m) { return m ? tlod_mesh_query_view(m).vertex_count : 0; }
+
+static void cyl_run_all(tlod_context* ctx, cyl_run* out) {
+  cyl_make(1.0);
+  tlod_mesh* curved = cyl_mesh(ctx, true, 0.0f);
+  tlod_mesh* flat = cyl_mesh(ctx, false, 0.0f);
+  /* Flat faces meet at 60 degrees at every vertex: a 30 degree crease
+   * splits them all, the curved corner normals agree within it. */
+  tlod_mesh* creased = cyl_mesh(ctx, true, 30.0f);
+  tlod_mesh* flat_creased = cyl_mesh(ctx, false, 30.0f);
+  out->made = curved && flat && creased && flat_creased;
+  if (out->made) {
+    out->e = cyl_check(curved);
+    out->e_creased = cyl_check(creased);
+    out->flat_deg = cyl_check(flat).curved;
+    out->creased_vertices = cyl_vertices(creased);
+    out->flat_creased_vertices = cyl_vertices(flat_creased);
+    cyl_make(3.0);
+    out->updated = tlod_mesh_update(curved, &g_cyl_pos[0][0], 0, NULL, 0) == TLOD_SUCCESS &&
+                   tlod_mesh_update(creased, &g_cyl_pos[0][0], 0, NULL, 0) == TLOD_SUCCESS;
+    out->e_updated = cyl_check(curved);
+    out->e_creased_updated = cyl_check(creased);
+  }
+  tlod_mesh_destroy(curved);
+  tlod_mesh_destroy(flat);
+  tlod_mesh_destroy(creased);
+  tlod_mesh_destroy(flat_creased);
+}
+
+TEST(test_curved_corner_normals) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  cyl_run r = {0};
+  cyl_run_all(ctx, &r);
+  tlod_context_destroy(ctx);
+  CHECK(r.made && r.updated);
+  printf("  corner normals: %.3g from the shape functions; to the cylinder %.3f deg curved, %.3f deg flat\n",
+         r.e.expected, r.e.curved, r.flat_deg);
+  CHECK(r.e.expected < 1e-6 && r.e_creased.expected < 1e-6);
+  CHECK(r.e.curved < 0.25 * r.flat_deg);
+  CHECK(r.creased_vertices == CYL_V && r.flat_creased_vertices > CYL_V);
+  CHECK(r.e_updated.expected < 1e-6 && r.e_creased_updated.expected < 1e-6);
+}
+
 int main(void) {
   RUN(test_hex27_faces_exact);
   RUN(test_hex20_faces_exact);
@@ -977,5 +1157,6 @@ int main(void) {
   RUN(test_random_nodes);
   RUN(test_out_of_memory);
   RUN(test_update_attribute);
+  RUN(test_curved_corner_normals);
   TEST_END();
 }

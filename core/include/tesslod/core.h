@@ -216,6 +216,12 @@ typedef enum tlod_face_type {
   _TLOD_FACE_FORCE_U32 = 0x7FFFFFFF
 } tlod_face_type;
 
+/* Computed normals: per face corner a unit normal, weighted by the corner
+ * angle or the face area, summed around the vertex's welded position. A
+ * face with a given mid-edge node (tlod_mesh_desc.face_nodes) uses at a
+ * corner the tangents of its quadratic edges (4 M - 3 P_i - P_j), i.e. the
+ * curved face's corner normal and angle; its edges without a given node
+ * count as flat. Other faces use the flat face normal. */
 typedef enum tlod_normal_mode {
   TLOD_NORMALS_DEFAULT = 0, /* == KEEP */
   /* Use the given normals, normalised. Zero-length or non-finite ones are
