@@ -204,7 +204,7 @@ static tlod_result _tlod_import_dispatch(_tlod_import_job* job) {
                            "or .stl)");
 }
 
-/* VTK's formats (vtk_import.cpp reads them; without TLOD_WITH_VTK the stub below refuses them).
+/* VTK's formats (vtk_import.cpp reads them; a build without TLOD_WITH_VTK refuses them below, naming the option).
  * A '*' in the file name is a numbered series of one of them. */
 bool _tlod_is_vtk_path(const char* path) {
   return _tlod_str_ends_with_nocase(path, ".vtk") || _tlod_str_ends_with_nocase(path, ".vtu") ||
