@@ -56,6 +56,7 @@ static tlod_context_desc context_desc_defaults(const tlod_context_desc* in) {
     if (d.thread_count > 64) d.thread_count = 64;
   }
   if (!d.label) d.label = "tesslod";
+  d.simd = _tlod_simd_resolve(d.simd);
   return d;
 }
 
@@ -85,6 +86,8 @@ static tlod_result check_desc(const tlod_context_desc* desc) {
   if (desc->parallel_for.func && desc->parallel_for.worker_count > TLOD_MAX_WORKERS)
     return refuse_desc(desc, "parallel_for.worker_count %u is above TLOD_MAX_WORKERS (%u)",
                        desc->parallel_for.worker_count, (unsigned)TLOD_MAX_WORKERS);
+  if ((unsigned)desc->simd >= TLOD_SIMD_NUM)
+    return refuse_desc(desc, "simd %u is not a tlod_simd", (unsigned)desc->simd);
   return TLOD_SUCCESS;
 }
 

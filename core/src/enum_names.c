@@ -27,3 +27,4 @@ DEFINE_NAMES(tlod_shading_normal, tlod_shading_normal, TLOD_SHADING_NORMAL_NAMES
              TLOD_SHADING_NORMAL_INTERPOLATED)
 DEFINE_NAMES(tlod_alpha_mode, tlod_alpha_mode, TLOD_ALPHA_MODE_NAMES, TLOD_ALPHA_DEFAULT, TLOD_ALPHA_GLOBAL)
 DEFINE_NAMES(tlod_normal_mode, tlod_normal_mode, TLOD_NORMAL_MODE_NAMES, TLOD_NORMALS_DEFAULT, TLOD_NORMALS_KEEP)
+DEFINE_NAMES(tlod_simd, tlod_simd, TLOD_SIMD_NAMES, TLOD_SIMD_DEFAULT, _tlod_simd_best())

@@ -24,6 +24,10 @@ struct tlod_context {
 /* Core's own spelling of the public context plumbing (tesslod/core.h,
  * "For the layers above core"): allocation through the context's hooks,
  * errors naming the element, logging, parallel-for, the clock. */
+/* simd.c: the best instruction set of this processor; a desc's cap resolved. */
+tlod_simd _tlod_simd_best(void);
+tlod_simd _tlod_simd_resolve(tlod_simd wanted);
+
 #define _tlod_alloc tlod_context_alloc
 #define _tlod_calloc tlod_context_calloc
 #define _tlod_free tlod_context_free
@@ -43,6 +47,7 @@ void _tlod_pool_run(_tlod_pool* pool, tlod_task_fn fn, void* data, uint32_t coun
 struct tlod_mesh {
   tlod_context* ctx;
   char label[64];
+  uint64_t generation; /* tlod_mesh_view.generation */
   tlod_mesh_desc desc; /* resolved; array pointers cleared */
 
   uint32_t vertex_count;
@@ -143,6 +148,7 @@ struct tlod_surface {
   float* alpha;           /* per mesh vertex: the shape factor used */
   float (*snapshot)[6];   /* vertex positions and normals the patches were built from */
   char label[64];
+  uint64_t generation; /* tlod_surface_view.generation */
 };
 
 /* One canonical edge function (docs/design.md invariant 1): the point at

@@ -481,6 +481,7 @@ tlod_result tlod_mesh_create(tlod_context* ctx, const tlod_mesh_desc* desc, tlod
   tlod_mesh* m = _tlod_calloc(ctx, 1, sizeof(*m));
   if (!m) return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (mesh)", plan.label);
   m->ctx = ctx;
+  m->generation = 1;
   memcpy(m->label, plan.label, sizeof(plan.label));
   r = build(m, &plan);
   if (r != TLOD_SUCCESS) {
@@ -662,6 +663,7 @@ tlod_result tlod_mesh_update(tlod_mesh* mesh, const float* positions, uint32_t p
   /* Smooth flags compare positions and normals bitwise; both may change. */
   _tlod_mesh_refresh_smooth(mesh);
   compute_bbox(mesh);
+  mesh->generation++;
   return TLOD_SUCCESS;
 }
 
@@ -681,5 +683,6 @@ tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* m) {
       .attribute_count = m->attribute_count,
       .attributes = (const float(*)[4])m->attributes,
       .face_nodes = (const uint32_t(*)[TLOD_FACE_NODES])m->face_nodes,
+      .generation = m->generation,
   };
 }

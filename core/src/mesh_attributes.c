@@ -127,6 +127,7 @@ tlod_result tlod_mesh_update_attribute(tlod_mesh* mesh, uint32_t attribute, cons
            mesh->attributes[(size_t)mesh->split_source[v - input] * na + attribute], sizeof(*mesh->attributes));
   /* Seam flags compare attribute values bitwise. */
   _tlod_mesh_refresh_smooth(mesh);
+  mesh->generation++;
   return TLOD_SUCCESS;
 }
 

@@ -204,6 +204,7 @@ tlod_result tlod_surface_create(tlod_context* ctx, const tlod_mesh* mesh, const 
   tlod_surface* s = _tlod_calloc(ctx, 1, sizeof(*s));
   if (!s) return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "surface '%s': out of memory", d.label);
   s->ctx = ctx;
+  s->generation = 1;
   s->mesh = mesh;
   s->desc = d;
   snprintf(s->label, sizeof(s->label), "%s", d.label);
@@ -255,6 +256,7 @@ tlod_result tlod_surface_refresh(tlod_surface* s, uint32_t* updated) {
   _tlod_parallel_for(s->ctx, build_range, &job, m->face_count);
   take_snapshot(s);
   _tlod_free(s->ctx, dirty);
+  s->generation += count > 0;
   if (updated) *updated = count;
   return TLOD_SUCCESS;
 }

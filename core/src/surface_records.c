@@ -6,8 +6,11 @@
 
 tlod_surface_view tlod_surface_query_view(const tlod_surface* s) {
   if (!s) return (tlod_surface_view){0};
-  return (tlod_surface_view){
-      .type = s->desc.type, .patch_count = s->patch_count, .patches = s->info, .vertex_alpha = s->alpha};
+  return (tlod_surface_view){.type = s->desc.type,
+                             .patch_count = s->patch_count,
+                             .patches = s->info,
+                             .vertex_alpha = s->alpha,
+                             .generation = s->generation};
 }
 
 static void copy3(float dst[4], const float src[3]) { memcpy(dst, src, sizeof(float) * 3); }

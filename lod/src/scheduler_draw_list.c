@@ -52,12 +52,8 @@ static void fill_instances(_tlod_frame* fr) {
     if (!vs->visible[f]) continue;
     uint32_t l = (uint32_t)vs->levels[f];
     tlod_draw_instance* in = &vs->instances[start[bucket_of(fr, f, l)]++];
-    float morph = _tlod_morph_of(vs->cont[f], l);
-    *in = (tlod_draw_instance){.patch = f, .level = l, .morph = morph};
-    /* Edges blend with their patch (see _tlod_strip_needed); a triangle's
-     * unused fourth entry is exact. */
-    for (uint32_t e = 0; e < 4; e++)
-      in->edge_morph[e] = e < fr->mesh.face_corners[f] ? morph : 1.0f;
+    /* Edges blend with their patch (see _tlod_strip_needed). */
+    *in = (tlod_draw_instance){.patch = f, .level = l, .morph = _tlod_morph_of(vs->cont[f], l)};
   }
   vs->list.instances = vs->instances;
   vs->list.buckets = vs->buckets;
@@ -128,6 +124,7 @@ tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   vs->list.e_max = vs->e_max;
   vs->list.vertex_depth = vs->depth;
   vs->list.effective_epsilon = fr->eps;
+  vs->list.generation++;
   fill_instances(fr);
   tlod_result r = fill_strips(fr);
   fill_stats(fr);

@@ -139,8 +139,6 @@ static void check_flat(const tlod_draw_list* flat, const tlod_draw_list* error, 
   for (uint32_t i = 0; i < flat->instance_count; i++) {
     const tlod_draw_instance* in = &flat->instances[i];
     CHECK(in->level == 0 && in->morph == 1.0f);
-    for (int e = 0; e < 4; e++)
-      CHECK(in->edge_morph[e] == 1.0f);
   }
 }
 

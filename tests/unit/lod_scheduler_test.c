@@ -446,9 +446,6 @@ static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_
     if ((int)in->level != dl->levels[in->patch])
       FAILF("instance %u: level %u, levels[%u] = %d", k, in->level, in->patch, dl->levels[in->patch]);
     if (!(in->morph >= 0 && in->morph <= 1)) FAILF("patch %u: morph %g", in->patch, in->morph);
-    for (uint32_t e = 0; e < fx->ncorner[in->patch]; ++e)
-      if (!(in->edge_morph[e] >= 0 && in->edge_morph[e] <= 1))
-        FAILF("patch %u: edge_morph[%u] %g", in->patch, e, in->edge_morph[e]);
     inst[in->patch] = in;
   }
   uint32_t next = 0;
@@ -505,9 +502,9 @@ static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_
       if (need && !count)
         FAILF("patch %u edge %u (level %d) meets patch %u (level %d) across a %s edge without a strip", p, e,
               dl->levels[p], lk.face, dl->levels[lk.face], lk.smooth ? "smooth" : "crease");
-      if (!count && inst[p]->edge_morph[e] != inst[lk.face]->edge_morph[lk.edge])
+      if (!count && inst[p]->morph != inst[lk.face]->morph)
         FAILF("patch %u edge %u: edge morph %.9g, neighbour %u edge %u: %.9g, equal levels %d and no strip", p, e,
-              inst[p]->edge_morph[e], lk.face, lk.edge, inst[lk.face]->edge_morph[lk.edge], dl->levels[p]);
+              inst[p]->morph, lk.face, lk.edge, inst[lk.face]->morph, dl->levels[p]);
     }
   }
   ok = true;
@@ -1130,8 +1127,6 @@ TEST(test_geomorph_starts_at_coarse_level) {
                 "patch %u jumped from level %d to %u in one frame of %g ms (eps needs %d)", in->patch, l0, in->level,
                 dt, need);
       one.inst[i].morph = 1;
-      for (int e = 0; e < 4; ++e)
-        one.inst[i].edge_morph[e] = 1;
       if ((int)in->level != l0 + 1) continue;
       risen++;
       const tlod_patch_info* pi = &fx.info[in->patch];
@@ -1142,12 +1137,7 @@ TEST(test_geomorph_starts_at_coarse_level) {
       CHECK_MSG(in->morph > 0 && fabs(in->morph - want) <= 1e-5 * want + 1e-7,
                 "patch %u rose to level %u with blend %.9g (step %g, eps blend %.9g)", in->patch, in->level, in->morph,
                 step, a_eps);
-      for (uint32_t e = 0; e < fx.ncorner[in->patch]; ++e)
-        CHECK_MSG(in->edge_morph[e] == in->morph, "patch %u edge %u blend %.9g after rising, patch %.9g", in->patch, e,
-                  in->edge_morph[e], in->morph);
       zero.inst[i].morph = 0;
-      for (int e = 0; e < 4; ++e)
-        zero.inst[i].edge_morph[e] = 0;
     }
     CHECK_MSG(risen > fx.patches / 2, "%s: only %u of %u patches rose", s->name, risen, fx.patches);
     risen_total += risen;
@@ -1359,9 +1349,6 @@ TEST(test_geomorph_continuous) {
     for (uint32_t i = 0; i < dl->instance_count; ++i) {
       const tlod_draw_instance* in = &dl->instances[i];
       CHECK_MSG(in->morph > 0 && in->morph <= 1, "patch %u: blend %.9g outside (0, 1]", in->patch, in->morph);
-      for (uint32_t e = 0; e < fx.ncorner[in->patch]; ++e)
-        CHECK_MSG(in->edge_morph[e] > 0 && in->edge_morph[e] <= 1, "patch %u edge %u: blend %.9g", in->patch, e,
-                  in->edge_morph[e]);
       fractional += in->morph < 1;
       const tlod_patch_info* pi = &fx.info[in->patch];
       double scale = ref_scale(&r, pi);

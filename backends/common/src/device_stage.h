@@ -81,13 +81,19 @@ static inline bool _tlod_stage_reserve(const tlod_context* ctx, _tlod_stage* s, 
          _tlod_device_grow(ctx, (void**)&s->ranges, &s->range_cap, desc->item_count, sizeof(*s->ranges));
 }
 
+/* The fourth edge's blend: a quad's edge blends with its patch; a
+ * triangle's unused fourth edge is exact. */
+static inline float _tlod_stage_fourth_edge_morph(const tlod_mesh_view* m, const tlod_draw_instance* in) {
+  return in->patch < m->face_count && m->face_corners[in->patch] == 4 ? in->morph : 1.0f;
+}
+
 /* One item's strips and their references, after its instances. */
 static inline void _tlod_stage_strips(_tlod_stage* s, const tlod_patterns* p, const tlod_draw_list* dl) {
   for (uint32_t j = 0; j < dl->strip_count; j++) {
     const tlod_draw_strip* st = &dl->strips[j];
     /* Each side blends its edge points as its own patch does. */
-    float ma = dl->instances[s->instance_of[st->patch_a]].edge_morph[st->edge_a];
-    float mb = dl->instances[s->instance_of[st->patch_b]].edge_morph[st->edge_b];
+    float ma = dl->instances[s->instance_of[st->patch_a]].morph;
+    float mb = dl->instances[s->instance_of[st->patch_b]].morph;
     uint32_t id = s->strip_count + j;
     s->strips[id] = (tlod_gl_strip){st->patch_a,
                                     st->patch_b,
@@ -123,8 +129,8 @@ static inline tlod_result _tlod_stage_items(tlod_context* ctx, _tlod_stage* s, c
           (tlod_gl_instance){.patch = in->patch,
                              .level = in->level,
                              .edge_levels = s->hardware ? _tlod_stage_edge_levels(&m, dl, in) : 0u,
-                             .morph = {in->morph, in->edge_morph[0], in->edge_morph[1], in->edge_morph[2]},
-                             .morph_e3 = {in->edge_morph[3], 0, 0, 0}};
+                             .morph = {in->morph, in->morph, in->morph, in->morph},
+                             .morph_e3 = {_tlod_stage_fourth_edge_morph(&m, in), 0, 0, 0}};
       if (in->patch < dl->patch_count) s->instance_of[in->patch] = j;
     }
     _tlod_stage_strips(s, p, dl);

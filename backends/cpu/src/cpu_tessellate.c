@@ -368,7 +368,8 @@ static tlod_result take_draw_list(tess* t) {
       return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
                                "tlod_cpu_tessellate: draw list instance %u: patch %u", k, in->patch);
     t->morph[in->patch][0] = in->morph;
-    memcpy(&t->morph[in->patch][1], in->edge_morph, sizeof(float) * 4);
+    for (uint32_t e = 0; e < t->m.face_corners[in->patch]; e++)
+      t->morph[in->patch][1 + e] = in->morph; /* edges blend with their patch */
   }
   return check_strips(t, dl);
 }

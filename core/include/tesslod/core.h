@@ -176,6 +176,20 @@ typedef struct tlod_parallel_for {
   void* user_data;
 } tlod_parallel_for;
 
+/* Instruction sets the hot loops (the scheduler's per-patch passes, the CPU
+ * evaluator's kernels) choose from at run time. Every level gives bitwise
+ * the same results as SCALAR (the kernels keep the scalar operation order,
+ * and nothing is contracted into FMAs): a level changes speed only. */
+typedef enum tlod_simd {
+  TLOD_SIMD_DEFAULT = 0, /* the best this processor has */
+  TLOD_SIMD_SCALAR,      /* plain C, no vector instructions chosen by tesslod */
+  TLOD_SIMD_SSE2,        /* x86-64 baseline */
+  TLOD_SIMD_AVX2,        /* AVX2 (256-bit) */
+  TLOD_SIMD_AVX512,      /* AVX-512 F, BW, DQ and VL (512-bit) */
+  TLOD_SIMD_NUM,
+  _TLOD_SIMD_FORCE_U32 = 0x7FFFFFFF
+} tlod_simd;
+
 typedef struct tlod_context_desc {
   tlod_allocator allocator; /* default: malloc/free */
   tlod_logger logger;       /* default: none */
@@ -184,6 +198,10 @@ typedef struct tlod_context_desc {
   uint32_t thread_count;
   tlod_parallel_for parallel_for; /* default: built-in pool */
   const char* label;              /* shows up in log messages; default "tesslod" */
+  /* The highest instruction set the hot loops may use; DEFAULT: the best
+   * this processor has. A level the processor lacks is lowered to the best
+   * it has (tlod_context_simd() tells); a value >= TLOD_SIMD_NUM is refused. */
+  tlod_simd simd;
 } tlod_context_desc;
 
 /* Creates a context. desc may be NULL (all defaults). Fails with
@@ -197,6 +215,8 @@ TLOD_API tlod_result tlod_context_create(const tlod_context_desc* desc, tlod_con
 TLOD_API void tlod_context_destroy(tlod_context* ctx);
 /* The desc with every default resolved. */
 TLOD_API tlod_context_desc tlod_context_query_desc(const tlod_context* ctx);
+/* The instruction set the hot loops of this context use (never DEFAULT). */
+TLOD_API tlod_simd tlod_context_simd(const tlod_context* ctx);
 /* Message of the last failed call on this context, naming the element at
  * fault ("face 17: index 4096 out of range (4000 vertices)"); "" if none. */
 TLOD_API const char* tlod_context_last_error(const tlod_context* ctx);
@@ -580,18 +600,22 @@ TLOD_API tlod_result tlod_surface_eval(const tlod_surface* surface, uint32_t pat
 #define TLOD_ALPHA_MODE_NAMES(X) X(TLOD_ALPHA_GLOBAL, "global") X(TLOD_ALPHA_PER_VERTEX, "per-vertex")
 #define TLOD_NORMAL_MODE_NAMES(X)                                                                                      \
   X(TLOD_NORMALS_KEEP, "keep") X(TLOD_NORMALS_ANGLE, "angle") X(TLOD_NORMALS_AREA, "area")
+#define TLOD_SIMD_NAMES(X)                                                                                             \
+  X(TLOD_SIMD_SCALAR, "scalar") X(TLOD_SIMD_SSE2, "sse2") X(TLOD_SIMD_AVX2, "avx2") X(TLOD_SIMD_AVX512, "avx512")
 
 /* Name of a value ("phong"); NULL for a value outside the enum. */
 TLOD_API const char* tlod_surface_type_name(tlod_surface_type type);
 TLOD_API const char* tlod_shading_normal_name(tlod_shading_normal mode);
 TLOD_API const char* tlod_alpha_mode_name(tlod_alpha_mode mode);
 TLOD_API const char* tlod_normal_mode_name(tlod_normal_mode mode);
+TLOD_API const char* tlod_simd_name(tlod_simd simd); /* DEFAULT: the name of this processor's best */
 /* Value of a name (exact, case-sensitive); false (and *out untouched) when
  * the name is none of the table's. */
 TLOD_API bool tlod_surface_type_from_name(const char* name, tlod_surface_type* out);
 TLOD_API bool tlod_shading_normal_from_name(const char* name, tlod_shading_normal* out);
 TLOD_API bool tlod_alpha_mode_from_name(const char* name, tlod_alpha_mode* out);
 TLOD_API bool tlod_normal_mode_from_name(const char* name, tlod_normal_mode* out);
+TLOD_API bool tlod_simd_from_name(const char* name, tlod_simd* out);
 
 /* ------------------------------------------------------------------------ */
 /* For the layers above core (lod, backends) and for backend authors        */
@@ -654,6 +678,10 @@ typedef struct tlod_mesh_view {
    * neighbours' nodes shared onto edges that had none): vertex indices or
    * TLOD_NO_NODE; NULL when the desc had no face_nodes. */
   const uint32_t (*face_nodes)[TLOD_FACE_NODES];
+  /* Starts at 1 and grows by one on every successful tlod_mesh_update or
+   * tlod_mesh_update_attribute: equal generations, equal arrays (a
+   * scheduler or backend may skip work for an unchanged mesh). */
+  uint64_t generation;
 } tlod_mesh_view;
 TLOD_API tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* mesh);
 
@@ -673,6 +701,9 @@ typedef struct tlod_surface_view {
   uint32_t patch_count;   /* == the mesh's face count */
   const tlod_patch_info* patches;
   const float* vertex_alpha; /* per mesh vertex: the Phong shape factor in use (0 for FLAT) */
+  /* Starts at 1 and grows by one on every tlod_surface_refresh that rebuilt
+   * at least one patch: equal generations, equal patches. */
+  uint64_t generation;
 } tlod_surface_view;
 TLOD_API tlod_surface_view tlod_surface_query_view(const tlod_surface* surface);
 

@@ -144,7 +144,10 @@ typedef struct tlod_scheduler_desc {
   /* Frame-time target; epsilon follows the measured frame times. 0 == none. */
   float frame_time_target_ms;
   bool no_frustum_cull; /* keep patches outside the frustum; default false (cull) */
-  const char* label;    /* default "scheduler" */
+  /* The straightforward path, one stage at a time: slow, kept as the oracle
+   * the fast path is tested against (their draw lists are bitwise equal). */
+  bool reference_path;
+  const char* label; /* default "scheduler" */
 } tlod_scheduler_desc;
 
 /* One camera. Matrices are column-major (OpenGL): clip = proj * view * world. */
@@ -176,8 +179,7 @@ typedef struct tlod_draw_instance {
   uint32_t level;
   /* Blend of the vertices first inserted at `level`: 0 = at their parents'
    * midpoint (the coarser level exactly), 1 = on the surface. */
-  float morph;
-  float edge_morph[4]; /* the same for the level's new vertices on edge e */
+  float morph; /* the level's new vertices on the patch's edges blend the same (edges blend with their patch) */
 } tlod_draw_instance;
 
 /* A connection strip between edge ea of patch a and edge eb of patch b,
@@ -219,6 +221,9 @@ typedef struct tlod_draw_list {
   float e_max_min, e_max_max; /* over visible patches */
   float effective_epsilon;    /* after budget and frame-time control */
   double stage_ms[TLOD_STAGE_NUM];
+  /* Grows whenever an update changes anything above but stage_ms: equal
+   * generations, equal draw lists (a backend need not re-send it). */
+  uint64_t generation;
 } tlod_draw_list;
 
 typedef struct tlod_scheduler tlod_scheduler;
