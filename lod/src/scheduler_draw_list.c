@@ -45,13 +45,26 @@ static void count_visible(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t 
   ch->e_max_max = e > ch->e_max_max ? e : ch->e_max_max;
 }
 
+/* The strip across edge e of visible patch f at level l (a strip is needed). */
+static tlod_draw_strip strip_of(const _tlod_frame* fr, uint32_t f, uint32_t e, uint32_t l) {
+  tlod_edge_link link = fr->mesh.links[f][e];
+  uint32_t lg = _tlod_drawn_level(fr->vs->cont[link.face]);
+  /* The coarser side's edge points are exact when its new vertices are at
+   * rest: then the finer side has the same points (all of lower level). */
+  uint32_t coarse = l < lg ? f : link.face, lc = l < lg ? l : lg;
+  bool exact = link.smooth && l != lg && _tlod_morph_of(fr->vs->cont[coarse], lc) == 1.0f;
+  return (tlod_draw_strip){f, link.face, (uint8_t)e, link.edge, (uint8_t)l, (uint8_t)lg, !link.smooth, exact};
+}
+
 /* Strips of visible patch f at level l into its chunk. */
 static void count_strips(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t f, uint32_t l) {
   for (uint32_t e = 0; e < fr->mesh.face_corners[f]; e++) {
     if (!_tlod_strip_needed(fr, fr->vs->cont, f, e)) continue;
-    uint32_t lg = _tlod_drawn_level(fr->vs->cont[fr->mesh.links[f][e].face]);
+    tlod_draw_strip st = strip_of(fr, f, e, l);
+    uint32_t n = 0;
+    tlod_draw_strip_connection(fr->s->patterns, &st, &n);
     ch->strips++;
-    ch->strip_triangles += fr->s->patterns->connect_count[l][lg];
+    ch->strip_triangles += n;
   }
 }
 
@@ -96,12 +109,8 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
       /* Edges blend with their patch (see _tlod_strip_needed). */
       vs->instances[ch->counts[bucket_of(fr, f, l)]++] =
           (tlod_draw_instance){.patch = f, .level = l, .morph = _tlod_morph_of(vs->cont[f], l)};
-      for (uint32_t e = 0; ch->strips && e < fr->mesh.face_corners[f]; e++) {
-        if (!_tlod_strip_needed(fr, vs->cont, f, e)) continue;
-        tlod_edge_link link = fr->mesh.links[f][e];
-        vs->strips[st++] = (tlod_draw_strip){
-            f, link.face, (uint8_t)e, link.edge, (uint8_t)l, (uint8_t)vs->levels[link.face], !link.smooth};
-      }
+      for (uint32_t e = 0; ch->strips && e < fr->mesh.face_corners[f]; e++)
+        if (_tlod_strip_needed(fr, vs->cont, f, e)) vs->strips[st++] = strip_of(fr, f, e, l);
     }
   }
 }

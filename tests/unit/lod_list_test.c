@@ -127,6 +127,9 @@ static bool check_instances(const fixture* fx, const tlod_draw_list* dl) {
 /* Strips: in patch order, from the lower patch, at the patches' levels,
  * and on every smooth edge between visible patches of different levels. */
 static bool check_strips(const fixture* fx, const tlod_draw_list* dl) {
+  float* morph = calloc(dl->patch_count + 1, sizeof(float));
+  for (uint32_t i = 0; i < dl->instance_count; ++i)
+    morph[dl->instances[i].patch] = dl->instances[i].morph;
   uint64_t tris = 0;
   uint32_t k = 0;
   bool ok = true;
@@ -140,13 +143,19 @@ static bool check_strips(const fixture* fx, const tlod_draw_list* dl) {
       ok = here || !differ;
       if (!here || !ok) continue;
       const tlod_draw_strip* s = &dl->strips[k++];
+      /* Exact: smooth, different levels, the coarser side at rest. */
+      bool exact = l.smooth && s->level_a != s->level_b && morph[s->level_a < s->level_b ? p : l.face] == 1.0f;
       ok = s->patch_b == l.face && s->edge_b == l.edge && s->level_a == dl->levels[p] &&
-           s->level_b == dl->levels[l.face];
+           s->level_b == dl->levels[l.face] && s->crease == !l.smooth && s->exact == exact;
       uint32_t t = 0;
-      tlod_patterns_connection(fx->pat, s->level_a, s->level_b, &t);
+      if (exact)
+        tlod_patterns_connection_exact(fx->pat, s->level_a, s->level_b, &t);
+      else
+        tlod_patterns_connection(fx->pat, s->level_a, s->level_b, &t);
       tris += t;
     }
   }
+  free(morph);
   return ok && k == dl->strip_count && tris == dl->strip_triangles;
 }
 
@@ -315,7 +324,63 @@ TEST(test_generation) {
   shape_free(&torus);
 }
 
+/* Net count of directed edges u -> v minus v -> u over a triangle set, the
+ * points welded by parameter (point r of a at r * (64 / na), of b at
+ * j * (64 / nb)): a set that exactly fills the gap between the polylines
+ * has net +-1 on their segments only, a's one way and b's the other. */
+static bool fills_between(const uint32_t* tris, uint32_t count, uint32_t na, uint32_t nb) {
+  static int net[65][65];
+  memset(net, 0, sizeof net);
+  for (uint32_t t = 0; t < count; ++t)
+    for (int k = 0; k < 3; ++k) {
+      uint32_t r = tris[3 * t + k], q = tris[3 * t + (k + 1) % 3];
+      uint32_t u = r <= na ? r * (64 / na) : (r - na - 1) * (64 / nb),
+               v = q <= na ? q * (64 / na) : (q - na - 1) * (64 / nb);
+      net[u][v]++, net[v][u]--;
+    }
+  bool ok = true;
+  for (uint32_t u = 0; u < 64 && ok; ++u)
+    for (uint32_t v = u + 1; v <= 64 && ok; ++v) {
+      bool on_a = u % (64 / na) == 0 && v == u + 64 / na, on_b = u % (64 / nb) == 0 && v == u + 64 / nb;
+      int want = (on_a ? -1 : 0) + (on_b ? 1 : 0); /* a traversed backwards */
+      ok = net[u][v] == want;
+    }
+  return ok;
+}
+
+/* The exact connection patterns: the full ones without the triangles with a
+ * point of each side at the same parameter, |2^la - 2^lb| of them, still
+ * filling the gap between the polylines exactly (as the full ones do). */
+TEST(test_exact_connections) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  tlod_patterns* pat = NULL;
+  CHECK(ctx && tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = 6}, &pat) == TLOD_SUCCESS);
+  for (uint32_t la = 0; la <= 6; ++la)
+    for (uint32_t lb = 0; lb <= 6; ++lb) {
+      uint32_t na = 1u << la, nb = 1u << lb, nf = 0, ne = 0, kept = 0;
+      const uint32_t *full = tlod_patterns_connection(pat, la, lb, &nf),
+                     *ex = tlod_patterns_connection_exact(pat, la, lb, &ne);
+      CHECK_MSG(ne == (na > nb ? na - nb : nb - na), "(%u, %u): %u exact triangles", la, lb, ne);
+      CHECK_MSG(fills_between(full, nf, na, nb), "(%u, %u): the full pattern leaves a gap", la, lb);
+      if (la != lb) CHECK_MSG(fills_between(ex, ne, na, nb), "(%u, %u): the exact pattern leaves a gap", la, lb);
+      for (uint32_t t = 0; t < nf && kept < ne; ++t)
+        kept += !memcmp(full + 3 * t, ex + 3 * kept, sizeof(uint32_t[3]));
+      CHECK_MSG(kept == ne, "(%u, %u): exact is not a subsequence of the full pattern", la, lb);
+    }
+  tlod_draw_strip st = {.level_a = 2, .level_b = 4, .exact = true};
+  uint32_t n = 99;
+  CHECK(tlod_draw_strip_connection(pat, &st, &n) && n == 12);
+  st.exact = false;
+  CHECK(tlod_draw_strip_connection(pat, &st, &n) && n == 4 + 16 - 2);
+  CHECK(!tlod_draw_strip_connection(pat, NULL, &n) && n == 0);
+  st.level_b = 7;
+  CHECK(!tlod_draw_strip_connection(pat, &st, &n) && n == 0);
+  tlod_patterns_destroy(pat);
+  tlod_context_destroy(ctx);
+}
+
 int main(void) {
+  RUN(test_exact_connections);
   RUN(test_builds_equal);
   RUN(test_generation);
   TEST_END();
