@@ -52,8 +52,8 @@ static tlod_result out_of_memory(const tlod_scheduler* s) {
 }
 
 static void free_view(tlod_context* ctx, _tlod_view_state* v) {
-  void* arrays[] = {v->levels, v->e_max, v->scale,   v->depth,     v->contour,
-                    v->target, v->cont,  v->visible, v->instances, v->strips};
+  void* arrays[] = {v->levels, v->e_max,   v->scale,     v->depth,  v->contour, v->target,
+                    v->cont,   v->visible, v->instances, v->strips, v->chunks};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(ctx, arrays[i]);
   memset(v, 0, sizeof(*v));
@@ -74,7 +74,7 @@ static tlod_result alloc_view(tlod_scheduler* s, _tlod_view_state* v) {
   v->instances = tlod_context_calloc(ctx, np, sizeof(tlod_draw_instance));
   bool ok =
       v->levels && v->e_max && v->scale && v->depth && v->contour && v->target && v->cont && v->visible && v->instances;
-  return ok ? TLOD_SUCCESS : out_of_memory(s);
+  return ok && _tlod_list_alloc(s, v) == TLOD_SUCCESS ? TLOD_SUCCESS : out_of_memory(s);
 }
 
 tlod_result tlod_scheduler_create(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
@@ -120,7 +120,7 @@ tlod_scheduler_desc tlod_scheduler_query_desc(const tlod_scheduler* s) {
 void tlod_scheduler_reset(tlod_scheduler* s) {
   if (!s) return;
   for (uint32_t v = 0; v < s->view_count; v++)
-    s->views[v].has_history = false;
+    s->views[v].has_history = s->views[v].key_valid = false;
   s->eps_scale = 1.0f;
   s->smoothed_ms = 0.0f;
 }
@@ -246,6 +246,14 @@ static tlod_result prepare_update(tlod_scheduler* s, const tlod_frame_desc* fram
   return r;
 }
 
+/* Temporal coherence: nothing changed, the draw lists and their
+ * generations stay (no stage ran: every stage_ms is 0). */
+static tlod_result keep_views(tlod_scheduler* s, const tlod_frame_desc* frame) {
+  for (uint32_t v = 0; v < frame->view_count; v++)
+    memset(s->views[v].list.stage_ms, 0, sizeof(s->views[v].list.stage_ms));
+  return TLOD_SUCCESS;
+}
+
 tlod_result tlod_scheduler_update(tlod_scheduler* s, const tlod_frame_desc* frame) {
   if (!s) return TLOD_ERROR_INVALID_ARGUMENT;
   tlod_result r = prepare_update(s, frame);
@@ -254,9 +262,11 @@ tlod_result tlod_scheduler_update(tlod_scheduler* s, const tlod_frame_desc* fram
    * since the last frame may have moved the arrays. */
   tlod_mesh_view mesh = tlod_mesh_query_view(s->mesh);
   tlod_surface_view surface = tlod_surface_query_view(s->surface);
+  if (_tlod_lists_unchanged(s, frame, &mesh, &surface)) return keep_views(s, frame);
   if (s->fast_path) r = _tlod_soa_update(s, &mesh, &surface);
   for (uint32_t v = 0; v < frame->view_count && r == TLOD_SUCCESS; v++)
     r = plan_view(s, v, frame, &mesh, &surface);
+  if (r == TLOD_SUCCESS) _tlod_lists_remember(s, frame, &mesh, &surface);
   return r;
 }
 

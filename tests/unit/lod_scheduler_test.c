@@ -479,10 +479,18 @@ static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_
             dl->levels[st->patch_b]);
     if (st->crease != !lk.smooth)
       FAILF("strip %u: crease %d on a %s edge", k, st->crease, lk.smooth ? "smooth" : "crease");
+    /* Exact: a smooth level difference whose coarser side is at rest (its
+     * edge points are the finer side's); then the degenerate triangles go. */
+    const tlod_draw_instance* coarse = inst[st->level_a < st->level_b ? st->patch_a : st->patch_b];
+    bool exact = lk.smooth && st->level_a != st->level_b && coarse->morph == 1.0f;
+    if (st->exact != exact) FAILF("strip %u: exact %d, expected %d", k, st->exact, exact);
     strips_at[4 * st->patch_a + st->edge_a]++;
     strips_at[4 * st->patch_b + st->edge_b]++;
     uint32_t c = 0;
-    tlod_patterns_connection(fx->pat, st->level_a, st->level_b, &c);
+    if (exact)
+      tlod_patterns_connection_exact(fx->pat, st->level_a, st->level_b, &c);
+    else
+      tlod_patterns_connection(fx->pat, st->level_a, st->level_b, &c);
     stris += c;
   }
   if (stris != dl->strip_triangles)

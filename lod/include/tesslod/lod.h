@@ -189,7 +189,18 @@ typedef struct tlod_draw_strip {
   uint8_t edge_a, edge_b;
   uint8_t level_a, level_b;
   bool crease; /* split normals (or alphas), not a level difference */
+  /* A smooth edge between different levels whose coarser side draws its
+   * edge points exact (morph 1, or level 0): the points the two sides share
+   * coincide, so the strip is tlod_patterns_connection_exact() (only the
+   * |2^la - 2^lb| triangles that fill gaps); else tlod_patterns_connection(). */
+  bool exact;
 } tlod_draw_strip;
+
+/* The connection pattern a strip is drawn with (see exact), its triangle
+ * count in *triangle_count; NULL (count 0) for a NULL strip or patterns,
+ * or levels above the patterns' max level. */
+TLOD_API const uint32_t* tlod_draw_strip_connection(const tlod_patterns* patterns, const tlod_draw_strip* strip,
+                                                    uint32_t* triangle_count);
 
 typedef enum tlod_stage {
   TLOD_STAGE_SILHOUETTE = 0, /* d_i per vertex */

@@ -2,6 +2,7 @@
  * atomically: complete or not at all). */
 #include <string.h>
 
+#include "bench_bandwidth.h"
 #include "bench_eval.h"
 #include "bench_gl.h"
 #include "bench_lod.h"
@@ -15,11 +16,12 @@ static int run_lod_suites(const bench_options* o, const bench_gpu* gpu, FILE* cs
   static const char* const default_models[] = {"demo:cow"};
   bench_lod_options lo = {o->threads, o->thread_count, o->frames, o->table1_count ? o->table1 : default_models,
                           o->table1_count ? o->table1_count : 1};
-  double bandwidth = bench_memcpy_bandwidth();
-  printf("tlod bench --suite %s: memcpy %.2f GB/s\n", o->suite, bandwidth * 1e-9);
+  bench_bandwidth bw;
+  if (!bench_bandwidth_measure(&bw)) return cli_error(CLI_FAILED, "bandwidth: out of memory");
+  bench_bandwidth_print(&bw);
   bool all = !strcmp(o->suite, "all");
   int rc = CLI_OK;
-  if (all || !strcmp(o->suite, "scheduler")) rc = bench_scheduler(&lo, bandwidth, csv);
+  if (all || !strcmp(o->suite, "scheduler")) rc = bench_scheduler(&lo, &bw, csv);
   if (rc == CLI_OK && (all || !strcmp(o->suite, "table1"))) rc = bench_table1(&lo, csv);
   if (rc == CLI_OK && (all || !strcmp(o->suite, "gl"))) rc = bench_gl(gpu, lo.inputs, lo.input_count, o->frames, csv);
   if (rc == CLI_OK && (all || !strcmp(o->suite, "draw"))) rc = bench_draw(gpu, o->frames, csv);

@@ -4,6 +4,8 @@
  * repeats; best, mean and worst are reported. */
 #include "bench_eval.h"
 
+#include "bench_bandwidth.h"
+
 #include <string.h>
 
 #include "cli.h"
@@ -26,8 +28,8 @@ typedef struct bench_state {
   const bench_options* o;
   cli_mesh in;
   FILE* csv;
-  double flat_ms; /* evaluation time of flat for the current level/threads */
-  double bandwidth;
+  double flat_ms;     /* evaluation time of flat for the current level/threads */
+  bench_bandwidth bw; /* measured in this run */
 } bench_state;
 
 static void report(bench_state* b, const char* stage, const char* surface, uint32_t level, uint32_t threads,
@@ -37,9 +39,10 @@ static void report(bench_state* b, const char* stage, const char* surface, uint3
   if (!strcmp(stage, "evaluate") && strcmp(surface, "flat") != 0 && b->flat_ms > 0)
     snprintf(ratio, sizeof(ratio), " %s/flat %.2fx", surface, t->best / b->flat_ms);
   char bw[64] = "";
+  double copy = bench_bandwidth_rates(&b->bw, threads)->copy;
   if (bytes > 0)
-    snprintf(bw, sizeof(bw), " out %.2f GB/s = %.0f%% of memcpy", bytes / (t->best * 1e-3) * 1e-9,
-             100.0 * bytes / (t->best * 1e-3) / b->bandwidth);
+    snprintf(bw, sizeof(bw), " out %.2f GB/s = %.0f%% of memcpy T%u", bytes / (t->best * 1e-3) * 1e-9,
+             100.0 * bytes / (t->best * 1e-3) / copy, threads >= 2 ? 2 : 1);
   printf("%-10s %-6s L%-2u T%-2u best %9.2f ms mean %9.2f worst %9.2f  %8.2f M%s/s%s%s\n", stage, surface, level,
          threads, t->best, t->mean, t->worst, rate * 1e-6, unit, ratio, bw);
   if (b->csv)
@@ -151,9 +154,12 @@ int bench_eval(const bench_options* o, FILE* csv) {
   if (rc != CLI_OK) return rc;
   if (b.csv)
     fprintf(b.csv, "stage,surface,level,threads,best_ms,mean_ms,worst_ms,items,unit,rate_per_s,out_bytes_per_s\n");
-  b.bandwidth = bench_memcpy_bandwidth();
-  printf("tlod bench: %s, %u triangles, %u vertices; memcpy %.2f GB/s (bytes copied per second, best of 5)\n", o->in,
-         b.in.face_count, b.in.vertex_count, b.bandwidth * 1e-9);
+  if (!bench_bandwidth_measure(&b.bw)) {
+    cli_mesh_free(&b.in);
+    return cli_error(CLI_FAILED, "bandwidth: out of memory");
+  }
+  printf("tlod bench: %s, %u triangles, %u vertices\n", o->in, b.in.face_count, b.in.vertex_count);
+  bench_bandwidth_print(&b.bw);
   for (uint32_t i = 0; i < o->thread_count && rc == CLI_OK; i++)
     rc = bench_threads(&b, o->threads[i]);
   cli_mesh_free(&b.in);

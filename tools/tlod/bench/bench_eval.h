@@ -1,5 +1,5 @@
 /* tlod bench --suite eval (bench_eval.c), --suite build (bench_build.c) and
- * the memcpy bandwidth (bench_bandwidth.c). */
+ * the other suites of IN. */
 #ifndef TLOD_TOOLS_BENCH_EVAL_H
 #define TLOD_TOOLS_BENCH_EVAL_H
 
@@ -7,8 +7,6 @@
 
 #include "bench_options.h"
 
-/* Best memcpy rate of a 256 MiB buffer, bytes copied per second. */
-double bench_memcpy_bandwidth(void);
 /* Preprocessing and CPU evaluation rates on o->in; csv (may be NULL) gets one row per case. */
 int bench_eval(const bench_options* o, FILE* csv);
 /* Surface build CPU time on one thread, measured error tables against the

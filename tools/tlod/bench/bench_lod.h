@@ -31,8 +31,14 @@ void bench_scene_free(bench_scene* s);
 void bench_orbit_view(const tlod_mesh* mesh, float angle, float distance_scale, uint32_t w, uint32_t h,
                       tlod_view_desc* v);
 
-/* Scheduler time per frame on 10k, 100k and 1M patches for each thread count. */
-int bench_scheduler(const bench_lod_options* o, double bandwidth, FILE* csv);
+/* The scheduler suite's refining camera on demo:torus-NxM at ring angle
+ * `angle` (radians): levels 0-6, contours and culling in one view. */
+void bench_refine_view(float angle, uint32_t w, uint32_t h, tlod_view_desc* v);
+
+/* Scheduler CPU and wall time per frame on 10k, 100k and 1M patches for each
+ * thread count, refining cameras moving and still (bench_scheduler.c). */
+struct bench_bandwidth;
+int bench_scheduler(const bench_lod_options* o, const struct bench_bandwidth* bw, FILE* csv);
 /* Schwarz et al.'s Table 1: base / adaptive / uniform triangles at 1600x1144, 0.5 px, PN. */
 int bench_table1(const bench_lod_options* o, FILE* csv);
 

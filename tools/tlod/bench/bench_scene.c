@@ -36,3 +36,17 @@ void bench_orbit_view(const tlod_mesh* mesh, float angle, float distance_scale, 
   camera_fit_planes(eye, info.bbox_min, info.bbox_max, &n, &f);
   camera_perspective(fovy, (float)w / (float)h, n, f, v->proj);
 }
+
+/* A camera just above the top of the torus tube (demo:torus-NxM: ring
+ * radius 1, tube 0.35, axis z), looking along the ring and down a little,
+ * at ring angle `angle`: the tube near the eye refines to the finest
+ * levels, the part towards the horizon falls to level 0, the tube's
+ * contours cross the view, and the ring behind the eye is culled. */
+void bench_refine_view(float angle, uint32_t w, uint32_t h, tlod_view_desc* v) {
+  const float ring = 1.0f, top = 0.35f, height = 0.03f;
+  float eye[3] = {ring * cosf(angle), ring * sinf(angle), top + height};
+  float ahead[3] = {eye[0] - 0.6f * sinf(angle), eye[1] + 0.6f * cosf(angle), top - 0.12f}, up[3] = {0, 0, 1};
+  *v = (tlod_view_desc){.viewport_width = w, .viewport_height = h};
+  camera_look_at(eye, ahead, up, v->view);
+  camera_perspective(60.0f, (float)w / (float)h, 0.2f * height, 4.0f, v->proj);
+}

@@ -1,63 +1,151 @@
-/* tlod bench --suite scheduler -- time per frame against patch count and
- * threads, with the memory-bandwidth bound of the bytes a frame touches. */
+/* tlod bench --suite scheduler -- time per frame of tlod_scheduler_update on
+ * 10k, 100k and 1M patches (demo:torus-NxM, Phong quads, levels 0-6), with a
+ * refining camera just above the tube (bench_refine_view: levels 0-6,
+ * contours, strips, culling), moving along the ring or still. Process CPU
+ * time (every thread) beside wall time, min and median over the frames, the
+ * stage split, the level histogram, the culled share and the strip
+ * triangles (so a case that ends at level 0 everywhere shows), and the
+ * memory bound of the bytes a frame must touch. */
 #include <math.h>
+#include <stdlib.h>
 
+#include "bench_bandwidth.h"
 #include "bench_lod.h"
+#include "bench_stats.h"
 
-/* Bytes a frame must touch at least: per vertex position and normal read,
- * depth written; per patch its data read (sphere, bound, corner ids, corner
- * depths) and its state written (level, e_max, contour, target, level,
- * visibility, instance). */
-static double frame_bytes(uint32_t vertices, uint32_t patches) {
-  return (double)vertices * (24.0 + 4.0) +
-         (double)patches * ((20.0 + 4.0 + 16.0 + 12.0) + (1 + 4 + 4 + 4 + 4 + 1 + 36));
+#define SCHED_W 1280
+#define SCHED_H 720
+#define SCHED_WARMUP 2
+#define SCHED_MAX_LEVEL 6
+/* The refining view's epsilon: Phong's error on a 1000x1000 torus is a few
+ * thousandths of a pixel a metre away, so level 6 (error / 4^6) near the
+ * eye needs a small epsilon; 0.5 px would end at level 0 everywhere. */
+#define SCHED_EPSILON_PX 0.002f
+
+typedef struct sched_case {
+  const char* name;
+  bool moving;
+} sched_case;
+
+static const sched_case k_cases[] = {{"refine-moving", true}, {"refine-static", false}};
+
+/* Per frame the least bytes read: position and normal per vertex (24 B),
+ * per patch its sphere, error bound and corner ids (16 + 4 + 16 B) and its
+ * corner depths (16 B); written: depth per vertex (4 B), per patch level,
+ * e_max, contour, target, continuous level, visibility (1+4+4+4+4+1 B)
+ * and its 12 B draw instance. */
+static void frame_bytes(uint32_t vertices, uint32_t patches, double* read, double* written) {
+  *read = (double)vertices * 24.0 + (double)patches * (16.0 + 4.0 + 16.0 + 16.0);
+  *written = (double)vertices * 4.0 + (double)patches * (18.0 + 12.0);
 }
 
-static int scheduler_case(const char* in, uint32_t threads, uint32_t frames, double bandwidth, FILE* csv) {
-  bench_scene s;
-  int rc = bench_scene_load(in, threads, TLOD_SURFACE_PHONG, 6, &s);
-  if (rc != CLI_OK) return rc;
-  tlod_scheduler* sch = NULL;
-  if (tlod_scheduler_create(s.ctx, s.setup.surface, s.setup.patterns, &(tlod_scheduler_desc){0}, &sch) !=
-      TLOD_SUCCESS) {
-    bench_scene_free(&s);
-    return cli_error(CLI_FAILED, "%s", tlod_context_last_error(s.ctx));
-  }
-  double best = INFINITY, sum = 0.0, worst = 0.0, stages[TLOD_STAGE_NUM] = {0};
-  for (uint32_t k = 0; k < frames + 2; k++) {
+typedef struct sched_figures {
+  double wall[2], cpu[2];       /* min, median ms per frame */
+  double stage[TLOD_STAGE_NUM]; /* median ms per stage */
+  double bound_ms;
+  tlod_draw_list last; /* statistics of the last frame */
+} sched_figures;
+
+static void time_frames(tlod_scheduler* sch, const sched_case* c, uint32_t frames, double* t) {
+  for (uint32_t k = 0; k < frames + SCHED_WARMUP; k++) {
     tlod_view_desc view;
-    bench_orbit_view(s.setup.mesh, 0.05f * (float)k, 1.2f, 1280, 720, &view);
-    double t0 = cli_now_ms();
+    bench_refine_view(c->moving ? 0.003f * (float)k : 0.0f, SCHED_W, SCHED_H, &view);
+    double w0 = cli_now_ms(), c0 = bench_cpu_ms();
     tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &view, .view_count = 1, .dt_ms = 16.7f});
-    double dt = cli_now_ms() - t0;
-    if (k < 2) continue; /* warm-up */
-    best = dt < best ? dt : best;
-    worst = dt > worst ? dt : worst;
-    sum += dt;
+    double cpu = bench_cpu_ms() - c0, wall = cli_now_ms() - w0;
+    if (k < SCHED_WARMUP) continue;
+    uint32_t i = k - SCHED_WARMUP;
+    t[i] = wall, t[frames + i] = cpu;
     for (int st = 0; st < TLOD_STAGE_NUM; st++)
-      stages[st] += tlod_scheduler_draw_list(sch, 0)->stage_ms[st];
+      t[(2 + st) * frames + i] = tlod_scheduler_draw_list(sch, 0)->stage_ms[st];
   }
-  uint32_t patches = tlod_surface_patch_count(s.setup.surface), verts = tlod_mesh_vertex_count(s.setup.mesh);
-  double bytes = frame_bytes(verts, patches), rate = patches / (best * 1e-3);
-  double bound_ms = bytes / bandwidth * 1e3;
-  printf("scheduler  %-22s T%-2u %8u patches  best %8.3f ms mean %8.3f worst %8.3f  %7.2f Mpatch/s  "
-         "bandwidth bound %.3f ms = %.0f%% of best  [stages mean ms: sil %.3f metric %.3f levels %.3f morph %.3f "
-         "strips %.3f]\n",
-         in, threads, patches, best, sum / frames, worst, rate * 1e-6, bound_ms, 100.0 * bound_ms / best,
-         stages[0] / frames, stages[1] / frames, stages[2] / frames, stages[3] / frames, stages[4] / frames);
-  if (csv)
-    fprintf(csv, "scheduler,%s,%u,%u,%.4f,%.4f,%.4f,%.6g,%.4f\n", in, threads, patches, best, sum / frames, worst, rate,
-            bound_ms);
+}
+
+static int run_case(const bench_scene* s, const sched_case* c, uint32_t frames, sched_figures* f) {
+  tlod_scheduler* sch = NULL;
+  tlod_scheduler_desc d = {.epsilon_px = SCHED_EPSILON_PX, .max_level = SCHED_MAX_LEVEL};
+  double* t = malloc(sizeof(double) * (2 + TLOD_STAGE_NUM) * frames);
+  if (!t || tlod_scheduler_create(s->ctx, s->setup.surface, s->setup.patterns, &d, &sch) != TLOD_SUCCESS) {
+    free(t);
+    return cli_error(CLI_FAILED, "%s", t ? tlod_context_last_error(s->ctx) : "out of memory");
+  }
+  time_frames(sch, c, frames, t);
+  bench_min_median(t, frames, 1.0, f->wall);
+  bench_min_median(t + frames, frames, 1.0, f->cpu);
+  for (int st = 0; st < TLOD_STAGE_NUM; st++) {
+    double mm[2];
+    bench_min_median(t + (2 + st) * frames, frames, 1.0, mm);
+    f->stage[st] = mm[1];
+  }
+  f->last = *tlod_scheduler_draw_list(sch, 0);
   tlod_scheduler_destroy(sch);
-  bench_scene_free(&s);
+  free(t);
   return CLI_OK;
 }
 
-int bench_scheduler(const bench_lod_options* o, double bandwidth, FILE* csv) {
+static void print_case(const char* in, const sched_case* c, uint32_t threads, const sched_figures* f) {
+  const tlod_draw_list* dl = &f->last;
+  printf("scheduler  %-20s %-13s T%-2u %8u patches  cpu min %8.3f median %8.3f ms | wall min %8.3f median %8.3f ms | "
+         "bound %.3f ms = %3.0f%% of cpu median / T\n",
+         in, c->name, threads, dl->patch_count, f->cpu[0], f->cpu[1], f->wall[0], f->wall[1], f->bound_ms,
+         100.0 * f->bound_ms / (f->cpu[1] / threads));
+  printf("scheduler    stages median ms (wall):");
+  for (int st = 0; st < TLOD_STAGE_NUM; st++)
+    printf(" %s %.3f", tlod_stage_name((tlod_stage)st), f->stage[st]);
+  printf(" | culled %.1f%% | levels", 100.0 * dl->culled / (dl->patch_count ? dl->patch_count : 1));
+  for (int l = 0; l <= SCHED_MAX_LEVEL; l++)
+    printf(" %u", dl->level_histogram[l]);
+  printf(" | pattern tris %llu strip tris %llu (%.1f%%) strips %u\n", (unsigned long long)dl->pattern_triangles,
+         (unsigned long long)dl->strip_triangles,
+         100.0 * (double)dl->strip_triangles / (double)(dl->pattern_triangles ? dl->pattern_triangles : 1),
+         dl->strip_count);
+}
+
+static void write_csv(FILE* csv, const char* in, const sched_case* c, uint32_t threads, const sched_figures* f) {
+  const tlod_draw_list* dl = &f->last;
+  fprintf(csv, "scheduler,%s,%s,%u,%u,%.4f,%.4f,%.4f,%.4f,%.4f,%u,%llu,%llu", in, c->name, threads, dl->patch_count,
+          f->cpu[0], f->cpu[1], f->wall[0], f->wall[1], f->bound_ms, dl->culled,
+          (unsigned long long)dl->pattern_triangles, (unsigned long long)dl->strip_triangles);
+  for (int st = 0; st < TLOD_STAGE_NUM; st++)
+    fprintf(csv, ",%.4f", f->stage[st]);
+  for (int l = 0; l <= SCHED_MAX_LEVEL; l++)
+    fprintf(csv, ",%u", dl->level_histogram[l]);
+  fprintf(csv, "\n");
+}
+
+static int mesh_cases(const char* in, uint32_t threads, const bench_lod_options* o, const bench_bandwidth* bw,
+                      FILE* csv) {
+  bench_scene s;
+  int rc = bench_scene_load(in, threads, TLOD_SURFACE_PHONG, SCHED_MAX_LEVEL, &s);
+  double read, written;
+  frame_bytes(tlod_mesh_vertex_count(s.setup.mesh), tlod_surface_patch_count(s.setup.surface), &read, &written);
+  for (size_t k = 0; rc == CLI_OK && k < sizeof k_cases / sizeof k_cases[0]; k++) {
+    sched_figures f;
+    rc = run_case(&s, &k_cases[k], o->frames, &f);
+    if (rc != CLI_OK) break;
+    f.bound_ms = bench_bound_ms(bench_bandwidth_rates(bw, threads), read, written);
+    print_case(in, &k_cases[k], threads, &f);
+    if (csv) write_csv(csv, in, &k_cases[k], threads, &f);
+  }
+  if (rc == CLI_OK) bench_scene_free(&s);
+  return rc;
+}
+
+int bench_scheduler(const bench_lod_options* o, const bench_bandwidth* bw, FILE* csv) {
   static const char* const meshes[] = {"demo:torus-100x100", "demo:torus-320x320", "demo:torus-1000x1000"};
+  printf("scheduler: Phong quads, %ux%u, epsilon %g px, HYBRID, TIME morphs, %u warm-up + %u frames per case; cpu = "
+         "process CPU time of every thread per frame, wall = wall clock; bound = bytes a frame must touch at the "
+         "measured rates\n",
+         SCHED_W, SCHED_H, (double)SCHED_EPSILON_PX, SCHED_WARMUP, o->frames);
+  if (csv)
+    fprintf(csv, "suite,mesh,camera,threads,patches,cpu_min_ms,cpu_median_ms,wall_min_ms,wall_median_ms,bound_ms,"
+                 "culled,pattern_triangles,strip_triangles,silhouette_ms,metric_ms,levels_ms,morph_ms,strips_ms");
+  for (int l = 0; csv && l <= SCHED_MAX_LEVEL; l++)
+    fprintf(csv, ",l%d", l);
+  if (csv) fprintf(csv, "\n");
   int rc = CLI_OK;
   for (int m = 0; m < 3 && rc == CLI_OK; m++)
     for (uint32_t t = 0; t < o->thread_count && rc == CLI_OK; t++)
-      rc = scheduler_case(meshes[m], o->threads[t], o->frames, bandwidth, csv);
+      rc = mesh_cases(meshes[m], o->threads[t], o, bw, csv);
   return rc;
 }
