@@ -137,39 +137,6 @@ static camera frame_camera(int k) {
   return c;
 }
 
-static bool same_list(const tlod_draw_list* a, const tlod_draw_list* b, uint32_t vertices, char* why, size_t n) {
-#define DIFF(cond, what)                                                                                               \
-  do {                                                                                                                 \
-    if (cond) {                                                                                                        \
-      snprintf(why, n, "%s", what);                                                                                    \
-      return false;                                                                                                    \
-    }                                                                                                                  \
-  } while (0)
-  DIFF(a->patch_count != b->patch_count || a->instance_count != b->instance_count ||
-           a->bucket_count != b->bucket_count || a->strip_count != b->strip_count,
-       "counts differ");
-  DIFF(memcmp(a->levels, b->levels, a->patch_count) != 0, "levels differ");
-  DIFF(memcmp(a->e_max, b->e_max, sizeof(float) * a->patch_count) != 0, "e_max differs");
-  DIFF(memcmp(a->vertex_depth, b->vertex_depth, sizeof(float) * vertices) != 0, "vertex depths differ");
-  DIFF(memcmp(a->instances, b->instances, sizeof(tlod_draw_instance) * a->instance_count) != 0, "instances differ");
-  DIFF(memcmp(a->buckets, b->buckets, sizeof(tlod_draw_bucket) * a->bucket_count) != 0, "buckets differ");
-  for (uint32_t k = 0; k < a->strip_count; ++k) {
-    const tlod_draw_strip *x = &a->strips[k], *y = &b->strips[k];
-    DIFF(x->patch_a != y->patch_a || x->patch_b != y->patch_b || x->edge_a != y->edge_a || x->edge_b != y->edge_b ||
-             x->level_a != y->level_a || x->level_b != y->level_b || x->crease != y->crease,
-         "strips differ");
-  }
-  DIFF(a->pattern_triangles != b->pattern_triangles || a->strip_triangles != b->strip_triangles ||
-           a->culled != b->culled || memcmp(a->level_histogram, b->level_histogram, sizeof a->level_histogram) != 0,
-       "statistics differ");
-  DIFF(memcmp(&a->e_max_min, &b->e_max_min, sizeof(float)) != 0 ||
-           memcmp(&a->e_max_max, &b->e_max_max, sizeof(float)) != 0 ||
-           memcmp(&a->effective_epsilon, &b->effective_epsilon, sizeof(float)) != 0,
-       "e_max range or effective epsilon differ");
-#undef DIFF
-  return true;
-}
-
 /* The desc of case c: policy, morph mode, budget, epsilon. */
 static tlod_scheduler_desc case_desc(int c, bool reference) {
   static const tlod_lod_policy policies[] = {TLOD_POLICY_FLAT, TLOD_POLICY_UNIFORM, TLOD_POLICY_SILHOUETTE,
@@ -224,7 +191,7 @@ static void run_case(world* ref, world* w, int m, int c, const char* where) {
     tlod_frame_desc f = {.views = views, .view_count = frame_views(k, views), .dt_ms = 16.0f};
     ok = ok && tlod_scheduler_update(a, &f) == TLOD_SUCCESS && tlod_scheduler_update(b, &f) == TLOD_SUCCESS;
     for (uint32_t v = 0; ok && v < f.view_count; ++v)
-      ok = same_list(tlod_scheduler_draw_list(a, v), tlod_scheduler_draw_list(b, v), vertices, why, sizeof why);
+      ok = draw_lists_equal(tlod_scheduler_draw_list(a, v), tlod_scheduler_draw_list(b, v), vertices, why, sizeof why);
   }
   if (c % 5 == 4 && !(deform(ref, m, 0.0f) && deform(w, m, 0.0f))) ok = false, snprintf(why, sizeof why, "restore");
   tlod_scheduler_destroy(a);
@@ -306,8 +273,8 @@ TEST(test_group_budget) {
          tlod_scheduler_update_group(b, f, 2, 9000) == TLOD_SUCCESS;
     for (int i = 0; ok && i < 2; ++i)
       for (uint32_t v = 0; ok && v < f[0].view_count; ++v)
-        ok = same_list(tlod_scheduler_draw_list(a[i], v), tlod_scheduler_draw_list(b[i], v),
-                       tlod_mesh_vertex_count(tlod_surface_mesh(ref.surf[i])), why, sizeof why);
+        ok = draw_lists_equal(tlod_scheduler_draw_list(a[i], v), tlod_scheduler_draw_list(b[i], v),
+                              tlod_mesh_vertex_count(tlod_surface_mesh(ref.surf[i])), why, sizeof why);
   }
   for (int i = 0; i < 2; ++i) {
     tlod_scheduler_destroy(a[i]);
