@@ -176,27 +176,38 @@ static bool deform(world* w, int m, float t) {
   return r == TLOD_SUCCESS;
 }
 
-/* Runs case c on mesh m of world w (and of the reference world ref, 1
- * thread, reference path) over the frames; compares every view's list. */
-static void run_case(world* ref, world* w, int m, int c, const char* where) {
-  tlod_scheduler* a = scheduler_create(ref->ctx, ref->surf[m], ref->pat, case_desc(c, true));
-  tlod_scheduler* b = scheduler_create(w->ctx, w->surf[m], w->pat, case_desc(c, false));
-  uint32_t vertices = tlod_mesh_vertex_count(tlod_surface_mesh(ref->surf[m]));
-  bool ok = a && b;
+#define WORLDS (4 * 3 + 1) /* every SIMD level x 1, 2, 3 threads, and the reference world 0 */
+
+/* Runs case c on mesh m of every world over the frames, the reference
+ * world (0: 1 thread, reference path) once; compares every fast world's
+ * lists of every view with the reference's, frame by frame. */
+static void run_case(world* w, int worlds, int m, int c) {
+  tlod_scheduler* s[WORLDS] = {0};
+  bool ok = true;
+  for (int i = 0; i < worlds; ++i)
+    ok = (s[i] = scheduler_create(w[i].ctx, w[i].surf[m], w[i].pat, case_desc(c, i == 0))) && ok;
+  uint32_t vertices = tlod_mesh_vertex_count(tlod_surface_mesh(w[0].surf[m]));
   char why[96] = "create failed";
-  int k = 0;
+  int k = 0, at = 0;
   for (; ok && k < FRAMES; ++k) {
-    if (k == 4 && c % 5 == 4) ok = deform(ref, m, 1.0f) && deform(w, m, 1.0f);
+    for (int i = 0; ok && k == 4 && c % 5 == 4 && i < worlds; ++i)
+      ok = deform(&w[i], m, 1.0f);
     tlod_view_desc views[2];
     tlod_frame_desc f = {.views = views, .view_count = frame_views(k, views), .dt_ms = 16.0f};
-    ok = ok && tlod_scheduler_update(a, &f) == TLOD_SUCCESS && tlod_scheduler_update(b, &f) == TLOD_SUCCESS;
-    for (uint32_t v = 0; ok && v < f.view_count; ++v)
-      ok = draw_lists_equal(tlod_scheduler_draw_list(a, v), tlod_scheduler_draw_list(b, v), vertices, why, sizeof why);
+    for (int i = 0; ok && i < worlds; ++i)
+      ok = tlod_scheduler_update(s[i], &f) == TLOD_SUCCESS;
+    for (at = 1; ok && at < worlds; at += ok) /* stays at the world that differs */
+      for (uint32_t v = 0; ok && v < f.view_count; ++v)
+        ok = draw_lists_equal(tlod_scheduler_draw_list(s[0], v), tlod_scheduler_draw_list(s[at], v), vertices, why,
+                              sizeof why);
   }
-  if (c % 5 == 4 && !(deform(ref, m, 0.0f) && deform(w, m, 0.0f))) ok = false, snprintf(why, sizeof why, "restore");
-  tlod_scheduler_destroy(a);
-  tlod_scheduler_destroy(b);
-  CHECK_MSG(ok, "%s, mesh %s, case %d, frame %d: %s", where, g_src[m].s.name, c, k - 1, why);
+  for (int i = 0; c % 5 == 4 && i < worlds; ++i)
+    if (!deform(&w[i], m, 0.0f)) ok = false, snprintf(why, sizeof why, "restore");
+  for (int i = 0; i < worlds; ++i)
+    tlod_scheduler_destroy(s[i]);
+  tlod_context* ctx = w[at < worlds ? at : 0].ctx;
+  CHECK_MSG(ok, "%s, %u threads, mesh %s, case %d, frame %d: %s", tlod_simd_name(tlod_context_simd(ctx)),
+            tlod_context_query_desc(ctx).thread_count, g_src[m].s.name, c, k - 1, why);
 }
 
 /* The highest SIMD level this processor has. */
@@ -209,24 +220,24 @@ static tlod_simd best_simd(void) {
 }
 
 TEST(test_fast_equals_reference) {
-  world ref;
-  CHECK(world_make(&ref, TLOD_SIMD_SCALAR, 1));
+  world w[WORLDS];
+  int worlds = 0;
+  bool ok = world_make(&w[worlds++], TLOD_SIMD_SCALAR, 1);
   tlod_simd best = best_simd();
-  for (tlod_simd simd = TLOD_SIMD_SCALAR; simd <= best; simd++) {
-    for (uint32_t threads = 1; threads <= 3; ++threads) {
-      world w;
-      CHECK(world_make(&w, simd, threads));
-      CHECK(tlod_context_simd(w.ctx) == simd);
-      char where[64];
-      snprintf(where, sizeof where, "%s, %u threads", tlod_simd_name(simd), threads);
-      int failed = _test_checks_failed;
-      for (int m = 0; m < MESHES && failed == _test_checks_failed; ++m)
-        for (int c = 0; c < CASES && failed == _test_checks_failed; ++c)
-          run_case(&ref, &w, m, c, where);
-      world_free(&w);
+  for (tlod_simd simd = TLOD_SIMD_SCALAR; ok && simd <= best; simd++)
+    for (uint32_t threads = 1; ok && threads <= 3; ++threads) {
+      ok = world_make(&w[worlds], simd, threads);
+      ok = ok && tlod_context_simd(w[worlds++].ctx) == simd;
     }
-  }
-  world_free(&ref);
+  for (int m = 0; ok && m < MESHES; ++m)
+    for (int c = 0; c < CASES && ok; ++c) {
+      int failed = _test_checks_failed;
+      run_case(w, worlds, m, c);
+      ok = failed == _test_checks_failed;
+    }
+  for (int i = 0; i < worlds; ++i)
+    world_free(&w[i]);
+  CHECK_MSG(ok, "a world failed (above)");
 }
 
 /* The levels must reach the refined range, or the equality above says little. */
