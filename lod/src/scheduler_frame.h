@@ -15,6 +15,7 @@
 #define TESSLOD_SCHEDULER_FRAME_H
 
 #include "patterns_internal.h"
+#include "scheduler_fast.h"
 #include "tesslod/lod.h"
 
 #define _TLOD_NO_FACE UINT32_MAX /* tlod_edge_link.face of an edge with no neighbour */
@@ -90,6 +91,7 @@ typedef struct _tlod_frame {
   const _tlod_view_state* main; /* locked views: view 0 */
   uint32_t budget;              /* triangles: the scheduler's own or its group's; 0 == none */
   double t[TLOD_STAGE_NUM + 1]; /* stage boundaries, ms */
+  bool fused;                   /* fast path: levels and morph done with the metric */
 } _tlod_frame;
 
 struct tlod_scheduler {
@@ -108,6 +110,11 @@ struct tlod_scheduler {
   /* Index + 1 of this scheduler in the group being validated, 0 outside
    * validation: finds a scheduler given twice in one pass, not count^2. */
   uint32_t group_slot;
+  /* Fast path (desc.reference_path false): kernels of the context's SIMD
+   * level and their structure-of-arrays inputs (scheduler_fast.h). */
+  bool fast_path;
+  _tlod_fast_kernels fast;
+  _tlod_soa soa;
 };
 
 /* scheduler_metric.c */
@@ -143,6 +150,14 @@ float _tlod_morph_of(float cont, uint32_t level);
  * continuous levels cont[]: counted once, from the lower patch index, and
  * only towards a visible neighbour. */
 bool _tlod_strip_needed(const _tlod_frame* fr, const float* cont, uint32_t f, uint32_t e);
+
+/* scheduler_soa.c, scheduler_fast_frame.c: the fast path */
+void _tlod_soa_free(tlod_context* ctx, _tlod_soa* soa);
+/* Copies the inputs again when the mesh or surface generation moved. */
+tlod_result _tlod_soa_update(tlod_scheduler* s, const tlod_mesh_view* mesh, const tlod_surface_view* surface);
+/* Silhouette and metric stages of fr (t[1] set), fused with levels and
+ * morph (fr->fused) when may_fuse and the frame has no budget and is not locked. */
+void _tlod_fast_begin(_tlod_frame* fr, bool may_fuse);
 
 /* scheduler_draw_list.c */
 /* The view's chunk and strip-edge arrays (freed with its other arrays). */

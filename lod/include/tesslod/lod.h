@@ -145,7 +145,11 @@ typedef struct tlod_scheduler_desc {
   float frame_time_target_ms;
   bool no_frustum_cull; /* keep patches outside the frustum; default false (cull) */
   /* The straightforward path, one stage at a time: slow, kept as the oracle
-   * the fast path is tested against (their draw lists are bitwise equal). */
+   * the fast path is tested against (their draw lists are bitwise equal, at
+   * every SIMD level and thread count). The default fast path fuses the
+   * silhouette, metric, level and morph stages into SIMD passes over copies
+   * of the mesh and surface it makes at the first update and again when
+   * their generations move (docs/design.md 3.13). */
   bool reference_path;
   const char* label; /* default "scheduler" */
 } tlod_scheduler_desc;
