@@ -9,15 +9,13 @@
 #include "cli.h"
 #include "tesslod/core.h"
 
-/* Twice the 300 MB last-level cache of this machine kind: the rates are
- * memory's, not the cache's. */
-#define BW_BYTES ((size_t)640 << 20)
 #define BW_CHUNKS 64u
 
 typedef enum { BW_READ, BW_WRITE, BW_COPY } bw_kind;
 
 typedef struct bw_task {
   bw_kind kind;
+  size_t bytes; /* a multiple of 8 * BW_CHUNKS */
   uint64_t* src;
   uint64_t* dst;
   uint64_t sums[BW_CHUNKS];
@@ -26,7 +24,7 @@ typedef struct bw_task {
 static void bw_chunk(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   bw_task* t = data;
-  size_t words = BW_BYTES / 8 / BW_CHUNKS;
+  size_t words = t->bytes / 8 / BW_CHUNKS;
   for (uint32_t c = begin; c < end; c++) {
     uint64_t *s = t->src + c * words, *d = t->dst + c * words;
     if (t->kind == BW_WRITE) memset(d, (int)c, words * 8);
@@ -46,7 +44,7 @@ static double best_rate(tlod_context* ctx, bw_task* t, bw_kind kind) {
   for (int i = 0; i < 5; i++) {
     double t0 = cli_now_ms();
     tlod_context_parallel_for(ctx, bw_chunk, t, BW_CHUNKS);
-    double s = (cli_now_ms() - t0) * 1e-3, rate = (double)BW_BYTES / s;
+    double s = (cli_now_ms() - t0) * 1e-3, rate = (double)t->bytes / s;
     best = rate > best ? rate : best;
   }
   return best;
@@ -63,12 +61,15 @@ static bool measure_threads(uint32_t threads, bw_task* t, bench_rates* r) {
   return true;
 }
 
-bool bench_bandwidth_measure(bench_bandwidth* out) {
+bool bench_bandwidth_measure(bench_bandwidth* out, uint32_t mib) {
   bw_task* t = calloc(1, sizeof(*t));
-  bool ok = t && (t->src = malloc(BW_BYTES)) && (t->dst = malloc(BW_BYTES));
+  size_t bytes = (size_t)mib << 20;
+  out->mib = mib;
+  bool ok = t && (t->src = malloc(bytes)) && (t->dst = malloc(bytes));
   if (ok) {
-    memset(t->src, 1, BW_BYTES); /* touched: no page faults in the timed runs */
-    memset(t->dst, 2, BW_BYTES);
+    t->bytes = bytes;
+    memset(t->src, 1, bytes); /* touched: no page faults in the timed runs */
+    memset(t->dst, 2, bytes);
   }
   for (uint32_t k = 0; ok && k < 2; k++)
     ok = measure_threads(k + 1, t, &out->rates[k]);
@@ -88,9 +89,9 @@ double bench_bound_ms(const bench_rates* r, double bytes_read, double bytes_writ
 void bench_bandwidth_print(const bench_bandwidth* b) {
   for (int k = 0; k < 2; k++) {
     const bench_rates* r = &b->rates[k];
-    printf("bandwidth  T%d  read %6.2f GB/s  write %6.2f GB/s  copy %6.2f GB/s (bytes copied)  [%zu MiB buffers, best "
+    printf("bandwidth  T%d  read %6.2f GB/s  write %6.2f GB/s  copy %6.2f GB/s (bytes copied)  [%u MiB buffers, best "
            "of 5, wall clock]\n",
-           k + 1, r->read * 1e-9, r->write * 1e-9, r->copy * 1e-9, BW_BYTES >> 20);
+           k + 1, r->read * 1e-9, r->write * 1e-9, r->copy * 1e-9, b->mib);
   }
   printf("bandwidth  bound of a stage = bytes read / read rate + bytes written / write rate (at its thread count)\n");
 }

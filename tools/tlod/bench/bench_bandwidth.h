@@ -17,11 +17,17 @@ typedef struct bench_rates {
 /* rates[0]: one thread, rates[1]: two threads (each its half). */
 typedef struct bench_bandwidth {
   bench_rates rates[2];
+  uint32_t mib; /* buffer size */
 } bench_bandwidth;
 
-/* Best of 5 per rate (wall clock: memory traffic is what stalls, and the
- * best run is the one the host disturbed least). false: out of memory. */
-bool bench_bandwidth_measure(bench_bandwidth* out);
+/* The default buffer: twice the 300 MB last-level cache of this machine
+ * kind, so the rates are memory's, not the cache's. */
+#define BENCH_BANDWIDTH_MIB 640u
+
+/* Best of 5 per rate on two buffers of mib MiB (wall clock: memory traffic
+ * is what stalls, and the best run is the one the host disturbed least).
+ * false: out of memory. */
+bool bench_bandwidth_measure(bench_bandwidth* out, uint32_t mib);
 /* The rates of `threads` (1, or 2 for two and more). */
 const bench_rates* bench_bandwidth_rates(const bench_bandwidth* b, uint32_t threads);
 /* ms a stage needs at least to move its bytes: read / read rate + written / write rate. */

@@ -2,6 +2,7 @@
 #ifndef TLOD_TOOLS_BENCH_OPTIONS_H
 #define TLOD_TOOLS_BENCH_OPTIONS_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 typedef struct bench_options {
@@ -13,8 +14,12 @@ typedef struct bench_options {
   const char* suite;
   const char* table1[16];
   uint32_t table1_count;
-  const char* backend;      /* the suites that draw: "gl" (default) or "vulkan" */
-  const char* shader_cache; /* vulkan: --shader-cache DIR or "off"; NULL: the default folder */
+  const char* backend;        /* the suites that draw: "gl" (default) or "vulkan" */
+  const char* shader_cache;   /* vulkan: --shader-cache DIR or "off"; NULL: the default folder */
+  const char* json;           /* --json FILE: the figures as one JSON document, written atomically */
+  const char* scheduler_mesh; /* --scheduler-mesh IN: the figures suite's scheduler mesh */
+  uint32_t bandwidth_mib;     /* --bandwidth-mib N: memory-rate buffers */
+  uint32_t peer_faces;        /* --peer-faces N: the peers suite's mesh size; 0: its default sizes */
 } bench_options;
 
 /* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */
