@@ -32,8 +32,9 @@ static int run_lod_suites(const bench_options* o, const bench_gpu* gpu, bench_re
   int rc = CLI_OK;
   if (all || figures || !strcmp(o->suite, "scheduler")) rc = bench_scheduler(&lo, rep, csv);
   if (rc == CLI_OK && (all || figures || !strcmp(o->suite, "table1"))) rc = bench_table1(&lo, rep, csv);
-  if (rc == CLI_OK && (all || !strcmp(o->suite, "gl"))) rc = bench_gl(gpu, lo.inputs, lo.input_count, o->frames, csv);
-  if (rc == CLI_OK && (all || !strcmp(o->suite, "draw"))) rc = bench_draw(gpu, o->frames, csv);
+  uint32_t gpu_frames = o->frames_given ? o->frames : BENCH_GPU_FRAMES;
+  if (rc == CLI_OK && (all || !strcmp(o->suite, "gl"))) rc = bench_gl(gpu, lo.inputs, lo.input_count, gpu_frames, csv);
+  if (rc == CLI_OK && (all || !strcmp(o->suite, "draw"))) rc = bench_draw(gpu, gpu_frames, rep, csv);
   return rc;
 }
 

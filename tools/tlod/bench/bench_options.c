@@ -59,7 +59,7 @@ void bench_usage(FILE* f) {
           "  --scheduler-mesh IN  figures: the scheduler mesh (default demo:torus-1000x1000)\n"
           "  --bandwidth-mib N  memory-rate buffers, MiB (default 640: past this machine's 300 MB cache)\n"
           "  --peers            the peers suite (== --suite peers); --peer-faces N its mesh size\n"
-          "  --frames N         scheduler / gl frames per case (default 20)\n"
+          "  --frames N         frames per case: scheduler, objects (default 20), gl, draw (default 60)\n"
           "  --model IN         a table1 model (repeatable; default demo:cow)\n"
           "  --backend B        gl (default) | vulkan: the GPU backend of gl, objects and draw (this build\n"
           "                     has: %s)\n"
@@ -114,6 +114,7 @@ int bench_parse(int argc, char** argv, bench_options* o) {
       o->suite = v;
     } else if (!strcmp(a, "--frames")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 100000, &o->frames)) return CLI_USAGE;
+      o->frames_given = true;
     } else if (!strcmp(a, "--model")) {
       if (!(v = cli_value(argc, argv, &i))) return CLI_USAGE;
       if (o->table1_count == 16) return cli_error(CLI_USAGE, "--model: at most 16 models");

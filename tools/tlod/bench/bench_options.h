@@ -5,12 +5,17 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* gl and draw frames per case without --frames: frame times on a software
+ * rasteriser vary more than the scheduler's, so the median needs more. */
+#define BENCH_GPU_FRAMES 60u
+
 typedef struct bench_options {
   const char* in;
   const char* csv;
   uint32_t levels[8], level_count;
   uint32_t threads[8], thread_count;
   uint32_t repeat, warmup, frames;
+  bool frames_given; /* --frames given: gl and draw default to more frames (BENCH_GPU_FRAMES) */
   const char* suite;
   const char* table1[16];
   uint32_t table1_count;
