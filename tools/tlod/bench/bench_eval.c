@@ -42,9 +42,9 @@ static void report(bench_state* b, const char* stage, const char* surface, uint3
   if (!strcmp(stage, "evaluate") && strcmp(surface, "flat") != 0 && b->flat_ms > 0)
     snprintf(ratio, sizeof(ratio), " %s/flat %.2fx", surface, t->best / b->flat_ms);
   char bw[64] = "";
-  double copy = bench_bandwidth_rates(&b->rep->bw, threads)->copy;
+  double copy = bench_bandwidth_rates(&b->rep->bw, threads)->copy_wall;
   if (bytes > 0)
-    snprintf(bw, sizeof(bw), " out %.2f GB/s = %.0f%% of memcpy T%u", bytes / (t->best * 1e-3) * 1e-9,
+    snprintf(bw, sizeof(bw), " out %.2f GB/s = %.0f%% of memcpy T%u (wall)", bytes / (t->best * 1e-3) * 1e-9,
              100.0 * bytes / (t->best * 1e-3) / copy, threads >= 2 ? 2 : 1);
   printf("%-10s %-6s L%-2u T%-2u best %9.2f ms mean %9.2f worst %9.2f  %8.2f M%s/s%s%s\n", stage, surface, level,
          threads, t->best, t->mean, t->worst, rate * 1e-6, unit, ratio, bw);
@@ -92,14 +92,14 @@ static int bench_surface(bench_state* b, tlod_context* ctx, tlod_mesh* mesh, tlo
   return CLI_OK;
 }
 
-/* Output bytes/s on process CPU time spread over the threads (CPU median / T:
- * the host's other load does not count) against memcpy's bytes/s at T. */
+/* Output bytes per CPU-second of the process (the host's other load does
+ * not count) against memcpy's bytes copied per CPU-second at T. */
 static void report_cpu(bench_state* b, tlod_surface_type type, uint32_t level, uint32_t threads, double* cpu,
                        uint32_t n, double bytes) {
   double mm[2];
   bench_min_median(cpu, n, 1.0, mm);
-  double rate = bytes / (mm[1] / threads * 1e-3), copy = bench_bandwidth_rates(&b->rep->bw, threads)->copy;
-  printf("evaluate   %-6s L%-2u T%-2u cpu min %9.2f median %9.2f ms  out %.2f GB/s on cpu median / T = %.0f%% of "
+  double rate = bytes / (mm[1] * 1e-3), copy = bench_bandwidth_rates(&b->rep->bw, threads)->copy;
+  printf("evaluate   %-6s L%-2u T%-2u cpu min %9.2f median %9.2f ms  out %.2f GB per CPU-second (median) = %.0f%% of "
          "memcpy T%u\n",
          tool_surface_name(type), level, threads, mm[0], mm[1], rate * 1e-9, 100.0 * rate / copy, threads >= 2 ? 2 : 1);
   if (type == TLOD_SURFACE_PHONG && level == 5 && threads == 2) b->rep->eval_bandwidth_fraction = rate / copy;

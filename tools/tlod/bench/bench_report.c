@@ -41,12 +41,16 @@ static void write_rates(json_writer* w, const bench_bandwidth* b) {
   json_object_begin(w, "bandwidth");
   json_uint(w, "buffer_mib", b->mib);
   json_string(w, "bound", "bytes read / read rate + bytes written / write rate");
+  json_string(w, "clock", "bytes per CPU-second of the process (the _wall keys: per wall-clock second)");
   static const char* const keys[2] = {"threads_1", "threads_2"};
   for (int k = 0; k < 2; k++) {
     json_object_begin(w, keys[k]);
     json_number(w, "read_bytes_per_s", b->rates[k].read);
     json_number(w, "write_bytes_per_s", b->rates[k].write);
     json_number(w, "copy_bytes_per_s", b->rates[k].copy);
+    json_number(w, "read_bytes_per_s_wall", b->rates[k].read_wall);
+    json_number(w, "write_bytes_per_s_wall", b->rates[k].write_wall);
+    json_number(w, "copy_bytes_per_s_wall", b->rates[k].copy_wall);
     json_object_end(w);
   }
   json_object_end(w);

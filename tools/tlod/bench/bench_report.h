@@ -17,7 +17,7 @@ typedef struct bench_report {
   double scheduler_1m_ms;         /* refine-moving, 2 threads: median process CPU per frame / 2 */
   double scheduler_1m_cpu_ms;     /* the same, process CPU per frame (both threads) */
   double scheduler_1m_wall_ms;    /* the same, median wall clock per frame */
-  double eval_bandwidth_fraction; /* Phong L5 T2: output bytes/s (CPU time / 2) over memcpy bytes/s (T2) */
+  double eval_bandwidth_fraction; /* Phong L5 T2: output bytes over memcpy's bytes copied, per CPU-second */
   double strip_triangle_overhead; /* Table 1 scenes, HYBRID: worst scene's strip / pattern triangles */
   const char* scheduler_mesh;     /* the mesh scheduler_1m_ms was measured on */
   uint32_t scheduler_patches;
