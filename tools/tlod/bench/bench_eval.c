@@ -4,7 +4,10 @@
  * repeats; best, mean and worst are reported. */
 #include "bench_eval.h"
 
-#include "bench_bandwidth.h"
+#include <stdlib.h>
+
+#include "bench_report.h"
+#include "bench_stats.h"
 
 #include <string.h>
 
@@ -28,8 +31,8 @@ typedef struct bench_state {
   const bench_options* o;
   cli_mesh in;
   FILE* csv;
-  double flat_ms;     /* evaluation time of flat for the current level/threads */
-  bench_bandwidth bw; /* measured in this run */
+  double flat_ms;    /* evaluation time of flat for the current level/threads */
+  bench_report* rep; /* memory rates of this run, json, eval_bandwidth_fraction */
 } bench_state;
 
 static void report(bench_state* b, const char* stage, const char* surface, uint32_t level, uint32_t threads,
@@ -39,9 +42,9 @@ static void report(bench_state* b, const char* stage, const char* surface, uint3
   if (!strcmp(stage, "evaluate") && strcmp(surface, "flat") != 0 && b->flat_ms > 0)
     snprintf(ratio, sizeof(ratio), " %s/flat %.2fx", surface, t->best / b->flat_ms);
   char bw[64] = "";
-  double copy = bench_bandwidth_rates(&b->bw, threads)->copy;
+  double copy = bench_bandwidth_rates(&b->rep->bw, threads)->copy_wall;
   if (bytes > 0)
-    snprintf(bw, sizeof(bw), " out %.2f GB/s = %.0f%% of memcpy T%u", bytes / (t->best * 1e-3) * 1e-9,
+    snprintf(bw, sizeof(bw), " out %.2f GB/s = %.0f%% of memcpy T%u (wall)", bytes / (t->best * 1e-3) * 1e-9,
              100.0 * bytes / (t->best * 1e-3) / copy, threads >= 2 ? 2 : 1);
   printf("%-10s %-6s L%-2u T%-2u best %9.2f ms mean %9.2f worst %9.2f  %8.2f M%s/s%s%s\n", stage, surface, level,
          threads, t->best, t->mean, t->worst, rate * 1e-6, unit, ratio, bw);
@@ -89,33 +92,64 @@ static int bench_surface(bench_state* b, tlod_context* ctx, tlod_mesh* mesh, tlo
   return CLI_OK;
 }
 
+/* Output bytes per CPU-second of the process (the host's other load does
+ * not count) against memcpy's bytes copied per CPU-second at T. */
+static void report_cpu(bench_state* b, tlod_surface_type type, uint32_t level, uint32_t threads, double* cpu,
+                       uint32_t n, double bytes) {
+  double mm[2];
+  bench_min_median(cpu, n, 1.0, mm);
+  double rate = bytes / (mm[1] * 1e-3), copy = bench_bandwidth_rates(&b->rep->bw, threads)->copy;
+  printf("evaluate   %-6s L%-2u T%-2u cpu min %9.2f median %9.2f ms  out %.2f GB per CPU-second (median) = %.0f%% of "
+         "memcpy T%u\n",
+         tool_surface_name(type), level, threads, mm[0], mm[1], rate * 1e-9, 100.0 * rate / copy, threads >= 2 ? 2 : 1);
+  if (type == TLOD_SURFACE_PHONG && level == 5 && threads == 2) b->rep->eval_bandwidth_fraction = rate / copy;
+  json_writer* w = b->rep->json;
+  if (!w) return;
+  json_object_begin(w, NULL);
+  json_string(w, "surface", tool_surface_name(type));
+  json_uint(w, "level", level);
+  json_uint(w, "threads", threads);
+  json_number(w, "cpu_min_ms", mm[0]);
+  json_number(w, "cpu_median_ms", mm[1]);
+  json_number(w, "output_bytes", bytes);
+  json_number(w, "memcpy_fraction", rate / copy);
+  json_object_end(w);
+}
+
 static int bench_evaluate(bench_state* b, tlod_context* ctx, tlod_surface* s, const tlod_patterns* pat, uint32_t level,
                           tlod_surface_type type) {
   const bench_options* o = b->o;
   timing tm = {0};
+  double* cpu = malloc(sizeof(double) * o->repeat);
+  if (!cpu) return cli_error(CLI_FAILED, "out of memory");
   double vertices = 0, bytes = 0;
   /* One output reused run after run, as a per-frame caller would: the
    * figure is the steady state, not first-touch page faults. */
   tlod_cpu_mesh* out = NULL;
-  if (tlod_cpu_tessellate(ctx, s, pat, &(tlod_cpu_tessellate_desc){.level = level}, &out) != TLOD_SUCCESS)
+  if (tlod_cpu_tessellate(ctx, s, pat, &(tlod_cpu_tessellate_desc){.level = level}, &out) != TLOD_SUCCESS) {
+    free(cpu);
     return cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx));
+  }
   for (uint32_t r = 0; r < o->warmup + o->repeat; r++) {
-    double t0 = cli_now_ms();
+    double t0 = cli_now_ms(), c0 = bench_cpu_ms();
     tlod_result res = tlod_cpu_tessellate_into(ctx, s, pat, &(tlod_cpu_tessellate_desc){.level = level}, out);
-    double dt = cli_now_ms() - t0;
+    double dt = cli_now_ms() - t0, dc = bench_cpu_ms() - c0;
     if (res != TLOD_SUCCESS) {
       tlod_cpu_mesh_destroy(ctx, out);
+      free(cpu);
       return cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx));
     }
     vertices = out->vertex_count;
     bytes = (double)out->vertex_count * 24.0 + (double)out->triangle_count * 16.0;
-    if (r >= o->warmup) add_sample(&tm, dt, r - o->warmup);
+    if (r >= o->warmup) add_sample(&tm, dt, r - o->warmup), cpu[r - o->warmup] = dc;
   }
   tlod_cpu_mesh_destroy(ctx, out);
   tm.mean /= o->repeat;
   if (type == TLOD_SURFACE_FLAT) b->flat_ms = tm.best;
-  report(b, "evaluate", tool_surface_name(type), level, tlod_context_query_desc(ctx).thread_count, &tm, vertices,
-         "vert", bytes);
+  uint32_t threads = tlod_context_query_desc(ctx).thread_count;
+  report(b, "evaluate", tool_surface_name(type), level, threads, &tm, vertices, "vert", bytes);
+  report_cpu(b, type, level, threads, cpu, o->repeat, bytes);
+  free(cpu);
   return CLI_OK;
 }
 
@@ -147,21 +181,20 @@ static int bench_threads(bench_state* b, uint32_t threads) {
   return rc;
 }
 
-int bench_eval(const bench_options* o, FILE* csv) {
-  bench_state b = {.o = o, .csv = csv};
+int bench_eval(const bench_options* o, bench_report* rep, FILE* csv) {
+  bench_state b = {.o = o, .csv = csv, .rep = rep};
   scene_setup_desc d = {.input = o->in, .split_quads = true};
   int rc = scene_input_load(&d, &b.in);
   if (rc != CLI_OK) return rc;
   if (b.csv)
     fprintf(b.csv, "stage,surface,level,threads,best_ms,mean_ms,worst_ms,items,unit,rate_per_s,out_bytes_per_s\n");
-  if (!bench_bandwidth_measure(&b.bw)) {
-    cli_mesh_free(&b.in);
-    return cli_error(CLI_FAILED, "bandwidth: out of memory");
-  }
-  printf("tlod bench: %s, %u triangles, %u vertices\n", o->in, b.in.face_count, b.in.vertex_count);
-  bench_bandwidth_print(&b.bw);
+  printf("tlod bench: %s, %u triangles, %u vertices; output bytes: 24 per vertex (position + normal) + 16 per "
+         "triangle (3 indices + patch id)\n",
+         o->in, b.in.face_count, b.in.vertex_count);
+  if (rep->json) json_array_begin(rep->json, "eval");
   for (uint32_t i = 0; i < o->thread_count && rc == CLI_OK; i++)
     rc = bench_threads(&b, o->threads[i]);
+  if (rep->json) json_array_end(rep->json);
   cli_mesh_free(&b.in);
   return rc;
 }

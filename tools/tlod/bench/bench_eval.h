@@ -7,8 +7,11 @@
 
 #include "bench_options.h"
 
-/* Preprocessing and CPU evaluation rates on o->in; csv (may be NULL) gets one row per case. */
-int bench_eval(const bench_options* o, FILE* csv);
+/* Preprocessing and CPU evaluation rates on o->in against rep's memory
+ * rates; csv (may be NULL) gets one row per case, rep's json the cases and
+ * eval_bandwidth_fraction (Phong, level 5, 2 threads). */
+struct bench_report;
+int bench_eval(const bench_options* o, struct bench_report* rep, FILE* csv);
 /* Surface build CPU time on one thread, measured error tables against the
  * closed form, per surface type, on o->in; csv (may be NULL) one row per type. */
 int bench_build(const bench_options* o, FILE* csv);

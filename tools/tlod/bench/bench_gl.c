@@ -12,6 +12,7 @@
 
 #include "bench_gl.h"
 #include "bench_lod.h"
+#include "bench_stats.h"
 #include "common/camera.h"
 
 #if TLOD_HAS_GL || TLOD_HAS_VULKAN
@@ -62,42 +63,65 @@ static int gl_device_for(bench_scene* s, gl_devices* g, bool hardware, tlod_devi
   return CLI_OK;
 }
 
-/* Mean and best frame time over the frames of an orbit; triangles drawn per frame. */
+/* min and median ms over the frames of a case: the frame's wall clock, the
+ * process CPU time of the frame (every thread: llvmpipe / lavapipe
+ * rasterise on threads of this process) and the backend's own CPU time
+ * (tlod_device_stats.cpu_ms: its API calls and uploads). */
+typedef struct gl_figures {
+  double wall[2], cpu[2], backend[2];
+  uint64_t tris; /* drawn per frame */
+} gl_figures;
+
+static int draw_frame(bench_scene* s, gl_devices* g, tlod_device* dev, tlod_device_surface* ds, tlod_scheduler* sch,
+                      uint32_t k, uint32_t w, uint32_t h, double* wall) {
+  tlod_view_desc v;
+  bench_orbit_view(s->setup.mesh, 0.6f + 0.02f * (float)k, 1.0f, w, h, &v);
+  tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &v, .view_count = 1, .dt_ms = 16.7f});
+  tlod_draw_item item = {.surface = ds, .draw_list = tlod_scheduler_draw_list(sch, 0)};
+  tlod_draw_desc fr = {.items = &item, .item_count = 1, .viewport = {0, 0, w, h}, .finish = true};
+  memcpy(fr.view, v.view, sizeof(fr.view));
+  memcpy(fr.proj, v.proj, sizeof(fr.proj));
+  return bench_frame(g->platform, s->ctx, dev, &fr, wall);
+}
+
+/* The frames of an orbit (after one warm-up: the first draw's buffer set-up). */
 static int run_case(bench_scene* s, gl_devices* g, const gl_case* c, uint32_t w, uint32_t h, uint32_t frames,
-                    double* best, double* mean, uint64_t* tris) {
+                    gl_figures* f) {
   tlod_scheduler* sch = NULL;
   tlod_device* dev = NULL;
   tlod_device_surface* ds = NULL;
-  int rc = gl_device_for(s, g, c->hardware, &dev, &ds);
+  double* t = malloc(sizeof(double) * 3 * frames);
+  int rc = t ? gl_device_for(s, g, c->hardware, &dev, &ds) : cli_error(CLI_FAILED, "out of memory");
   if (rc == CLI_OK &&
       tlod_scheduler_create(s->ctx, s->setup.surface, s->setup.patterns, &c->sched, &sch) != TLOD_SUCCESS)
     rc = cli_error(CLI_FAILED, "%s", tlod_context_last_error(s->ctx));
-  *best = INFINITY;
-  *mean = 0.0;
   for (uint32_t k = 0; rc == CLI_OK && k < frames + 1; k++) {
-    tlod_view_desc v;
-    bench_orbit_view(s->setup.mesh, 0.6f + 0.02f * (float)k, 1.0f, w, h, &v);
-    tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &v, .view_count = 1, .dt_ms = 16.7f});
-    tlod_draw_item item = {.surface = ds, .draw_list = tlod_scheduler_draw_list(sch, 0)};
-    tlod_draw_desc fr = {.items = &item, .item_count = 1, .viewport = {0, 0, w, h}, .finish = true};
-    memcpy(fr.view, v.view, sizeof(fr.view));
-    memcpy(fr.proj, v.proj, sizeof(fr.proj));
-    double wall = 0.0;
-    rc = bench_frame(g->platform, s->ctx, dev, &fr, &wall);
-    if (k == 0) continue; /* warm-up: the first draw's buffer set-up */
-    *best = wall < *best ? wall : *best;
-    *mean += wall / frames;
-    *tris = tlod_device_query_stats(dev).triangles;
+    double wall = 0.0, c0 = bench_cpu_ms();
+    rc = draw_frame(s, g, dev, ds, sch, k, w, h, &wall);
+    if (k == 0) continue;
+    t[k - 1] = wall, t[frames + k - 1] = bench_cpu_ms() - c0;
+    t[2 * frames + k - 1] = tlod_device_query_stats(dev).cpu_ms;
+    f->tris = tlod_device_query_stats(dev).triangles;
+  }
+  if (rc == CLI_OK) {
+    bench_min_median(t, frames, 1.0, f->wall);
+    bench_min_median(t + frames, frames, 1.0, f->cpu);
+    bench_min_median(t + 2 * frames, frames, 1.0, f->backend);
   }
   tlod_scheduler_destroy(sch);
+  free(t);
   return rc;
 }
 
-static void report(FILE* csv, const char* backend, const char* scene, const char* what, double best, double mean,
-                   uint64_t tris, double ref_best) {
-  printf("%-10s %-28s %-34s best %8.2f ms mean %8.2f  %9llu tris  %6.2f Mtri/s  x%.2f\n", backend, scene, what, best,
-         mean, (unsigned long long)tris, (double)tris / (best * 1e3), best / ref_best);
-  if (csv) fprintf(csv, "%s,%s,%s,%.4f,%.4f,%llu\n", backend, scene, what, best, mean, (unsigned long long)tris);
+static void report(FILE* csv, const char* backend, const char* scene, const char* what, const gl_figures* f,
+                   double ref_median) {
+  printf("%-10s %-28s %-34s wall min %8.2f median %8.2f ms | process cpu median %8.2f | backend cpu median %7.3f | "
+         "%9llu tris %6.2f Mtri/s  x%.2f\n",
+         backend, scene, what, f->wall[0], f->wall[1], f->cpu[1], f->backend[1], (unsigned long long)f->tris,
+         (double)f->tris / (f->wall[1] * 1e3), f->wall[1] / ref_median);
+  if (csv)
+    fprintf(csv, "%s,%s,%s,%.4f,%.4f,%llu,%.4f,%.4f\n", backend, scene, what, f->wall[0], f->wall[1],
+            (unsigned long long)f->tris, f->cpu[1], f->backend[1]);
 }
 
 /* Uniform level of the worst visible patch under the error rule. */
@@ -134,13 +158,12 @@ static int scene_cases(const char* in, const gl_devices* target, uint32_t w, uin
   double ref = 0.0;
   gl_devices g = *target;
   for (size_t k = 0; k < sizeof(cases) / sizeof(cases[0]) && rc == CLI_OK; k++) {
-    double best, mean;
-    uint64_t tris = 0;
-    rc = run_case(&s, &g, &cases[k], w, h, frames, &best, &mean, &tris);
-    if (k == 0) ref = best;
-    if (rc == CLI_OK) report(csv, g.backend, in, cases[k].label, best, mean, tris, ref);
+    gl_figures f = {0};
+    rc = run_case(&s, &g, &cases[k], w, h, frames, &f);
+    if (k == 0) ref = f.wall[1];
+    if (rc == CLI_OK) report(csv, g.backend, in, cases[k].label, &f, ref);
   }
-  printf("%-10s %-28s (uniform level %u; x = frame time / flat's)\n", g.backend, in, worst);
+  printf("%-10s %-28s (uniform level %u; x = median frame time / flat's)\n", g.backend, in, worst);
   gl_devices_free(&g);
   bench_scene_free(&s);
   return rc;
@@ -149,7 +172,7 @@ static int scene_cases(const char* in, const gl_devices* target, uint32_t w, uin
 /* Phong against flat tessellation at one uniform level: equal triangles. */
 static int phong_vs_flat(const char* in, const gl_devices* target, uint32_t w, uint32_t h, uint32_t frames, FILE* csv) {
   int rc = CLI_OK;
-  double flat_best = 0.0;
+  double flat_median = 0.0;
   for (int k = 0; k < 2 && rc == CLI_OK; k++) {
     bench_scene s;
     tlod_surface_type type = k ? TLOD_SURFACE_PHONG : TLOD_SURFACE_FLAT;
@@ -157,12 +180,11 @@ static int phong_vs_flat(const char* in, const gl_devices* target, uint32_t w, u
     gl_case c = {k ? "phong, uniform level 4" : "flat, uniform level 4",
                  {.policy = TLOD_POLICY_UNIFORM, .max_level = 4, .morph = TLOD_MORPH_NONE},
                  false};
-    double best, mean;
-    uint64_t tris = 0;
+    gl_figures f = {0};
     gl_devices g = *target;
-    rc = run_case(&s, &g, &c, w, h, frames, &best, &mean, &tris);
-    if (k == 0) flat_best = best;
-    if (rc == CLI_OK) report(csv, g.backend, in, c.label, best, mean, tris, flat_best);
+    rc = run_case(&s, &g, &c, w, h, frames, &f);
+    if (k == 0) flat_median = f.wall[1];
+    if (rc == CLI_OK) report(csv, g.backend, in, c.label, &f, flat_median);
     gl_devices_free(&g);
     bench_scene_free(&s);
   }

@@ -25,8 +25,10 @@ int bench_frame(tlod_platform* p, tlod_context* ctx, tlod_device* dev, tlod_draw
 /* Frame times of the GPU backend for each model, and Phong against flat on the first. */
 int bench_gl(const bench_gpu* gpu, const char* const* models, uint32_t model_count, uint32_t frames, FILE* csv);
 
-/* Backend CPU time per frame for about 100k visible patches (bench_draw.c). */
-int bench_draw(const bench_gpu* gpu, uint32_t frames, FILE* csv);
+/* Backend CPU time per frame for about 100k visible patches (bench_draw.c);
+ * rep's json gets the cases. */
+struct bench_report;
+int bench_draw(const bench_gpu* gpu, uint32_t frames, struct bench_report* rep, FILE* csv);
 /* Vulkan device start without, with an empty and with a filled shader cache (bench_vkstart.c). */
 int bench_vkstart(uint32_t repeat, FILE* csv);
 

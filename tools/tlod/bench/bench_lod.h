@@ -15,6 +15,8 @@ typedef struct bench_lod_options {
   uint32_t frames;
   const char* const* inputs; /* table1 models */
   uint32_t input_count;
+  const char* const* meshes; /* scheduler meshes */
+  uint32_t mesh_count;
 } bench_lod_options;
 
 /* A loaded model with its mesh, surface and patterns, for the suites. */
@@ -35,11 +37,13 @@ void bench_orbit_view(const tlod_mesh* mesh, float angle, float distance_scale, 
  * `angle` (radians): levels 0-6, contours and culling in one view. */
 void bench_refine_view(float angle, uint32_t w, uint32_t h, tlod_view_desc* v);
 
-/* Scheduler CPU and wall time per frame on 10k, 100k and 1M patches for each
- * thread count, refining cameras moving and still (bench_scheduler.c). */
-struct bench_bandwidth;
-int bench_scheduler(const bench_lod_options* o, const struct bench_bandwidth* bw, FILE* csv);
-/* Schwarz et al.'s Table 1: base / adaptive / uniform triangles at 1600x1144, 0.5 px, PN. */
-int bench_table1(const bench_lod_options* o, FILE* csv);
+/* Scheduler CPU and wall time per frame on o->meshes for each thread count,
+ * refining cameras moving and still (bench_scheduler.c); rep gets the cases
+ * and scheduler_1m_ms. */
+struct bench_report;
+int bench_scheduler(const bench_lod_options* o, struct bench_report* rep, FILE* csv);
+/* Schwarz et al.'s Table 1: base / adaptive / uniform triangles at 1600x1144,
+ * 0.5 px, PN; rep gets the strip overhead (HYBRID, worst scene). */
+int bench_table1(const bench_lod_options* o, struct bench_report* rep, FILE* csv);
 
 #endif

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_bandwidth.h"
 #include "cli.h"
 #include "commands.h"
 #include "common/gpu_target.h"
@@ -25,12 +26,15 @@ void bench_usage(FILE* f) {
           "  --warmup N         untimed runs first (default 1)\n"
           "  --csv FILE         also write one CSV row per case\n"
           "  --suite S          eval (default) | build | scheduler | table1 | gl | skin | objects | draw |\n"
-          "                     vkstart | all\n"
+          "                     vkstart | figures | peers | all\n"
           "                     build: tlod_surface_create on one thread, CPU time per 100k patches of IN\n"
           "                     with measured error tables against closed-form ones, per surface type\n"
           "                     (flat, Phong one alpha, Phong per-vertex alpha, PN), --repeat interleaved\n"
           "                     rounds (min, median), and the bytes per patch of the tables\n"
-          "                     scheduler: time per frame on 10k, 100k, 1M patches (torus), orbiting camera\n"
+          "                     scheduler: tlod_scheduler_update per frame on 10k, 100k, 1M patches (Phong\n"
+          "                     torus quads), a refining camera above the tube (levels 0-6, contours, strips,\n"
+          "                     culling) moving and still: process CPU and wall ms (min, median), stages,\n"
+          "                     level histogram, culled share, strip triangles, memory bound\n"
           "                     table1: Schwarz et al.'s Table 1 (PN, 1600x1144, 0.5 px): base, adaptive per\n"
           "                     policy, uniform at the worst patch's level, strip overhead\n"
           "                     gl: frame times of --backend (llvmpipe / lavapipe, wall clock): flat, adaptive,\n"
@@ -42,10 +46,20 @@ void bench_usage(FILE* f) {
           "                     the same triangles merged into one object, cpu and --backend, --frames frames\n"
           "                     draw: backend CPU time per frame (recording / GL calls, no GPU wait) for about\n"
           "                     100k visible patches on --backend, uniform:1 and adaptive, min/median of --frames\n"
+          "                     figures: issue 15's headline figures and their cases: the scheduler's\n"
+          "                     refining cases on --scheduler-mesh, CPU evaluation of IN at level 5 (flat,\n"
+          "                     Phong, PN), Table 1 strip overhead on the --model scenes (default the cow,\n"
+          "                     the Duck and fran_cut)\n"
+          "                     peers: tesslod against OpenSubdiv (needs a build with OpenSubdiv; --peers)\n"
           "                     vkstart: vulkan device start (create + first frame): shader stages compiled,\n"
           "                     loaded from the cache and their ms, without a cache, with an empty one and\n"
           "                     with the one the empty start filled; --repeat rounds (not in all)\n"
-          "  --frames N         scheduler / gl frames per case (default 20)\n"
+          "  --json FILE        the run as one JSON document (processor, simd, memory rates, every case,\n"
+          "                     scheduler_1m_ms, eval_bandwidth_fraction, strip_triangle_overhead)\n"
+          "  --scheduler-mesh IN  figures: the scheduler mesh (default demo:torus-1000x1000)\n"
+          "  --bandwidth-mib N  memory-rate buffers, MiB (default 640: past this machine's 300 MB cache)\n"
+          "  --peers            the peers suite (== --suite peers); --peer-faces N its mesh size\n"
+          "  --frames N         frames per case: scheduler, objects (default 20), gl, draw (default 60)\n"
           "  --model IN         a table1 model (repeatable; default demo:cow)\n"
           "  --backend B        gl (default) | vulkan: the GPU backend of gl, objects and draw (this build\n"
           "                     has: %s)\n"
@@ -75,7 +89,9 @@ int bench_parse(int argc, char** argv, bench_options* o) {
                        .warmup = 1,
                        .frames = 20,
                        .suite = "eval",
-                       .backend = "gl"};
+                       .backend = "gl",
+                       .scheduler_mesh = "demo:torus-1000x1000",
+                       .bandwidth_mib = BENCH_BANDWIDTH_MIB};
   for (int i = 0; i < argc; i++) {
     const char* a = argv[i];
     const char* v = NULL;
@@ -92,12 +108,13 @@ int bench_parse(int argc, char** argv, bench_options* o) {
     } else if (!strcmp(a, "--warmup")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 0, 1000, &o->warmup)) return CLI_USAGE;
     } else if (!strcmp(a, "--suite")) {
-      static const char* const suites[] = {"eval",    "build", "scheduler", "table1", "gl", "skin",
-                                           "objects", "draw",  "vkstart",   "all",    NULL};
+      static const char* const suites[] = {"eval", "build",   "scheduler", "table1", "gl",  "skin", "objects",
+                                           "draw", "vkstart", "figures",   "peers",  "all", NULL};
       if (!(v = cli_value(argc, argv, &i)) || cli_parse_enum(a, v, suites) < 0) return CLI_USAGE;
       o->suite = v;
     } else if (!strcmp(a, "--frames")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 100000, &o->frames)) return CLI_USAGE;
+      o->frames_given = true;
     } else if (!strcmp(a, "--model")) {
       if (!(v = cli_value(argc, argv, &i))) return CLI_USAGE;
       if (o->table1_count == 16) return cli_error(CLI_USAGE, "--model: at most 16 models");
@@ -110,6 +127,16 @@ int bench_parse(int argc, char** argv, bench_options* o) {
         return cli_error(CLI_USAGE, "--backend: %s: the suites that draw need a GPU backend, gl or vulkan", v);
     } else if (!strcmp(a, "--shader-cache")) {
       if (!(o->shader_cache = cli_value(argc, argv, &i))) return CLI_USAGE;
+    } else if (!strcmp(a, "--json")) {
+      if (!(o->json = cli_value(argc, argv, &i))) return CLI_USAGE;
+    } else if (!strcmp(a, "--scheduler-mesh")) {
+      if (!(o->scheduler_mesh = cli_value(argc, argv, &i))) return CLI_USAGE;
+    } else if (!strcmp(a, "--bandwidth-mib")) {
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 65536, &o->bandwidth_mib)) return CLI_USAGE;
+    } else if (!strcmp(a, "--peers")) {
+      o->suite = "peers";
+    } else if (!strcmp(a, "--peer-faces")) {
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 50000000, &o->peer_faces)) return CLI_USAGE;
     } else if (!strcmp(a, "--csv")) {
       if (!(o->csv = cli_value(argc, argv, &i))) return CLI_USAGE;
     } else if (a[0] == '-' && a[1]) {

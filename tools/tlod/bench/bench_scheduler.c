@@ -1,5 +1,5 @@
 /* tlod bench --suite scheduler -- time per frame of tlod_scheduler_update on
- * 10k, 100k and 1M patches (demo:torus-NxM, Phong quads, levels 0-6), with a
+ * 10k, 100k and 1M patches (or --scheduler-mesh; demo:torus-NxM, Phong quads, levels 0-6), with a
  * refining camera just above the tube (bench_refine_view: levels 0-6,
  * contours, strips, culling), moving along the ring or still. Process CPU
  * time (every thread) beside wall time, min and median over the frames, the
@@ -11,6 +11,7 @@
 
 #include "bench_bandwidth.h"
 #include "bench_lod.h"
+#include "bench_report.h"
 #include "bench_stats.h"
 
 #define SCHED_W 1280
@@ -41,6 +42,7 @@ static void frame_bytes(uint32_t vertices, uint32_t patches, double* read, doubl
 
 typedef struct sched_figures {
   double wall[2], cpu[2];       /* min, median ms per frame */
+  double caller[2];             /* the calling thread CPU, min and median ms */
   double stage[TLOD_STAGE_NUM]; /* median ms per stage */
   double bound_ms;
   tlod_draw_list last; /* statistics of the last frame */
@@ -50,21 +52,21 @@ static void time_frames(tlod_scheduler* sch, const sched_case* c, uint32_t frame
   for (uint32_t k = 0; k < frames + SCHED_WARMUP; k++) {
     tlod_view_desc view;
     bench_refine_view(c->moving ? 0.003f * (float)k : 0.0f, SCHED_W, SCHED_H, &view);
-    double w0 = cli_now_ms(), c0 = bench_cpu_ms();
+    double w0 = cli_now_ms(), c0 = bench_cpu_ms(), h0 = bench_thread_cpu_ms();
     tlod_scheduler_update(sch, &(tlod_frame_desc){.views = &view, .view_count = 1, .dt_ms = 16.7f});
-    double cpu = bench_cpu_ms() - c0, wall = cli_now_ms() - w0;
+    double cpu = bench_cpu_ms() - c0, caller = bench_thread_cpu_ms() - h0, wall = cli_now_ms() - w0;
     if (k < SCHED_WARMUP) continue;
     uint32_t i = k - SCHED_WARMUP;
-    t[i] = wall, t[frames + i] = cpu;
+    t[i] = wall, t[frames + i] = cpu, t[2 * frames + i] = caller;
     for (int st = 0; st < TLOD_STAGE_NUM; st++)
-      t[(2 + st) * frames + i] = tlod_scheduler_draw_list(sch, 0)->stage_ms[st];
+      t[(3 + st) * frames + i] = tlod_scheduler_draw_list(sch, 0)->stage_ms[st];
   }
 }
 
 static int run_case(const bench_scene* s, const sched_case* c, uint32_t frames, sched_figures* f) {
   tlod_scheduler* sch = NULL;
   tlod_scheduler_desc d = {.epsilon_px = SCHED_EPSILON_PX, .max_level = SCHED_MAX_LEVEL};
-  double* t = malloc(sizeof(double) * (2 + TLOD_STAGE_NUM) * frames);
+  double* t = malloc(sizeof(double) * (3 + TLOD_STAGE_NUM) * frames);
   if (!t || tlod_scheduler_create(s->ctx, s->setup.surface, s->setup.patterns, &d, &sch) != TLOD_SUCCESS) {
     free(t);
     return cli_error(CLI_FAILED, "%s", t ? tlod_context_last_error(s->ctx) : "out of memory");
@@ -72,9 +74,10 @@ static int run_case(const bench_scene* s, const sched_case* c, uint32_t frames, 
   time_frames(sch, c, frames, t);
   bench_min_median(t, frames, 1.0, f->wall);
   bench_min_median(t + frames, frames, 1.0, f->cpu);
+  bench_min_median(t + 2 * frames, frames, 1.0, f->caller);
   for (int st = 0; st < TLOD_STAGE_NUM; st++) {
     double mm[2];
-    bench_min_median(t + (2 + st) * frames, frames, 1.0, mm);
+    bench_min_median(t + (3 + st) * frames, frames, 1.0, mm);
     f->stage[st] = mm[1];
   }
   f->last = *tlod_scheduler_draw_list(sch, 0);
@@ -86,9 +89,9 @@ static int run_case(const bench_scene* s, const sched_case* c, uint32_t frames, 
 static void print_case(const char* in, const sched_case* c, uint32_t threads, const sched_figures* f) {
   const tlod_draw_list* dl = &f->last;
   printf("scheduler  %-20s %-13s T%-2u %8u patches  cpu min %8.3f median %8.3f ms | wall min %8.3f median %8.3f ms | "
-         "bound %.3f ms = %3.0f%% of cpu median / T\n",
-         in, c->name, threads, dl->patch_count, f->cpu[0], f->cpu[1], f->wall[0], f->wall[1], f->bound_ms,
-         100.0 * f->bound_ms / (f->cpu[1] / threads));
+         "caller thread cpu median %8.3f ms | bound %.3f cpu ms = %3.0f%% of cpu median\n",
+         in, c->name, threads, dl->patch_count, f->cpu[0], f->cpu[1], f->wall[0], f->wall[1], f->caller[1], f->bound_ms,
+         100.0 * f->bound_ms / f->cpu[1]);
   printf("scheduler    stages median ms (wall):");
   for (int st = 0; st < TLOD_STAGE_NUM; st++)
     printf(" %s %.3f", tlod_stage_name((tlod_stage)st), f->stage[st]);
@@ -113,8 +116,45 @@ static void write_csv(FILE* csv, const char* in, const sched_case* c, uint32_t t
   fprintf(csv, "\n");
 }
 
-static int mesh_cases(const char* in, uint32_t threads, const bench_lod_options* o, const bench_bandwidth* bw,
-                      FILE* csv) {
+static void write_json(json_writer* w, const char* in, const sched_case* c, uint32_t threads, const sched_figures* f) {
+  const tlod_draw_list* dl = &f->last;
+  json_object_begin(w, NULL);
+  json_string(w, "mesh", in);
+  json_string(w, "camera", c->name);
+  json_uint(w, "threads", threads);
+  json_uint(w, "patches", dl->patch_count);
+  json_number(w, "cpu_min_ms", f->cpu[0]);
+  json_number(w, "cpu_median_ms", f->cpu[1]);
+  json_number(w, "wall_min_ms", f->wall[0]);
+  json_number(w, "wall_median_ms", f->wall[1]);
+  json_number(w, "caller_cpu_median_ms", f->caller[1]);
+  json_number(w, "bound_ms", f->bound_ms);
+  json_object_begin(w, "stage_median_ms");
+  for (int st = 0; st < TLOD_STAGE_NUM; st++)
+    json_number(w, tlod_stage_name((tlod_stage)st), f->stage[st]);
+  json_object_end(w);
+  json_array_begin(w, "level_histogram");
+  for (int l = 0; l <= SCHED_MAX_LEVEL; l++)
+    json_uint(w, NULL, dl->level_histogram[l]);
+  json_array_end(w);
+  json_uint(w, "culled", dl->culled);
+  json_uint(w, "pattern_triangles", dl->pattern_triangles);
+  json_uint(w, "strip_triangles", dl->strip_triangles);
+  json_object_end(w);
+}
+
+/* The headline figure: the moving refining camera on 2 threads. */
+static void note_figure(bench_report* rep, const char* in, const sched_case* c, uint32_t threads,
+                        const sched_figures* f) {
+  if (!c->moving || threads != 2 || f->last.patch_count < rep->scheduler_patches) return;
+  rep->scheduler_1m_ms = f->cpu[1] / 2.0;
+  rep->scheduler_1m_cpu_ms = f->cpu[1];
+  rep->scheduler_1m_wall_ms = f->wall[1];
+  rep->scheduler_mesh = in;
+  rep->scheduler_patches = f->last.patch_count;
+}
+
+static int mesh_cases(const char* in, uint32_t threads, const bench_lod_options* o, bench_report* rep, FILE* csv) {
   bench_scene s;
   int rc = bench_scene_load(in, threads, TLOD_SURFACE_PHONG, SCHED_MAX_LEVEL, &s);
   double read, written;
@@ -123,16 +163,17 @@ static int mesh_cases(const char* in, uint32_t threads, const bench_lod_options*
     sched_figures f;
     rc = run_case(&s, &k_cases[k], o->frames, &f);
     if (rc != CLI_OK) break;
-    f.bound_ms = bench_bound_ms(bench_bandwidth_rates(bw, threads), read, written);
+    f.bound_ms = bench_bound_ms(bench_bandwidth_rates(&rep->bw, threads), read, written);
     print_case(in, &k_cases[k], threads, &f);
     if (csv) write_csv(csv, in, &k_cases[k], threads, &f);
+    if (rep->json) write_json(rep->json, in, &k_cases[k], threads, &f);
+    note_figure(rep, in, &k_cases[k], threads, &f);
   }
   if (rc == CLI_OK) bench_scene_free(&s);
   return rc;
 }
 
-int bench_scheduler(const bench_lod_options* o, const bench_bandwidth* bw, FILE* csv) {
-  static const char* const meshes[] = {"demo:torus-100x100", "demo:torus-320x320", "demo:torus-1000x1000"};
+int bench_scheduler(const bench_lod_options* o, bench_report* rep, FILE* csv) {
   printf("scheduler: Phong quads, %ux%u, epsilon %g px, HYBRID, TIME morphs, %u warm-up + %u frames per case; cpu = "
          "process CPU time of every thread per frame, wall = wall clock; bound = bytes a frame must touch at the "
          "measured rates\n",
@@ -144,8 +185,10 @@ int bench_scheduler(const bench_lod_options* o, const bench_bandwidth* bw, FILE*
     fprintf(csv, ",l%d", l);
   if (csv) fprintf(csv, "\n");
   int rc = CLI_OK;
-  for (int m = 0; m < 3 && rc == CLI_OK; m++)
+  if (rep->json) json_array_begin(rep->json, "scheduler");
+  for (uint32_t m = 0; m < o->mesh_count && rc == CLI_OK; m++)
     for (uint32_t t = 0; t < o->thread_count && rc == CLI_OK; t++)
-      rc = mesh_cases(meshes[m], o->threads[t], o, bw, csv);
+      rc = mesh_cases(o->meshes[m], o->threads[t], o, rep, csv);
+  if (rep->json) json_array_end(rep->json);
   return rc;
 }

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "bench_lod.h"
+#include "bench_report.h"
 #include "tool_names.h"
 
 /* Uniform tessellation at the finest level any visible patch needs. */
@@ -339,7 +340,22 @@ static int rule_comparison(const char* in, const bench_scene* s, const tlod_view
   return CLI_OK;
 }
 
-static int table1_case(const char* in, double distance, FILE* csv) {
+/* HYBRID's strip / pattern triangles: the scene's entry in the JSON and the
+ * worst scene's into strip_triangle_overhead. */
+static void note_strips(bench_report* rep, const char* in, const tlod_draw_list* dl) {
+  double share = (double)dl->strip_triangles / (double)(dl->pattern_triangles ? dl->pattern_triangles : 1);
+  if (!(share <= rep->strip_triangle_overhead)) rep->strip_triangle_overhead = share; /* NAN: the first */
+  if (!rep->json) return;
+  json_object_begin(rep->json, NULL);
+  json_string(rep->json, "model", in);
+  json_uint(rep->json, "visible_patches", dl->patch_count - dl->culled);
+  json_uint(rep->json, "pattern_triangles", dl->pattern_triangles);
+  json_uint(rep->json, "strip_triangles", dl->strip_triangles);
+  json_number(rep->json, "strip_over_pattern", share);
+  json_object_end(rep->json);
+}
+
+static int table1_case(const char* in, double distance, bench_report* rep, FILE* csv) {
   bench_scene s;
   int rc = bench_scene_load(in, 0, TLOD_SURFACE_PN, 8, &s);
   if (rc != CLI_OK) return rc;
@@ -390,6 +406,7 @@ static int table1_case(const char* in, double distance, FILE* csv) {
       fprintf(csv, "table1,%s,%s,%u,%llu,%llu,%u,%llu\n", in, tool_policy_name((tlod_lod_policy)p), visible,
               (unsigned long long)adaptive, (unsigned long long)dl->strip_triangles, worst,
               (unsigned long long)uniform);
+    if (p == TLOD_POLICY_HYBRID) note_strips(rep, in, dl);
     tlod_scheduler_destroy(sch);
   }
   free(error_levels);
@@ -397,9 +414,11 @@ static int table1_case(const char* in, double distance, FILE* csv) {
   return rc;
 }
 
-int bench_table1(const bench_lod_options* o, FILE* csv) {
+int bench_table1(const bench_lod_options* o, bench_report* rep, FILE* csv) {
   int rc = CLI_OK;
+  if (rep->json) json_array_begin(rep->json, "table1_hybrid");
   for (uint32_t i = 0; i < o->input_count && rc == CLI_OK; i++)
-    rc = table1_case(o->inputs[i], 1.0, csv);
+    rc = table1_case(o->inputs[i], 1.0, rep, csv);
+  if (rep->json) json_array_end(rep->json);
   return rc;
 }
