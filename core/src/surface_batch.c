@@ -23,9 +23,12 @@ typedef struct _tlod_batch {
 typedef void (*corner_kernel)(const _tlod_corners* c, _tlod_batch* b, uint32_t n, bool normals);
 typedef void (*pn_kernel)(const _tlod_corners* c, const _tlod_pn_patch* pt, _tlod_batch* b, uint32_t n, bool normals);
 
+typedef void (*store_kernel)(const _tlod_batch* b, uint32_t n, float* pos, float* nrm);
+
 typedef struct kernels {
   corner_kernel flat, phong;
   pn_kernel pn;
+  store_kernel store;
 } kernels;
 
 #if defined(__GNUC__) && !defined(__clang__)
@@ -58,11 +61,11 @@ typedef struct kernels {
 
 static const kernels* kernels_for(tlod_simd simd) {
   static const kernels table[] = {
-    {flat_scalar, phong_scalar, pn_scalar},
+    {flat_scalar, phong_scalar, pn_scalar, store_scalar},
 #if defined(__x86_64__)
-    {flat_sse2, phong_sse2, pn_sse2},
-    {flat_avx2, phong_avx2, pn_avx2},
-    {flat_avx512, phong_avx512, pn_avx512},
+    {flat_sse2, phong_sse2, pn_sse2, store_sse2},
+    {flat_avx2, phong_avx2, pn_avx2, store_avx2},
+    {flat_avx512, phong_avx512, pn_avx512, store_avx512},
 #endif
   };
   int at = 0;
@@ -89,14 +92,9 @@ static void run_kernel(const tlod_surface* s, uint32_t patch, const kernels* k, 
   }
 }
 
-/* The lanes back to xyz triples; flagged normals from the scalar code. */
-static void store(const tlod_surface* s, uint32_t patch, const _tlod_corners* c, const _tlod_batch* b, uint32_t n,
-                  float* pos, float* nrm) {
-  for (uint32_t k = 0; k < n; k++)
-    pos[3 * k] = b->px[k], pos[3 * k + 1] = b->py[k], pos[3 * k + 2] = b->pz[k];
-  if (!nrm) return;
-  for (uint32_t k = 0; k < n; k++)
-    nrm[3 * k] = b->nx[k], nrm[3 * k + 1] = b->ny[k], nrm[3 * k + 2] = b->nz[k];
+/* Flagged normals from the scalar code. */
+static void redo_flagged(const tlod_surface* s, uint32_t patch, const _tlod_corners* c, const _tlod_batch* b,
+                         uint32_t n, float* nrm) {
   for (uint32_t k = 0; k < n; k++) {
     if (!b->flag[k]) continue;
     tlod_surface_point p;
@@ -133,7 +131,9 @@ tlod_result tlod_surface_eval_interior(const tlod_surface* s, uint32_t patch, tl
     memcpy(b.u, u + at, sizeof(float) * n);
     memcpy(b.v, v + at, sizeof(float) * n);
     run_kernel(s, patch, k, &c, &b, n, normals != NULL);
-    store(s, patch, &c, &b, n, positions + 3 * (size_t)at, normals ? normals + 3 * (size_t)at : NULL);
+    float* nrm = normals ? normals + 3 * (size_t)at : NULL;
+    k->store(&b, n, positions + 3 * (size_t)at, nrm);
+    if (nrm) redo_flagged(s, patch, &c, &b, n, nrm);
   }
   return TLOD_SUCCESS;
 }
