@@ -74,6 +74,11 @@ void _tlod_cpu_fast_free(tess* t, level_table* lt) {
     tlod_context_free(t->ctx, arrays[i]);
 }
 
+static void fill(uint32_t* restrict dst, uint32_t count, uint32_t value) {
+  for (uint32_t k = 0; k < count; k++)
+    dst[k] = value;
+}
+
 /* Welded, no geomorph, no attributes: interior points straight into the
  * output, then the edges this patch owns. */
 static void eval_direct(tess* t, uint32_t f, const level_table* lt, scratch* w) {
@@ -81,8 +86,7 @@ static void eval_direct(tess* t, uint32_t f, const level_table* lt, scratch* w) 
   uint32_t ib = t->interior_base[f], ni = lt->interior;
   tlod_surface_eval_interior(t->s, f, t->simd, ni, lt->int_u, lt->int_v, o->positions + 3 * (size_t)ib,
                              o->normals ? o->normals + 3 * (size_t)ib : NULL);
-  for (uint32_t k = 0; k < ni; k++)
-    o->vertex_patch[ib + k] = f;
+  fill(o->vertex_patch + ib, ni, f);
   memcpy(o->vertex_uv + ib, lt->int_uv, sizeof(float[2]) * ni);
   uint32_t count;
   const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape_of(t, f), &count);
@@ -135,16 +139,16 @@ void _tlod_cpu_fast_eval(void* data, uint32_t begin, uint32_t end, uint32_t work
 
 /* The pattern's indices plus the patch's offset; welded, the template holds
  * interior ordinals and only boundary entries are remapped. */
+static void add_offset(uint32_t* restrict dst, const uint32_t* restrict src, uint32_t count, uint32_t offset) {
+  for (uint32_t k = 0; k < count; k++)
+    dst[k] = src[k] + offset;
+}
+
 static void emit_one(const tess* t, uint32_t f, const level_table* lt, uint32_t* dst) {
   uint32_t count, ib = t->interior_base[f];
   const uint32_t* idx = tlod_patterns_indices(t->pat, shape_of(t, f), (uint32_t)level_of(t, f), &count);
-  if (t->d.no_weld) {
-    for (uint32_t k = 0; k < count; k++)
-      dst[k] = idx[k] + ib;
-    return;
-  }
-  for (uint32_t k = 0; k < count; k++)
-    dst[k] = lt->tmpl[k] + ib;
+  add_offset(dst, t->d.no_weld ? idx : lt->tmpl, count, ib);
+  if (t->d.no_weld) return;
   patch_lookup lk = {.corner = {0}};
   _tlod_cpu_lookup(t, f, &lk);
   for (uint32_t s = 0; s < lt->nslot; s++) {
@@ -161,8 +165,6 @@ void _tlod_cpu_fast_emit(void* data, uint32_t begin, uint32_t end, uint32_t work
     const level_table* lt = table_of(t, f);
     uint32_t tb = t->tri_base[f], tris = tlod_pattern_triangle_count(shape_of(t, f), (uint32_t)level_of(t, f));
     emit_one(t, f, lt, t->out->indices + 3 * (size_t)tb);
-    uint32_t* tp = t->out->triangle_patch + tb;
-    for (uint32_t k = 0; k < tris; k++)
-      tp[k] = f;
+    fill(t->out->triangle_patch + tb, tris, f);
   }
 }
