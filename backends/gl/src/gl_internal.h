@@ -7,8 +7,10 @@
 #include <GL/glext.h>
 
 #include "device_internal.h"
+#include "device_stage.h"   /* _tlod_list_snapshot */
 #include "layout.h"         /* backends/shaders: binding points and buffer structs, shared with GLSL */
 #include "shader_sources.h" /* backends/shaders as C strings */
+#include "tesslod/cpu.h"    /* the CPU-mesh mode's evaluator */
 #include "tesslod/gl.h"
 
 #if TLOD_GL_BINDING_PATCHES != TLOD_BINDING_PATCHES || TLOD_GL_BINDING_PATTERNS != TLOD_BINDING_PATTERN ||             \
@@ -43,6 +45,23 @@ typedef struct gl_texture {
 
 tlod_result _tlod_gl_texture_create(tlod_context* ctx, const tlod_texture_desc* desc, gl_texture** out);
 void _tlod_gl_texture_destroy(tlod_context* ctx, gl_texture* t);
+
+/* CPU-mesh mode (tlod_gpu_eval OFF): one device surface's evaluated mesh
+ * and its GL copy (gl_mesh.c). Vertex buffer: positions, then normals. */
+typedef struct gl_mesh {
+  tlod_cpu_mesh* cpu; /* NULL until the first evaluation */
+  GLuint vao, vertices, indices;
+  uint32_t index_count;
+  _tlod_list_snapshot snap; /* what cpu and the buffers were made from */
+} gl_mesh;
+
+/* Evaluates item it's draw list into m and uploads it, unless it is the
+ * one m holds (*evaluated false); the uploaded bytes are added to *bytes. */
+tlod_result _tlod_gl_mesh_update(tlod_context* ctx, const tlod_patterns* p, const _tlod_draw_ref* it, gl_mesh* m,
+                                 bool* evaluated, uint64_t* bytes);
+/* One indexed draw of the mesh, with the program and state in place. */
+void _tlod_gl_mesh_draw(const gl_mesh* m);
+void _tlod_gl_mesh_free(tlod_context* ctx, gl_mesh* m);
 
 /* The first line number of the fragment stage's material source (its
  * #line directive): the log's lines from here on are the hook's. */

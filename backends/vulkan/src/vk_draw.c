@@ -1,7 +1,7 @@
 /* tesslod::vulkan -- tlod_device_draw(): validates the draw's Vulkan
  * fields, begins the frame slot, makes the pipelines the items need,
  * stages every item exactly as the gl device (device_stage.h), writes
- * instances, strips, strip references and one uniform block per item into
+ * instances, strips, strip references and indices and one uniform block per item into
  * the slot's ring, writes one descriptor set per item and records, per
  * item in draw order (BLEND last, farthest first): its pattern draws
  * (indexed, instanced) or its tessellation batches, its strips, and with
@@ -14,7 +14,7 @@
 typedef struct ring_view {
   VkBuffer buffer;
   char* mapped;
-  VkDeviceSize uniforms, instances, strips, refs;
+  VkDeviceSize uniforms, instances, strips, refs, indices;
   VkDeviceSize instance_bytes, strip_bytes;
 } ring_view;
 
@@ -86,20 +86,20 @@ static void item_uniforms(const vk_device* d, const tlod_draw_desc* fr, const _t
   u->attribute_count = vs->attribute_count;
 }
 
-/* The strip references, each triangle rotated by one vertex (a b c -> c a
+/* The strip indices, each triangle rotated by one vertex (a b c -> c a
  * b: the same triangle and winding). Flat varyings come from a triangle's
  * first vertex in Vulkan and from its last in GL; a strip triangle spans
  * two levels (v_level), so without the rotation the levels view and a
  * hook reading f.level would colour strips differently from GL. */
-static void write_refs(uint32_t (*out)[2], const uint32_t (*refs)[2], uint32_t count) {
+static void write_indices(uint32_t* out, const uint32_t* indices, uint32_t count) {
   for (uint32_t t = 0; t + 2 < count; t += 3) {
-    memcpy(out[t], refs[t + 2], sizeof(uint32_t[2]));
-    memcpy(out[t + 1], refs[t], sizeof(uint32_t[2]));
-    memcpy(out[t + 2], refs[t + 1], sizeof(uint32_t[2]));
+    out[t] = indices[t + 2];
+    out[t + 1] = indices[t];
+    out[t + 2] = indices[t + 1];
   }
 }
 
-/* The ring block of this draw: uniforms, instances, strips, references. */
+/* The ring block of this draw: uniforms, instances, strips, references, strip indices. */
 static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items, ring_view* rv) {
   VkDeviceSize a = d->ring_align, n = fr->item_count;
   VkDeviceSize ib = sizeof(tlod_gl_instance) * (VkDeviceSize)d->st.instance_count;
@@ -107,7 +107,9 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
   VkDeviceSize rb = sizeof(uint32_t[2]) * (VkDeviceSize)d->st.ref_count;
   rv->instance_bytes = ib ? ib : 16, rv->strip_bytes = sb ? sb : 16;
   VkDeviceSize i0 = _tlod_vkb_align(n * d->uniform_stride, a), s0 = _tlod_vkb_align(i0 + rv->instance_bytes, a);
-  VkDeviceSize r0 = _tlod_vkb_align(s0 + rv->strip_bytes, a), total = r0 + (rb ? rb : 16), base = 0;
+  VkDeviceSize xb = sizeof(uint32_t) * (VkDeviceSize)d->st.index_count;
+  VkDeviceSize r0 = _tlod_vkb_align(s0 + rv->strip_bytes, a), x0 = _tlod_vkb_align(r0 + (rb ? rb : 16), a);
+  VkDeviceSize total = x0 + (xb ? xb : 16), base = 0;
   VkResult r = _tlod_vkb_ring_take(&d->frames, total, a, &base, d->stats);
   if (r != VK_SUCCESS)
     return tlod_context_fail(d->ctx, r == VK_ERROR_OUT_OF_HOST_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
@@ -116,7 +118,7 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
   const vk_slot* s = &d->frames.slots[d->frames.current];
   rv->buffer = s->ring.buffer;
   rv->mapped = s->ring.mem.mapped;
-  rv->uniforms = base, rv->instances = base + i0, rv->strips = base + s0, rv->refs = base + r0;
+  rv->uniforms = base, rv->instances = base + i0, rv->strips = base + s0, rv->refs = base + r0, rv->indices = base + x0;
   float view[3][3];
   _tlod_view_vectors(fr, view[0], view[1], view[2]);
   for (uint32_t k = 0; k < fr->item_count; k++)
@@ -124,8 +126,9 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
                   (tlod_vk_uniforms*)(rv->mapped + base + k * d->uniform_stride));
   memcpy(rv->mapped + rv->instances, d->st.instances, (size_t)ib);
   memcpy(rv->mapped + rv->strips, d->st.strips, (size_t)sb);
-  write_refs((uint32_t(*)[2])(rv->mapped + rv->refs), d->st.refs, d->st.ref_count);
-  d->stats->vk.upload_bytes = n * sizeof(tlod_vk_uniforms) + ib + sb + rb;
+  memcpy(rv->mapped + rv->refs, d->st.refs, (size_t)rb);
+  write_indices((uint32_t*)(rv->mapped + rv->indices), d->st.indices, d->st.index_count);
+  d->stats->vk.upload_bytes = n * sizeof(tlod_vk_uniforms) + ib + sb + rb + xb;
   return TLOD_SUCCESS;
 }
 
@@ -186,6 +189,7 @@ typedef struct item_rec {
   bool blend;
   const tlod_draw_list* dl;
   const _tlod_stage_range* range;
+  const ring_view* rv;
 } item_rec;
 
 static void push(vk_device* d, VkCommandBuffer cmd, uint32_t first, uint32_t shape_base, uint32_t corners,
@@ -203,6 +207,7 @@ static void bind(vk_device* d, const item_rec* ir, int kind, bool line) {
 static uint32_t issue_draws(vk_device* d, const item_rec* ir, bool line, uint32_t debug, uint64_t* vertices) {
   uint32_t calls = 0;
   bind(d, ir, VK_KIND_PATTERN, line);
+  vkCmdBindIndexBuffer(ir->cmd, d->pattern_indices.buffer, 0, VK_INDEX_TYPE_UINT32);
   for (uint32_t k = 0; k < ir->dl->bucket_count; k++) {
     const tlod_draw_bucket* bk = &ir->dl->buckets[k];
     uint32_t sh = (uint32_t)bk->shape;
@@ -211,10 +216,12 @@ static uint32_t issue_draws(vk_device* d, const item_rec* ir, bool line, uint32_
     *vertices += (uint64_t)tlod_pattern_vertex_count(bk->shape, bk->level) * bk->count;
     calls++;
   }
-  if (ir->range->ref_count) {
+  if (ir->range->index_count) {
+    /* Indexed: each strip point is shaded once, not once per triangle. */
     bind(d, ir, VK_KIND_STRIP, line);
     push(d, ir->cmd, 0, 0, 0, debug);
-    vkCmdDraw(ir->cmd, ir->range->ref_count, 1, ir->range->ref_first, 0);
+    vkCmdBindIndexBuffer(ir->cmd, ir->rv->buffer, ir->rv->indices, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(ir->cmd, ir->range->index_count, 1, ir->range->index_first, 0, 0);
     *vertices += ir->range->ref_count;
     calls++;
   }
@@ -256,7 +263,8 @@ static void draw_item(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
                  .variant = variant_of(d, it),
                  .blend = it->item->blend == TLOD_BLEND_BLEND,
                  .dl = it->item->draw_list,
-                 .range = &d->st.ranges[k]};
+                 .range = &d->st.ranges[k],
+                 .rv = rv};
   vkCmdSetCullMode(cmd, it->item->cull_back_faces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
   vkCmdSetDepthWriteEnable(cmd, ir.blend ? VK_FALSE : VK_TRUE);
   vkCmdSetDepthBiasEnable(cmd, fr->wireframe ? VK_TRUE : VK_FALSE);
@@ -268,7 +276,7 @@ static void draw_item(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
     vkCmdSetDepthBiasEnable(cmd, VK_FALSE);
     calls += issue(d, &ir, true, 4u, &unused);
   }
-  st->triangles = d->hardware ? ir.dl->pattern_triangles : ir.dl->pattern_triangles + ir.range->ref_count / 3;
+  st->triangles = d->hardware ? ir.dl->pattern_triangles : ir.dl->pattern_triangles + ir.range->index_count / 3;
   st->vertices = vertices;
   st->draw_calls = calls;
   st->cpu_ms += tlod_now_ms() - t0;
@@ -276,7 +284,7 @@ static void draw_item(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
 
 /* Viewport flipped (negative height: GL's y up, so the image and the
  * winding are GL's); origin at the framebuffer's top-left (Vulkan's). */
-static void begin_state(vk_device* d, const tlod_draw_desc* fr, const ring_view* rv) {
+static void begin_state(const tlod_draw_desc* fr, const ring_view* rv) {
   VkCommandBuffer cmd = fr->vk.command_buffer;
   const uint32_t* v = fr->viewport;
   VkViewport vp = {(float)v[0], (float)v[1] + (float)v[3], (float)v[2], -(float)v[3], 0.0f, 1.0f};
@@ -284,7 +292,6 @@ static void begin_state(vk_device* d, const tlod_draw_desc* fr, const ring_view*
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &sc);
   vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.0f);
-  vkCmdBindIndexBuffer(cmd, d->pattern_indices.buffer, 0, VK_INDEX_TYPE_UINT32);
   VkDeviceSize off = rv->refs;
   vkCmdBindVertexBuffers(cmd, 0, 1, &rv->buffer, &off);
 }
@@ -317,14 +324,16 @@ tlod_result _tlod_vkb_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   _tlod_vkb_frames_begin(&d->frames, fr->vk.frame_index);
   r = prepare(d, fr, items);
   _tlod_vkb_shader_stats(d);
-  if (r == TLOD_SUCCESS) r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "vulkan device", fr, items, item_stats);
+  bool restaged; /* the ring is the slot's: it is written every draw, from the staged arrays */
+  if (r == TLOD_SUCCESS)
+    r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "vulkan device", fr, items, item_stats, &restaged);
   if (r == TLOD_SUCCESS) r = _tlod_stage_order(d->ctx, &d->st, "vulkan device", fr, items, vk_surface_center);
   ring_view rv;
   if (r == TLOD_SUCCESS) r = upload(d, fr, items, &rv);
   if (r == TLOD_SUCCESS) r = descriptors(d, fr, items, &rv);
   if (r != TLOD_SUCCESS) return r;
   VkCommandBuffer cmd = fr->vk.command_buffer;
-  begin_state(d, fr, &rv);
+  begin_state(fr, &rv);
   bool timed = begin_queries(d, cmd);
   for (uint32_t j = 0; j < fr->item_count; j++) {
     uint32_t k = d->st.order[j];

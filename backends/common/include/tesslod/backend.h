@@ -115,6 +115,26 @@ typedef enum tlod_debug_view {
 /* Device                                                                   */
 /* ------------------------------------------------------------------------ */
 
+/* Where the "gl" device evaluates the surfaces it draws. */
+typedef enum tlod_gpu_eval {
+  /* AUTO: OFF on a software rasteriser (GL_RENDERER naming llvmpipe,
+   * softpipe or SwiftShader), where a vertex costs CPU time and each
+   * pattern vertex's evaluation is that much work again; else ON. */
+  TLOD_GPU_EVAL_DEFAULT = 0,
+  TLOD_GPU_EVAL_ON,  /* patterns evaluated in the vertex shader (tesslod/gl.h) */
+  TLOD_GPU_EVAL_OFF, /* CPU mesh: each item's draw list evaluated by tlod_cpu_tessellate_into
+                        (welded, with normals), uploaded, one indexed draw; skipped while the
+                        list, its surface and mesh are unchanged (tlod_device_stats.cpu_mesh) */
+  TLOD_GPU_EVAL_NUM,
+  _TLOD_GPU_EVAL_FORCE_U32 = 0x7FFFFFFF
+} tlod_gpu_eval;
+
+/* "default", "on", "off" (tlod_gpu_eval_from_name: also "auto" == DEFAULT);
+ * "?" past the enum. */
+TLOD_API const char* tlod_gpu_eval_name(tlod_gpu_eval e);
+/* TLOD_GPU_EVAL_NUM for an unknown name or NULL. */
+TLOD_API tlod_gpu_eval tlod_gpu_eval_from_name(const char* name);
+
 /* Options of the "gl" device (ignored by the others). */
 typedef struct tlod_device_gl_desc {
   /* Draw with GL_PATCHES and tessellation shaders instead of refinement
@@ -139,6 +159,12 @@ typedef struct tlod_device_gl_desc {
    * carrying the driver's log with the hook's own line numbers
    * ("fragment_hook:LINE"). Copied: need not outlive the call. */
   const char* fragment_hook;
+  /* >= TLOD_GPU_EVAL_NUM is TLOD_ERROR_INVALID_ARGUMENT. With OFF (or AUTO
+   * resolving to it), items whose fragments read a texture or (a hook)
+   * attributes, MASK items and hardware_tessellation still draw with GPU
+   * evaluation; the CPU mesh carries no level or strip per vertex (the
+   * levels and strips debug views show level 0, no strip). */
+  tlod_gpu_eval gpu_eval;
 } tlod_device_gl_desc;
 
 /* Options of the "vulkan" device (ignored by the others); tesslod/vulkan.h
@@ -370,7 +396,15 @@ typedef struct tlod_device_gl_stats {
                                upload of a mesh without attributes */
   double create_ms;         /* device creation: programs linked, patterns uploaded */
   double surface_upload_ms; /* since creation: time in surface create + update */
-  uint32_t buffer_streams;  /* per-draw buffer uploads of the last draw (instances, strips, strip refs) */
+  /* CPU-mesh mode (tlod_gpu_eval): whether the device resolved to it,
+   * why, and the last draw's work. */
+  bool cpu_mesh;
+  char gpu_eval_reason[96];  /* e.g. "auto: GL_RENDERER llvmpipe (LLVM 15.0.6, 256 bits) is a software rasteriser" */
+  uint32_t mesh_evaluations; /* items of the last draw evaluated and uploaded again (others reused theirs) */
+  double mesh_eval_ms;       /* CPU time of those evaluations, last draw */
+  uint64_t mesh_bytes;       /* vertex + index bytes uploaded by the last draw */
+  uint32_t buffer_streams;   /* per-draw buffer uploads of the last draw (instances, strips, strip refs, strip
+                                indices); 0 when its draw lists were those of the draw before */
 } tlod_device_gl_stats;
 
 /* "vulkan" only (zero elsewhere). */
