@@ -106,10 +106,10 @@ static void compare_cpu_mesh(gl_env* env, tlod_device* dev, const fixture* fx, c
   snprintf(label, sizeof label, "%s cpu mesh", what);
   tlod_device_stats t;
   CALL(draw_into(env, env->dev_cpu, env->ds_cpu, fx, dl, v, env->img_c, label, &t));
-  CHECK_MSG(t.gl.cpu_mesh && strstr(t.gl.gpu_eval_reason, "off"), "%s: mode not reported: cpu_mesh %d, reason '%s'",
-            label, t.gl.cpu_mesh, t.gl.gpu_eval_reason);
-  CHECK_MSG(t.gl.mesh_evaluations == 1 && t.gl.mesh_bytes > 0, "%s: %u evaluations, %llu bytes (expected 1, > 0)",
-            label, t.gl.mesh_evaluations, (unsigned long long)t.gl.mesh_bytes);
+  CHECK_MSG(t.cpu_mesh && strstr(t.gpu_eval_reason, "off"), "%s: mode not reported: cpu_mesh %d, reason '%s'", label,
+            t.cpu_mesh, t.gpu_eval_reason);
+  CHECK_MSG(t.mesh_evaluations == 1 && t.mesh_bytes > 0, "%s: %u evaluations, %llu bytes (expected 1, > 0)", label,
+            t.mesh_evaluations, (unsigned long long)t.mesh_bytes);
   CHECK_MSG(t.triangles == dl->pattern_triangles + dl->strip_triangles, "%s: %llu triangles, the list has %llu", label,
             (unsigned long long)t.triangles, (unsigned long long)(dl->pattern_triangles + dl->strip_triangles));
   compare_result c = compare_images(env->img_c, env->img_a, W, H, 8);
@@ -118,12 +118,12 @@ static void compare_cpu_mesh(gl_env* env, tlod_device* dev, const fixture* fx, c
          c.covered_both ? 100.0 * c.colour_ok / c.covered_both : 100.0);
   check_tolerances(&c, label, "GPU-eval image");
   CALL(draw_into(env, env->dev_cpu, env->ds_cpu, fx, dl, v, env->img_again, label, &t));
-  CHECK_MSG(t.gl.mesh_evaluations == 0 && t.gl.mesh_bytes == 0,
-            "%s: the same list again: %u evaluations, %llu bytes (expected none)", label, t.gl.mesh_evaluations,
-            (unsigned long long)t.gl.mesh_bytes);
+  CHECK_MSG(t.mesh_evaluations == 0 && t.mesh_bytes == 0,
+            "%s: the same list again: %u evaluations, %llu bytes (expected none)", label, t.mesh_evaluations,
+            (unsigned long long)t.mesh_bytes);
   CHECK_MSG(!memcmp(env->img_again, env->img_c, 4 * W * H), "%s: the reused mesh draws another image", label);
   CALL(draw_into(env, dev, fx->ds, fx, dl, v, env->img_again, what, &t));
-  CHECK_MSG(t.gl.buffer_streams == 0 && !t.gl.cpu_mesh, "%s: the same list again: %u buffer uploads (expected 0)", what,
+  CHECK_MSG(t.gl.buffer_streams == 0 && !t.cpu_mesh, "%s: the same list again: %u buffer uploads (expected 0)", what,
             t.gl.buffer_streams);
   CHECK_MSG(!memcmp(env->img_again, env->img_a, 4 * W * H), "%s: the list not re-sent draws another image", what);
 }
@@ -240,8 +240,8 @@ TEST(test_parity) {
   env.dev_cpu = new_gl_device(ctx, pat, "gl_parity cpu mesh", (tlod_device_gl_desc){.gpu_eval = TLOD_GPU_EVAL_OFF});
   CHECK(env.dev_cpu);
   tlod_device_stats on = tlod_device_query_stats(dev);
-  CHECK_MSG(!on.gl.cpu_mesh && strstr(on.gl.gpu_eval_reason, "on"), "GPU-eval device reports cpu_mesh %d, '%s'",
-            on.gl.cpu_mesh, on.gl.gpu_eval_reason);
+  CHECK_MSG(!on.cpu_mesh && strstr(on.gpu_eval_reason, "on"), "GPU-eval device reports cpu_mesh %d, '%s'", on.cpu_mesh,
+            on.gpu_eval_reason);
 
   shape shapes[3] = {shape_icosphere(2), shape_torus(16, 10), shape_cube_soft()};
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};

@@ -96,10 +96,11 @@ tlod_result tlod_device_create(tlod_context* ctx, const tlod_device_desc* desc, 
                              desc->gl.surface_types & ~((1u << TLOD_SURFACE_NUM) - 1u) ? "gl" : "vk",
                              desc->gl.surface_types & ~((1u << TLOD_SURFACE_NUM) - 1u) ? desc->gl.surface_types
                                                                                        : desc->vk.surface_types);
-  if ((unsigned)desc->gl.gpu_eval >= TLOD_GPU_EVAL_NUM)
-    return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
-                             "tlod_device_create: desc.gl.gpu_eval %u is past TLOD_GPU_EVAL_NUM",
-                             (unsigned)desc->gl.gpu_eval);
+  if ((unsigned)desc->gl.gpu_eval >= TLOD_GPU_EVAL_NUM || (unsigned)desc->vk.gpu_eval >= TLOD_GPU_EVAL_NUM)
+    return tlod_context_fail(
+        ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_device_create: desc.%s.gpu_eval %u is past TLOD_GPU_EVAL_NUM",
+        (unsigned)desc->gl.gpu_eval >= TLOD_GPU_EVAL_NUM ? "gl" : "vk",
+        (unsigned)desc->gl.gpu_eval >= TLOD_GPU_EVAL_NUM ? (unsigned)desc->gl.gpu_eval : (unsigned)desc->vk.gpu_eval);
   tlod_device* dev = tlod_context_calloc(ctx, 1, sizeof(*dev));
   if (!dev) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_device_create: out of memory");
   dev->ctx = ctx;

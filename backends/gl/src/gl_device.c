@@ -219,35 +219,6 @@ static tlod_result upload_patterns(gl_device* d) {
   return TLOD_SUCCESS;
 }
 
-/* Software rasterisers: every vertex costs CPU time, so the CPU mesh
- * (each welded vertex evaluated once, and only when its list changed)
- * beats evaluating every pattern vertex in the vertex shader. */
-static bool software_renderer(const char* renderer) {
-  static const char* const names[] = {"llvmpipe", "softpipe", "SwiftShader"};
-  for (size_t k = 0; renderer && k < sizeof(names) / sizeof(names[0]); k++)
-    if (strstr(renderer, names[k])) return true;
-  return false;
-}
-
-/* desc.gl.gpu_eval resolved, with the reason into the stats. */
-static void resolve_gpu_eval(gl_device* d, tlod_gpu_eval e) {
-  const char* renderer = (const char*)glGetString(GL_RENDERER);
-  bool software = software_renderer(renderer);
-  char* why = d->stats->gl.gpu_eval_reason;
-  size_t n = sizeof(d->stats->gl.gpu_eval_reason);
-  d->cpu_mesh = e == TLOD_GPU_EVAL_OFF || (e == TLOD_GPU_EVAL_DEFAULT && software);
-  if (d->cpu_mesh && d->hardware) {
-    d->cpu_mesh = false;
-    snprintf(why, n, "on: hardware tessellation evaluates on the GPU");
-  } else if (e != TLOD_GPU_EVAL_DEFAULT) {
-    snprintf(why, n, "asked for: desc.gl.gpu_eval %s", tlod_gpu_eval_name(e));
-  } else {
-    snprintf(why, n, "auto: GL_RENDERER %.48s %s", renderer ? renderer : "?",
-             software ? "is a software rasteriser" : "is not a software rasteriser");
-  }
-  d->stats->gl.cpu_mesh = d->cpu_mesh;
-}
-
 static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tlod_device_stats* stats, void** state) {
   tlod_result r = check_context(ctx);
   if (r != TLOD_SUCCESS) return r;
@@ -260,7 +231,9 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   d->lmax = tlod_patterns_max_level(desc->patterns);
   d->hardware = desc->gl.hardware_tessellation;
   d->st.hardware = d->hardware;
-  resolve_gpu_eval(d, desc->gl.gpu_eval);
+  const char* renderer = (const char*)glGetString(GL_RENDERER);
+  d->cpu_mesh = _tlod_resolve_gpu_eval(stats, desc->gl.gpu_eval, _tlod_software_renderer(renderer), d->hardware,
+                                       "desc.gl.gpu_eval", renderer);
   if (desc->gl.fragment_hook) {
     size_t n = strlen(desc->gl.fragment_hook) + 1;
     d->fragment_hook = tlod_context_alloc(ctx, n);
@@ -565,9 +538,9 @@ static tlod_result draw_mesh(gl_device* d, const tlod_draw_desc* fr, const _tlod
   gl_surface* gs = it->surface_state;
   bool evaluated = false;
   double t0 = tlod_now_ms();
-  tlod_result r = _tlod_gl_mesh_update(d->ctx, d->patterns, it, &gs->mesh, &evaluated, &d->stats->gl.mesh_bytes);
+  tlod_result r = _tlod_gl_mesh_update(d->ctx, d->patterns, it, &gs->mesh, &evaluated, &d->stats->mesh_bytes);
   if (r != TLOD_SUCCESS) return r;
-  if (evaluated) d->stats->gl.mesh_evaluations++, d->stats->gl.mesh_eval_ms += tlod_now_ms() - t0;
+  if (evaluated) d->stats->mesh_evaluations++, d->stats->mesh_eval_ms += tlod_now_ms() - t0;
   glUseProgram(ps->mesh.id);
   _tlod_gl_mesh_draw(&gs->mesh);
   st->draw_calls = 1;
@@ -579,7 +552,7 @@ static tlod_result draw_mesh(gl_device* d, const tlod_draw_desc* fr, const _tlod
     set_debug(d, ps, (uint32_t)fr->debug);
     st->draw_calls = 2;
   }
-  const tlod_cpu_mesh* c = gs->mesh.cpu;
+  const tlod_cpu_mesh* c = gs->mesh.eval.cpu;
   st->triangles = c ? (uint64_t)c->triangle_count + c->folds_skipped : 0u;
   st->vertices = c ? c->vertex_count : 0u;
   return TLOD_SUCCESS;
@@ -684,7 +657,7 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
     glBeginQuery(GL_PRIMITIVES_GENERATED, d->prim_queries[d->frame % QUERY_RING]);
   }
   set_view_uniforms(d, fr);
-  d->stats->gl.mesh_evaluations = 0, d->stats->gl.mesh_eval_ms = 0.0, d->stats->gl.mesh_bytes = 0;
+  d->stats->mesh_evaluations = 0, d->stats->mesh_eval_ms = 0.0, d->stats->mesh_bytes = 0;
   for (uint32_t j = 0; j < fr->item_count && r == TLOD_SUCCESS; j++) {
     uint32_t k = d->st.order[j];
     r = draw_item(d, fr, &items[k], k, &item_stats[k]);

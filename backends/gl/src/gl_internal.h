@@ -7,10 +7,9 @@
 #include <GL/glext.h>
 
 #include "device_internal.h"
-#include "device_stage.h"   /* _tlod_list_snapshot */
+#include "device_mesh.h"    /* the CPU-mesh mode's evaluation */
 #include "layout.h"         /* backends/shaders: binding points and buffer structs, shared with GLSL */
 #include "shader_sources.h" /* backends/shaders as C strings */
-#include "tesslod/cpu.h"    /* the CPU-mesh mode's evaluator */
 #include "tesslod/gl.h"
 
 #if TLOD_GL_BINDING_PATCHES != TLOD_BINDING_PATCHES || TLOD_GL_BINDING_PATTERNS != TLOD_BINDING_PATTERN ||             \
@@ -49,10 +48,9 @@ void _tlod_gl_texture_destroy(tlod_context* ctx, gl_texture* t);
 /* CPU-mesh mode (tlod_gpu_eval OFF): one device surface's evaluated mesh
  * and its GL copy (gl_mesh.c). Vertex buffer: positions, then normals. */
 typedef struct gl_mesh {
-  tlod_cpu_mesh* cpu; /* NULL until the first evaluation */
+  _tlod_item_mesh eval; /* the mesh and what it (and the buffers) were made from */
   GLuint vao, vertices, indices;
   uint32_t index_count;
-  _tlod_list_snapshot snap; /* what cpu and the buffers were made from */
 } gl_mesh;
 
 /* Evaluates item it's draw list into m and uploads it, unless it is the

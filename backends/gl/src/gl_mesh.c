@@ -7,12 +7,6 @@
  * and not at all while the draw list, surface and mesh stay unchanged. */
 #include "gl_internal.h"
 
-static tlod_result evaluate(tlod_context* ctx, const tlod_patterns* p, const _tlod_draw_ref* it, gl_mesh* m) {
-  tlod_cpu_tessellate_desc td = {.draw_list = it->item->draw_list};
-  if (!m->cpu) return tlod_cpu_tessellate(ctx, it->surface, p, &td, &m->cpu);
-  return tlod_cpu_tessellate_into(ctx, it->surface, p, &td, m->cpu);
-}
-
 /* Orphans and refills the buffers; positions at 0, normals after them. */
 static uint64_t upload(gl_mesh* m) {
   if (!m->vao) {
@@ -28,7 +22,7 @@ static uint64_t upload(gl_mesh* m) {
       glVertexArrayAttribBinding(m->vao, attrib[a], a);
     }
   }
-  const tlod_cpu_mesh* c = m->cpu;
+  const tlod_cpu_mesh* c = m->eval.cpu;
   size_t half = sizeof(float[3]) * c->vertex_count, ib = sizeof(uint32_t[3]) * c->triangle_count;
   glNamedBufferData(m->vertices, (GLsizeiptr)(half ? 2 * half : 16), NULL, GL_STREAM_DRAW);
   if (half) {
@@ -45,15 +39,10 @@ static uint64_t upload(gl_mesh* m) {
 
 tlod_result _tlod_gl_mesh_update(tlod_context* ctx, const tlod_patterns* p, const _tlod_draw_ref* it, gl_mesh* m,
                                  bool* evaluated, uint64_t* bytes) {
-  *evaluated = !_tlod_snapshot_same(&m->snap, it);
-  if (!*evaluated) return TLOD_SUCCESS;
-  m->snap.valid = false;
-  m->index_count = 0;
-  tlod_result r = evaluate(ctx, p, it, m);
-  if (r != TLOD_SUCCESS) return r;
-  *bytes += upload(m);
-  _tlod_snapshot_take(ctx, &m->snap, it);
-  return TLOD_SUCCESS;
+  tlod_result r = _tlod_item_mesh_update(ctx, p, it, &m->eval, evaluated);
+  if (r != TLOD_SUCCESS) m->index_count = 0;
+  if (r == TLOD_SUCCESS && *evaluated) *bytes += upload(m);
+  return r;
 }
 
 void _tlod_gl_mesh_draw(const gl_mesh* m) {
@@ -68,7 +57,6 @@ void _tlod_gl_mesh_free(tlod_context* ctx, gl_mesh* m) {
     glDeleteBuffers(2, bufs);
     glDeleteVertexArrays(1, &m->vao);
   }
-  tlod_cpu_mesh_destroy(ctx, m->cpu);
-  tlod_context_free(ctx, m->snap.bytes);
+  _tlod_item_mesh_free(ctx, &m->eval);
   *m = (gl_mesh){0};
 }

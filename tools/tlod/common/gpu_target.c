@@ -50,7 +50,8 @@ void gpu_target_device_desc(const tlod_platform* p, const char* shader_cache_dir
                                 .shader_cache_dir = shader_cache_dir,
                                 .hardware_tessellation = hardware && vk.tessellation,
                                 .surface_types = d->gl.surface_types,
-                                .fragment_hook = d->gl.fragment_hook};
+                                .fragment_hook = d->gl.fragment_hook,
+                                .gpu_eval = d->gl.gpu_eval};
 }
 
 bool gpu_frame_begin(tlod_platform* p, const float clear_rgba[4], tlod_draw_desc* d, char* err, size_t err_size) {

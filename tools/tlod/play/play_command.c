@@ -145,15 +145,13 @@ static tlod_gpu_eval gpu_eval(const play_options* o) {
 static void describe_gpu_eval(play_session* p) {
   const play_options* o = &p->o;
   tlod_device_stats st = tlod_device_query_stats(p->scene.device);
-  if (!strcmp(p->backend, "gl") && o->gpu_eval == 0 && gpu_eval(o) == TLOD_GPU_EVAL_ON)
+  if (!gpu_backend(p->backend))
+    snprintf(p->gpu_eval, sizeof(p->gpu_eval), "none (the %s backend)", p->backend);
+  else if (o->gpu_eval == 0 && gpu_eval(o) == TLOD_GPU_EVAL_ON)
     snprintf(p->gpu_eval, sizeof(p->gpu_eval), "on (auto: --debug-view %s needs it)",
              play_debug_view_names[o->debug_view]);
-  else if (!strcmp(p->backend, "gl"))
-    snprintf(p->gpu_eval, sizeof(p->gpu_eval), "%s (%s)", st.gl.cpu_mesh ? "off" : "on", st.gl.gpu_eval_reason);
-  else if (!strcmp(p->backend, "vulkan"))
-    snprintf(p->gpu_eval, sizeof(p->gpu_eval), "on (the vulkan device evaluates on the GPU only)");
   else
-    snprintf(p->gpu_eval, sizeof(p->gpu_eval), "none (the %s backend)", p->backend);
+    snprintf(p->gpu_eval, sizeof(p->gpu_eval), "%s (%s)", st.cpu_mesh ? "off" : "on", st.gpu_eval_reason);
 }
 
 /* Everything that can fail on bad input happens before the run folder exists. */

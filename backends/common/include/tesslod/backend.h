@@ -193,6 +193,8 @@ typedef struct tlod_device_vk_desc {
   bool hardware_tessellation;   /* as tlod_device_gl_desc (needs the tessellationShader feature) */
   uint32_t surface_types;       /* as tlod_device_gl_desc */
   const char* fragment_hook;    /* as tlod_device_gl_desc: GLSL 450 defining vec4 tlod_shade(tlod_fragment f) */
+  tlod_gpu_eval gpu_eval;       /* as tlod_device_gl_desc; AUTO: OFF on a VK_PHYSICAL_DEVICE_TYPE_CPU device
+                                   (lavapipe); the CPU mesh goes through the frame's ring every draw */
 } tlod_device_vk_desc;
 
 typedef struct tlod_device_desc {
@@ -396,15 +398,8 @@ typedef struct tlod_device_gl_stats {
                                upload of a mesh without attributes */
   double create_ms;         /* device creation: programs linked, patterns uploaded */
   double surface_upload_ms; /* since creation: time in surface create + update */
-  /* CPU-mesh mode (tlod_gpu_eval): whether the device resolved to it,
-   * why, and the last draw's work. */
-  bool cpu_mesh;
-  char gpu_eval_reason[96];  /* e.g. "auto: GL_RENDERER llvmpipe (LLVM 15.0.6, 256 bits) is a software rasteriser" */
-  uint32_t mesh_evaluations; /* items of the last draw evaluated and uploaded again (others reused theirs) */
-  double mesh_eval_ms;       /* CPU time of those evaluations, last draw */
-  uint64_t mesh_bytes;       /* vertex + index bytes uploaded by the last draw */
-  uint32_t buffer_streams;   /* per-draw buffer uploads of the last draw (instances, strips, strip refs, strip
-                                indices); 0 when its draw lists were those of the draw before */
+  uint32_t buffer_streams;  /* per-draw buffer uploads of the last draw (instances, strips, strip refs, strip
+                               indices); 0 when its draw lists were those of the draw before */
 } tlod_device_gl_stats;
 
 /* "vulkan" only (zero elsewhere). */
@@ -438,6 +433,13 @@ typedef struct tlod_device_stats {
   uint64_t draws, items_drawn, triangles_drawn;
   uint32_t textures_live;
   uint64_t textures_created, textures_destroyed, texture_bytes; /* bytes: width * height * 4 of those created */
+  /* "gl" and "vulkan": the CPU-mesh mode (tlod_gpu_eval), whether the
+   * device resolved to it, why, and the last draw's work in it. */
+  bool cpu_mesh;
+  char gpu_eval_reason[96];  /* e.g. "auto: GL_RENDERER llvmpipe (LLVM 15.0.6, 256 bits) is a software rasteriser" */
+  uint32_t mesh_evaluations; /* items of the last draw evaluated and uploaded again (others reused theirs) */
+  double mesh_eval_ms;       /* CPU time of those evaluations, last draw */
+  uint64_t mesh_bytes;       /* vertex + index bytes uploaded by the last draw */
   tlod_device_gl_stats gl;
   tlod_device_vk_stats vk;
 } tlod_device_stats;
