@@ -6,6 +6,7 @@
 #include "bench_gl.h"
 #include "bench_lod.h"
 #include "bench_options.h"
+#include "bench_peers.h"
 #include "cli.h"
 #include "commands.h"
 #include "common/folder.h"
@@ -51,6 +52,23 @@ static int gpu_of(const bench_options* o, char* buf, size_t size, bench_gpu* gpu
   return CLI_OK;
 }
 
+/* --peers, with its JSON document when --json is given (written atomically). */
+static int run_peers(const bench_options* o, FILE* csv) {
+  char err[1024];
+  tlod_atomic_file jf = {0};
+  if (o->json && !tlod_atomic_file_begin(&jf, o->json, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
+  json_writer w;
+  if (o->json) json_begin(&w, jf.file), json_object_begin(&w, NULL);
+  int rc = bench_peers(o, o->json ? &w : NULL, csv);
+  if (o->json) {
+    json_object_end(&w);
+    bool written = json_end(&w);
+    if (!tlod_atomic_file_end(&jf, rc == CLI_OK && written, err, sizeof(err)) && rc == CLI_OK)
+      rc = cli_error(CLI_FAILED, "%s", err);
+  }
+  return rc;
+}
+
 int cmd_bench(int argc, char** argv) {
   bench_options o;
   int rc = bench_parse(argc, argv, &o);
@@ -60,7 +78,7 @@ int cmd_bench(int argc, char** argv) {
   if ((rc = gpu_of(&o, cache, sizeof(cache), &gpu)) != CLI_OK) return rc;
   tlod_atomic_file csv = {0};
   if (o.csv && !tlod_atomic_file_begin(&csv, o.csv, err, sizeof(err))) return cli_error(CLI_FAILED, "%s", err);
-  rc = run_suite(&o, &gpu, csv.file);
+  rc = o.peers ? run_peers(&o, csv.file) : run_suite(&o, &gpu, csv.file);
   if (o.csv && !tlod_atomic_file_end(&csv, rc == CLI_OK, err, sizeof(err)) && rc == CLI_OK)
     rc = cli_error(CLI_FAILED, "%s", err);
   return rc;

@@ -50,7 +50,15 @@ void bench_usage(FILE* f) {
           "  --backend B        gl (default) | vulkan: the GPU backend of gl, objects and draw (this build\n"
           "                     has: %s)\n"
           "  --shader-cache D   vulkan: SPIR-V cache folder or off (default $XDG_CACHE_HOME/tesslod, else\n"
-          "                     $HOME/.cache/tesslod); vkstart uses folders of its own\n",
+          "                     $HOME/.cache/tesslod); vkstart uses folders of its own\n"
+          "  --peers            instead of a suite: tesslod (Phong) side by side with OpenSubdiv 3.5 (Loop for\n"
+          "                     triangles, Catmull-Clark otherwise) on torus meshes of triangles, quads and both,\n"
+          "                     one thread each, alternating: preprocessing time and peak heap, output\n"
+          "                     vertices/s at levels 1-4 for positions (PrimvarRefiner) and positions + normals\n"
+          "                     (limit evaluation), static and deforming, input-vertex distance, volume change;\n"
+          "                     needs a tlod built with OpenSubdiv (scripts/bootstrap --peers)\n"
+          "  --peer-faces N     --peers on meshes of about N faces (default: 100000 and 1000000)\n"
+          "  --json FILE        --peers: write the figures as JSON (key \"peers\")\n",
           tlod_backend_names());
 }
 
@@ -110,6 +118,12 @@ int bench_parse(int argc, char** argv, bench_options* o) {
         return cli_error(CLI_USAGE, "--backend: %s: the suites that draw need a GPU backend, gl or vulkan", v);
     } else if (!strcmp(a, "--shader-cache")) {
       if (!(o->shader_cache = cli_value(argc, argv, &i))) return CLI_USAGE;
+    } else if (!strcmp(a, "--peers")) {
+      o->peers = true;
+    } else if (!strcmp(a, "--peer-faces")) {
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 16, 4000000, &o->peer_faces)) return CLI_USAGE;
+    } else if (!strcmp(a, "--json")) {
+      if (!(o->json = cli_value(argc, argv, &i))) return CLI_USAGE;
     } else if (!strcmp(a, "--csv")) {
       if (!(o->csv = cli_value(argc, argv, &i))) return CLI_USAGE;
     } else if (a[0] == '-' && a[1]) {
