@@ -6,12 +6,32 @@
  *   patterns generated once per level pair and kept for every strip). */
 #include "patterns_internal.h"
 
+/* Whether point references r and q are a point of a and one of b at the
+ * same parameter (i / na == j / nb, compared as i * nb == j * na). */
+static bool same_parameter(uint32_t na, uint32_t nb, uint32_t r, uint32_t q) {
+  if ((r <= na) == (q <= na)) return false;
+  uint32_t i = r <= na ? r : q, j = (r <= na ? q : r) - na - 1;
+  return (uint64_t)i * nb == (uint64_t)j * na;
+}
+
+/* A triangle left out: one with both first or both last points (the
+ * shared corners: degenerate on every edge), or, exact, any with a point
+ * of a and one of b at the same parameter. */
+static bool left_out(uint32_t na, uint32_t nb, const uint32_t tri[3], bool exact) {
+  for (int k = 0; k < 3; k++) {
+    uint32_t r = tri[k], q = tri[(k + 1) % 3];
+    if (!same_parameter(na, nb, r, q)) continue;
+    uint32_t i = r <= na ? r : q;
+    if (exact || i == 0 || i == na) return true;
+  }
+  return false;
+}
+
 /* Zips a (points 0..na) and b (0..nb, in a's direction) by their parameters
  * i / na and j / nb, compared exactly as i * nb vs j * na. Ties advance a,
- * so the pattern is the same on every run. The first triangle touches both
- * first points and the last both last points: the shared corners make them
- * degenerate, so they are left out. */
-static uint32_t zip(uint32_t na, uint32_t nb, uint32_t (*out)[3]) {
+ * so the pattern is the same on every run. Triangles left_out() are not
+ * written. */
+static uint32_t zip(uint32_t na, uint32_t nb, bool exact, uint32_t (*out)[3]) {
   uint32_t i = 0, j = 0, count = 0;
   const uint32_t b0 = na + 1;
   while (i < na || j < nb) {
@@ -24,10 +44,7 @@ static uint32_t zip(uint32_t na, uint32_t nb, uint32_t (*out)[3]) {
       tri[0] = b0 + j, tri[1] = b0 + j + 1, tri[2] = i;
       j++;
     }
-    bool first_corner = (tri[0] == 0 || tri[1] == 0 || tri[2] == 0) && (tri[0] == b0 || tri[1] == b0 || tri[2] == b0);
-    bool last_corner =
-        (tri[0] == na || tri[1] == na || tri[2] == na) && (tri[0] == b0 + nb || tri[1] == b0 + nb || tri[2] == b0 + nb);
-    if (first_corner || last_corner) continue;
+    if (left_out(na, nb, tri, exact)) continue;
     out[count][0] = tri[0], out[count][1] = tri[1], out[count][2] = tri[2];
     count++;
   }
@@ -39,10 +56,12 @@ tlod_result _tlod_patterns_build_connections(tlod_patterns* p) {
     for (uint32_t lb = 0; lb <= p->max_level; lb++) {
       uint32_t na = 1u << la, nb = 1u << lb;
       p->connect[la][lb] = tlod_context_alloc(p->ctx, sizeof(uint32_t[3]) * (na + nb));
-      if (!p->connect[la][lb])
+      p->connect_exact[la][lb] = tlod_context_alloc(p->ctx, sizeof(uint32_t[3]) * (na + nb));
+      if (!p->connect[la][lb] || !p->connect_exact[la][lb])
         return tlod_context_fail(p->ctx, TLOD_ERROR_OUT_OF_MEMORY,
                                  "tlod_patterns_create: out of memory (connection patterns)");
-      p->connect_count[la][lb] = zip(na, nb, p->connect[la][lb]);
+      p->connect_count[la][lb] = zip(na, nb, false, p->connect[la][lb]);
+      p->connect_exact_count[la][lb] = zip(na, nb, true, p->connect_exact[la][lb]);
     }
   }
   return TLOD_SUCCESS;
@@ -51,11 +70,30 @@ tlod_result _tlod_patterns_build_connections(tlod_patterns* p) {
 void _tlod_patterns_free_connections(tlod_patterns* p) {
   for (uint32_t la = 0; la <= TLOD_MAX_LEVEL; la++)
     for (uint32_t lb = 0; lb <= TLOD_MAX_LEVEL; lb++)
-      tlod_context_free(p->ctx, p->connect[la][lb]);
+      tlod_context_free(p->ctx, p->connect[la][lb]), tlod_context_free(p->ctx, p->connect_exact[la][lb]);
+}
+
+/* One (la, lb) entry of a family of connection patterns, checked. */
+static const uint32_t* connection_of(const tlod_patterns* p, bool exact, uint32_t la, uint32_t lb, uint32_t* count) {
+  bool ok = p && la <= p->max_level && lb <= p->max_level;
+  if (count) *count = ok ? (exact ? p->connect_exact_count : p->connect_count)[la][lb] : 0;
+  return ok ? &(exact ? p->connect_exact : p->connect)[la][lb][0][0] : NULL;
 }
 
 const uint32_t* tlod_patterns_connection(const tlod_patterns* p, uint32_t la, uint32_t lb, uint32_t* triangle_count) {
-  bool ok = p && la <= p->max_level && lb <= p->max_level;
-  if (triangle_count) *triangle_count = ok ? p->connect_count[la][lb] : 0;
-  return ok ? &p->connect[la][lb][0][0] : NULL;
+  return connection_of(p, false, la, lb, triangle_count);
+}
+
+const uint32_t* tlod_patterns_connection_exact(const tlod_patterns* p, uint32_t la, uint32_t lb,
+                                               uint32_t* triangle_count) {
+  return connection_of(p, true, la, lb, triangle_count);
+}
+
+const uint32_t* tlod_draw_strip_connection(const tlod_patterns* p, const tlod_draw_strip* strip,
+                                           uint32_t* triangle_count) {
+  if (!strip) {
+    if (triangle_count) *triangle_count = 0;
+    return NULL;
+  }
+  return connection_of(p, strip->exact, strip->level_a, strip->level_b, triangle_count);
 }

@@ -40,6 +40,9 @@ struct tlod_patterns {
   /* Connection patterns per (la, lb): triangles of point references. */
   uint32_t (*connect[TLOD_MAX_LEVEL + 1][TLOD_MAX_LEVEL + 1])[3];
   uint32_t connect_count[TLOD_MAX_LEVEL + 1][TLOD_MAX_LEVEL + 1];
+  /* The same without the triangles degenerate where shared points coincide. */
+  uint32_t (*connect_exact[TLOD_MAX_LEVEL + 1][TLOD_MAX_LEVEL + 1])[3];
+  uint32_t connect_exact_count[TLOD_MAX_LEVEL + 1][TLOD_MAX_LEVEL + 1];
 };
 
 /* pattern_connect.c: builds and frees every (la, lb) connection pattern. */

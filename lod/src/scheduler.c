@@ -52,8 +52,8 @@ static tlod_result out_of_memory(const tlod_scheduler* s) {
 }
 
 static void free_view(tlod_context* ctx, _tlod_view_state* v) {
-  void* arrays[] = {v->levels, v->e_max, v->scale,   v->depth,     v->contour,
-                    v->target, v->cont,  v->visible, v->instances, v->strips};
+  void* arrays[] = {v->levels, v->e_max,   v->scale,     v->depth,  v->contour, v->target,
+                    v->cont,   v->visible, v->instances, v->strips, v->chunks};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(ctx, arrays[i]);
   memset(v, 0, sizeof(*v));
@@ -74,7 +74,7 @@ static tlod_result alloc_view(tlod_scheduler* s, _tlod_view_state* v) {
   v->instances = tlod_context_calloc(ctx, np, sizeof(tlod_draw_instance));
   bool ok =
       v->levels && v->e_max && v->scale && v->depth && v->contour && v->target && v->cont && v->visible && v->instances;
-  return ok ? TLOD_SUCCESS : out_of_memory(s);
+  return ok && _tlod_list_alloc(s, v) == TLOD_SUCCESS ? TLOD_SUCCESS : out_of_memory(s);
 }
 
 tlod_result tlod_scheduler_create(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
@@ -98,6 +98,8 @@ tlod_result tlod_scheduler_create(tlod_context* ctx, const tlod_surface* surface
   s->patch_count = tlod_surface_patch_count(surface);
   s->vertex_count = tlod_mesh_vertex_count(s->mesh);
   s->eps_scale = 1.0f;
+  s->fast_path = !d.reference_path;
+  s->fast = _tlod_fast_kernels_for(tlod_context_simd(ctx));
   *out = s;
   return TLOD_SUCCESS;
 }
@@ -107,6 +109,7 @@ void tlod_scheduler_destroy(tlod_scheduler* s) {
   for (uint32_t v = 0; v < s->view_count; v++)
     free_view(s->ctx, &s->views[v]);
   tlod_context_free(s->ctx, s->views);
+  _tlod_soa_free(s->ctx, &s->soa);
   tlod_context_free(s->ctx, s);
 }
 
@@ -117,7 +120,7 @@ tlod_scheduler_desc tlod_scheduler_query_desc(const tlod_scheduler* s) {
 void tlod_scheduler_reset(tlod_scheduler* s) {
   if (!s) return;
   for (uint32_t v = 0; v < s->view_count; v++)
-    s->views[v].has_history = false;
+    s->views[v].has_history = s->views[v].key_valid = false;
   s->eps_scale = 1.0f;
   s->smoothed_ms = 0.0f;
 }
@@ -179,9 +182,10 @@ static void copy_main_levels(_tlod_frame* fr) {
   fr->eps = fr->main->list.effective_epsilon;
 }
 
-/* Silhouette depth and metric of view v: the stages before the levels. */
+/* Silhouette depth and metric of view v: the stages before the levels
+ * (on the fast path outside a group, the levels and morph too). */
 static void begin_view(tlod_scheduler* s, uint32_t v, const tlod_frame_desc* frame, const tlod_mesh_view* mesh,
-                       const tlod_surface_view* surface, _tlod_frame* fr) {
+                       const tlod_surface_view* surface, bool group, _tlod_frame* fr) {
   const tlod_view_desc* vd = &frame->views[v];
   bool locked = v > 0 && vd->lock_to_main;
   *fr = (_tlod_frame){.s = s,
@@ -196,16 +200,20 @@ static void begin_view(tlod_scheduler* s, uint32_t v, const tlod_frame_desc* fra
                       .budget = s->desc.triangle_budget};
   fr->t[0] = tlod_now_ms();
   _tlod_camera_from_view(vd->view, vd->proj, &fr->vs->cam);
-  tlod_context_parallel_for(s->ctx, _tlod_silhouette_task, fr, s->vertex_count);
-  fr->t[1] = tlod_now_ms();
-  tlod_context_parallel_for(s->ctx, _tlod_metric_task, fr, s->patch_count);
+  if (s->fast_path) {
+    _tlod_fast_begin(fr, !group);
+  } else {
+    tlod_context_parallel_for(s->ctx, _tlod_silhouette_task, fr, s->vertex_count);
+    fr->t[1] = tlod_now_ms();
+    tlod_context_parallel_for(s->ctx, _tlod_metric_task, fr, s->patch_count);
+  }
   fr->t[2] = tlod_now_ms();
 }
 
 /* Geomorph state and draw list, once the levels (ending at t[3]) are set. */
 static tlod_result finish_view(_tlod_frame* fr) {
   double start = tlod_now_ms();
-  if (!fr->main) tlod_context_parallel_for(fr->s->ctx, _tlod_morph_task, fr, fr->s->patch_count);
+  if (!fr->main && !fr->fused) tlod_context_parallel_for(fr->s->ctx, _tlod_morph_task, fr, fr->s->patch_count);
   fr->vs->has_history = true;
   fr->t[4] = tlod_now_ms();
   tlod_result r = _tlod_fill_draw_list(fr);
@@ -220,10 +228,10 @@ static tlod_result finish_view(_tlod_frame* fr) {
 static tlod_result plan_view(tlod_scheduler* s, uint32_t v, const tlod_frame_desc* frame, const tlod_mesh_view* mesh,
                              const tlod_surface_view* surface) {
   _tlod_frame fr;
-  begin_view(s, v, frame, mesh, surface, &fr);
+  begin_view(s, v, frame, mesh, surface, false, &fr);
   if (fr.main) {
     copy_main_levels(&fr);
-  } else {
+  } else if (!fr.fused) {
     _tlod_fit_budget(&fr);
   }
   fr.t[3] = tlod_now_ms();
@@ -238,6 +246,14 @@ static tlod_result prepare_update(tlod_scheduler* s, const tlod_frame_desc* fram
   return r;
 }
 
+/* Temporal coherence: nothing changed, the draw lists and their
+ * generations stay (no stage ran: every stage_ms is 0). */
+static tlod_result keep_views(tlod_scheduler* s, const tlod_frame_desc* frame) {
+  for (uint32_t v = 0; v < frame->view_count; v++)
+    memset(s->views[v].list.stage_ms, 0, sizeof(s->views[v].list.stage_ms));
+  return TLOD_SUCCESS;
+}
+
 tlod_result tlod_scheduler_update(tlod_scheduler* s, const tlod_frame_desc* frame) {
   if (!s) return TLOD_ERROR_INVALID_ARGUMENT;
   tlod_result r = prepare_update(s, frame);
@@ -246,8 +262,11 @@ tlod_result tlod_scheduler_update(tlod_scheduler* s, const tlod_frame_desc* fram
    * since the last frame may have moved the arrays. */
   tlod_mesh_view mesh = tlod_mesh_query_view(s->mesh);
   tlod_surface_view surface = tlod_surface_query_view(s->surface);
+  if (_tlod_lists_unchanged(s, frame, &mesh, &surface)) return keep_views(s, frame);
+  if (s->fast_path) r = _tlod_soa_update(s, &mesh, &surface);
   for (uint32_t v = 0; v < frame->view_count && r == TLOD_SUCCESS; v++)
     r = plan_view(s, v, frame, &mesh, &surface);
+  if (r == TLOD_SUCCESS) _tlod_lists_remember(s, frame, &mesh, &surface);
   return r;
 }
 
@@ -320,7 +339,8 @@ static tlod_result update_group(tlod_scheduler* const* schedulers, const tlod_fr
     if (r != TLOD_SUCCESS) return r;
     tlod_mesh_view mesh = tlod_mesh_query_view(s->mesh);
     tlod_surface_view surface = tlod_surface_query_view(s->surface);
-    begin_view(s, 0, &frames[i], &mesh, &surface, &s->group);
+    if (s->fast_path && (r = _tlod_soa_update(s, &mesh, &surface)) != TLOD_SUCCESS) return r;
+    begin_view(s, 0, &frames[i], &mesh, &surface, true, &s->group);
   }
   fit_group(schedulers, count, budget);
   for (uint32_t i = 0; i < count; i++) {

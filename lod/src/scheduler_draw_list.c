@@ -1,6 +1,14 @@
 /* tesslod::lod -- the draw list of one view: instances grouped in buckets
  * of one (shape, level) pattern each, connection strips, statistics.
  *
+ * Built in parallel and deterministically: the patches are cut into fixed
+ * chunks of _TLOD_LIST_CHUNK (never dependent on the thread count); a first
+ * pass counts each chunk's instances per bucket, strips and statistics, a
+ * serial prefix sum in chunk order gives each chunk its offsets, and a
+ * second pass writes every chunk at its offsets. The result is the serial
+ * order (bucket-major, patch order inside a bucket; strips in patch order)
+ * whatever the workers and however the engine splits the chunks.
+ *
  * This work is based on:
  *   M. Schwarz, M. Staginski, M. Stamminger. GPU-based rendering of PN
  *   triangle meshes with adaptive tessellation. VMV 2006, sec. 4 (patches
@@ -20,113 +28,183 @@ static uint32_t bucket_of(const _tlod_frame* fr, uint32_t f, uint32_t level) {
   return (uint32_t)shape_of(&fr->mesh, f) * (fr->s->desc.max_level + 1) + level;
 }
 
-/* Drawn levels (-1 when culled) and the instance count of every bucket. */
-static void count_levels(_tlod_frame* fr, uint32_t counts[_TLOD_BUCKETS]) {
-  _tlod_view_state* vs = fr->vs;
-  for (uint32_t f = 0; f < fr->s->patch_count; f++) {
-    uint32_t l = _tlod_drawn_level(vs->cont[f]);
-    vs->levels[f] = vs->visible[f] ? (int8_t)l : -1;
-    if (vs->visible[f]) counts[bucket_of(fr, f, l)]++;
+static uint32_t chunk_count(uint32_t patches) { return (patches + _TLOD_LIST_CHUNK - 1) / _TLOD_LIST_CHUNK; }
+
+static void chunk_range(const _tlod_frame* fr, uint32_t c, uint32_t* begin, uint32_t* end) {
+  *begin = c * _TLOD_LIST_CHUNK;
+  *end = *begin + _TLOD_LIST_CHUNK < fr->s->patch_count ? *begin + _TLOD_LIST_CHUNK : fr->s->patch_count;
+}
+
+/* Statistics of visible patch f at level l into its chunk. */
+static void count_visible(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t f, uint32_t l) {
+  float e = fr->vs->e_max[f];
+  ch->counts[bucket_of(fr, f, l)]++;
+  ch->histogram[l]++;
+  ch->pattern_triangles += tlod_pattern_triangle_count(shape_of(&fr->mesh, f), l);
+  ch->e_max_min = e < ch->e_max_min ? e : ch->e_max_min;
+  ch->e_max_max = e > ch->e_max_max ? e : ch->e_max_max;
+}
+
+/* The strip across edge e of visible patch f at level l (a strip is needed). */
+static tlod_draw_strip strip_of(const _tlod_frame* fr, uint32_t f, uint32_t e, uint32_t l) {
+  tlod_edge_link link = fr->mesh.links[f][e];
+  uint32_t lg = _tlod_drawn_level(fr->vs->cont[link.face]);
+  /* The coarser side's edge points are exact when its new vertices are at
+   * rest: then the finer side has the same points (all of lower level). */
+  uint32_t coarse = l < lg ? f : link.face, lc = l < lg ? l : lg;
+  bool exact = link.smooth && l != lg && _tlod_morph_of(fr->vs->cont[coarse], lc) == 1.0f;
+  return (tlod_draw_strip){f, link.face, (uint8_t)e, link.edge, (uint8_t)l, (uint8_t)lg, !link.smooth, exact};
+}
+
+/* Strips of visible patch f at level l into its chunk. */
+static void count_strips(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t f, uint32_t l) {
+  for (uint32_t e = 0; e < fr->mesh.face_corners[f]; e++) {
+    if (!_tlod_strip_needed(fr, fr->vs->cont, f, e)) continue;
+    tlod_draw_strip st = strip_of(fr, f, e, l);
+    uint32_t n = 0;
+    tlod_draw_strip_connection(fr->s->patterns, &st, &n);
+    ch->strips++;
+    ch->strip_triangles += n;
   }
 }
 
-/* Non-empty buckets into the list, and each bucket's first instance. */
-static uint32_t lay_out_buckets(_tlod_frame* fr, const uint32_t counts[_TLOD_BUCKETS], uint32_t start[_TLOD_BUCKETS]) {
+/* Pass 1 over chunks [begin, end): drawn levels (-1 when culled), bucket
+ * and strip counts, statistics, and whether the morphs have settled. */
+static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
+  (void)worker;
+  _tlod_frame* fr = data;
+  _tlod_view_state* vs = fr->vs;
+  for (uint32_t c = begin; c < end; c++) {
+    _tlod_list_chunk* ch = &vs->chunks[c];
+    *ch = (_tlod_list_chunk){.e_max_min = INFINITY, .settled = true};
+    uint32_t f0, f1;
+    chunk_range(fr, c, &f0, &f1);
+    for (uint32_t f = f0; f < f1; f++) {
+      uint32_t l = _tlod_drawn_level(vs->cont[f]);
+      vs->levels[f] = vs->visible[f] ? (int8_t)l : -1;
+      ch->settled = ch->settled && _tlod_morph_settled(fr, f);
+      if (!vs->visible[f]) {
+        ch->culled++;
+        continue;
+      }
+      count_visible(fr, ch, f, l);
+      count_strips(fr, ch, f, l);
+    }
+  }
+}
+
+/* Pass 2 over chunks [begin, end): instances and strips at the chunk's
+ * offsets (counts[] now holds each bucket's first slot of the chunk). */
+static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
+  (void)worker;
+  _tlod_frame* fr = data;
+  _tlod_view_state* vs = fr->vs;
+  for (uint32_t c = begin; c < end; c++) {
+    _tlod_list_chunk* ch = &vs->chunks[c];
+    uint32_t f0, f1, st = ch->strip_first;
+    chunk_range(fr, c, &f0, &f1);
+    for (uint32_t f = f0; f < f1; f++) {
+      if (!vs->visible[f]) continue;
+      uint32_t l = (uint32_t)vs->levels[f];
+      /* Edges blend with their patch (see _tlod_strip_needed). */
+      vs->instances[ch->counts[bucket_of(fr, f, l)]++] =
+          (tlod_draw_instance){.patch = f, .level = l, .morph = _tlod_morph_of(vs->cont[f], l)};
+      for (uint32_t e = 0; ch->strips && e < fr->mesh.face_corners[f]; e++)
+        if (_tlod_strip_needed(fr, vs->cont, f, e)) vs->strips[st++] = strip_of(fr, f, e, l);
+    }
+  }
+}
+
+/* Non-empty buckets into the list; every chunk's counts become its first
+ * slot per bucket, in chunk order. Returns the instance count. */
+static uint32_t lay_out_buckets(_tlod_frame* fr, uint32_t chunks) {
+  _tlod_view_state* vs = fr->vs;
   uint32_t levels = fr->s->desc.max_level + 1, first = 0, nb = 0;
   for (uint32_t b = 0; b < TLOD_PATTERN_SHAPE_NUM * levels; b++) {
-    start[b] = first;
-    if (counts[b])
-      fr->vs->buckets[nb++] = (tlod_draw_bucket){(tlod_pattern_shape)(b / levels), b % levels, first, counts[b]};
-    first += counts[b];
+    uint32_t start = first;
+    for (uint32_t c = 0; c < chunks; c++) {
+      uint32_t n = vs->chunks[c].counts[b];
+      vs->chunks[c].counts[b] = first;
+      first += n;
+    }
+    if (first > start)
+      vs->buckets[nb++] = (tlod_draw_bucket){(tlod_pattern_shape)(b / levels), b % levels, start, first - start};
   }
-  fr->vs->list.bucket_count = nb;
+  vs->list.bucket_count = nb;
   return first;
 }
 
-static void fill_instances(_tlod_frame* fr) {
-  _tlod_view_state* vs = fr->vs;
-  uint32_t counts[_TLOD_BUCKETS] = {0}, start[_TLOD_BUCKETS];
-  count_levels(fr, counts);
-  vs->list.instance_count = lay_out_buckets(fr, counts, start);
-  for (uint32_t f = 0; f < fr->s->patch_count; f++) {
-    if (!vs->visible[f]) continue;
-    uint32_t l = (uint32_t)vs->levels[f];
-    tlod_draw_instance* in = &vs->instances[start[bucket_of(fr, f, l)]++];
-    /* Edges blend with their patch (see _tlod_strip_needed). */
-    *in = (tlod_draw_instance){.patch = f, .level = l, .morph = _tlod_morph_of(vs->cont[f], l)};
-  }
-  vs->list.instances = vs->instances;
-  vs->list.buckets = vs->buckets;
-}
-
-/* Doubles the strip array when full: strips are only known once counted. */
-static tlod_result push_strip(tlod_scheduler* s, _tlod_view_state* vs, const tlod_draw_strip* st) {
-  if (vs->list.strip_count == vs->strip_cap) {
-    uint32_t cap = vs->strip_cap ? vs->strip_cap * 2 : 256;
-    tlod_draw_strip* grown = tlod_context_alloc(s->ctx, sizeof(*grown) * cap);
-    if (!grown) return tlod_context_fail(s->ctx, TLOD_ERROR_OUT_OF_MEMORY, "scheduler '%s': out of memory", s->label);
-    if (vs->list.strip_count) memcpy(grown, vs->strips, sizeof(*grown) * vs->list.strip_count);
-    tlod_context_free(s->ctx, vs->strips);
-    vs->strips = grown;
-    vs->strip_cap = cap;
-  }
-  vs->strips[vs->list.strip_count++] = *st;
-  return TLOD_SUCCESS;
-}
-
-static tlod_result fill_strips(_tlod_frame* fr) {
+/* Chunk statistics summed in chunk order (independent of the workers). */
+static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
   _tlod_view_state* vs = fr->vs;
   tlod_draw_list* dl = &vs->list;
-  dl->strip_count = 0;
-  dl->strip_triangles = 0;
-  for (uint32_t f = 0; f < fr->s->patch_count; f++) {
-    if (!vs->visible[f]) continue;
-    for (uint32_t e = 0; e < fr->mesh.face_corners[f]; e++) {
-      if (!_tlod_strip_needed(fr, vs->cont, f, e)) continue;
-      tlod_edge_link link = fr->mesh.links[f][e];
-      uint8_t la = (uint8_t)vs->levels[f], lb = (uint8_t)vs->levels[link.face];
-      tlod_draw_strip st = {f, link.face, (uint8_t)e, link.edge, la, lb, !link.smooth};
-      if (push_strip(fr->s, vs, &st) != TLOD_SUCCESS) return TLOD_ERROR_OUT_OF_MEMORY;
-      dl->strip_triangles += fr->s->patterns->connect_count[la][lb];
-    }
-  }
-  dl->strips = vs->strips;
-  return TLOD_SUCCESS;
-}
-
-/* Pattern triangles, culled count, level histogram and e_max range of the
- * visible patches, summed in patch order (independent of the workers). */
-static void fill_stats(_tlod_frame* fr) {
-  _tlod_view_state* vs = fr->vs;
-  tlod_draw_list* dl = &vs->list;
-  dl->pattern_triangles = 0;
-  dl->culled = 0;
+  dl->pattern_triangles = dl->strip_triangles = 0;
+  dl->culled = dl->strip_count = 0;
   memset(dl->level_histogram, 0, sizeof(dl->level_histogram));
   dl->e_max_min = INFINITY;
   dl->e_max_max = 0.0f;
-  for (uint32_t f = 0; f < fr->s->patch_count; f++) {
-    if (vs->levels[f] < 0) {
-      dl->culled++;
-      continue;
-    }
-    dl->level_histogram[vs->levels[f]]++;
-    dl->pattern_triangles += tlod_pattern_triangle_count(shape_of(&fr->mesh, f), (uint32_t)vs->levels[f]);
-    dl->e_max_min = vs->e_max[f] < dl->e_max_min ? vs->e_max[f] : dl->e_max_min;
-    dl->e_max_max = vs->e_max[f] > dl->e_max_max ? vs->e_max[f] : dl->e_max_max;
+  vs->settled = true;
+  for (uint32_t c = 0; c < chunks; c++) {
+    _tlod_list_chunk* ch = &vs->chunks[c];
+    ch->strip_first = dl->strip_count;
+    dl->strip_count += ch->strips;
+    dl->pattern_triangles += ch->pattern_triangles;
+    dl->strip_triangles += ch->strip_triangles;
+    dl->culled += ch->culled;
+    for (uint32_t l = 0; l <= TLOD_MAX_LEVEL; l++)
+      dl->level_histogram[l] += ch->histogram[l];
+    dl->e_max_min = ch->e_max_min < dl->e_max_min ? ch->e_max_min : dl->e_max_min;
+    dl->e_max_max = ch->e_max_max > dl->e_max_max ? ch->e_max_max : dl->e_max_max;
+    vs->settled = vs->settled && ch->settled;
   }
   if (dl->culled == fr->s->patch_count) dl->e_max_min = 0.0f;
 }
 
+/* The strip array grown once to the counted size: it only grows, so a
+ * frame with no more strips than any before allocates nothing. */
+static tlod_result reserve_strips(tlod_scheduler* s, _tlod_view_state* vs, uint32_t count) {
+  if (count <= vs->strip_cap) return TLOD_SUCCESS;
+  uint32_t cap = vs->strip_cap * 2 > count ? vs->strip_cap * 2 : count;
+  tlod_draw_strip* grown = tlod_context_alloc(s->ctx, sizeof(*grown) * cap);
+  if (!grown) return tlod_context_fail(s->ctx, TLOD_ERROR_OUT_OF_MEMORY, "scheduler '%s': out of memory", s->label);
+  tlod_context_free(s->ctx, vs->strips);
+  vs->strips = grown;
+  vs->strip_cap = cap;
+  return TLOD_SUCCESS;
+}
+
+/* Out of memory for the strips: the instances are still written, the
+ * list has no strips (the error says so). */
+static void drop_strips(_tlod_view_state* vs, uint32_t chunks) {
+  for (uint32_t c = 0; c < chunks; c++)
+    vs->chunks[c].strips = 0;
+  vs->list.strip_count = 0;
+  vs->list.strip_triangles = 0;
+}
+
+tlod_result _tlod_list_alloc(tlod_scheduler* s, _tlod_view_state* vs) {
+  vs->chunks = tlod_context_calloc(s->ctx, chunk_count(s->patch_count) + 1, sizeof(_tlod_list_chunk));
+  return vs->chunks ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
+}
+
 tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   _tlod_view_state* vs = fr->vs;
+  uint32_t chunks = chunk_count(fr->s->patch_count);
   vs->list.patch_count = fr->s->patch_count;
   vs->list.levels = vs->levels;
   vs->list.e_max = vs->e_max;
   vs->list.vertex_depth = vs->depth;
   vs->list.effective_epsilon = fr->eps;
   vs->list.generation++;
-  fill_instances(fr);
-  tlod_result r = fill_strips(fr);
-  fill_stats(fr);
+  vs->list.instances = vs->instances;
+  vs->list.buckets = vs->buckets;
+  vs->key_valid = false;
+  tlod_context_parallel_for(fr->s->ctx, count_task, fr, chunks);
+  vs->list.instance_count = lay_out_buckets(fr, chunks);
+  sum_chunks(fr, chunks);
+  tlod_result r = reserve_strips(fr->s, vs, vs->list.strip_count);
+  if (r != TLOD_SUCCESS) drop_strips(vs, chunks);
+  tlod_context_parallel_for(fr->s->ctx, write_task, fr, chunks);
+  vs->list.strips = vs->strips;
   return r;
 }

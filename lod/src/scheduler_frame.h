@@ -7,6 +7,7 @@
  *                         frame-time control
  *   scheduler_morph.c     geomorph state (continuous level per patch)
  *   scheduler_draw_list.c instances, buckets, strips, statistics
+ *   scheduler_coherence.c whether an update can keep the last draw lists
  *   scheduler.c           create / update / destroy: the stages in order
  * lod reads core through its public views only (tesslod/core.h).
  */
@@ -14,6 +15,7 @@
 #define TESSLOD_SCHEDULER_FRAME_H
 
 #include "patterns_internal.h"
+#include "scheduler_fast.h"
 #include "tesslod/lod.h"
 
 #define _TLOD_NO_FACE UINT32_MAX /* tlod_edge_link.face of an edge with no neighbour */
@@ -25,6 +27,31 @@ typedef struct _tlod_camera {
   float near_z;       /* 0 when unknown or orthographic */
   bool ortho;
 } _tlod_camera;
+
+/* Patches per chunk of the draw-list build: fixed, so that the chunks (and
+ * the order they are summed in) never depend on the thread count. */
+#define _TLOD_LIST_CHUNK 16384u
+
+/* One chunk's part of the draw list: counted in pass 1, summed in chunk
+ * order, written in pass 2 (scheduler_draw_list.c). */
+typedef struct _tlod_list_chunk {
+  uint32_t counts[_TLOD_BUCKETS]; /* instances per bucket; then the chunk's first slot */
+  uint32_t strips, strip_first;
+  uint64_t pattern_triangles, strip_triangles;
+  uint32_t culled;
+  uint32_t histogram[TLOD_MAX_LEVEL + 1];
+  float e_max_min, e_max_max;
+  bool settled; /* every morph of the chunk at rest (_tlod_morph_settled) */
+} _tlod_list_chunk;
+
+/* What the draw list of one view was made from (scheduler_coherence.c). */
+typedef struct _tlod_view_key {
+  float view[16], proj[16];
+  uint32_t viewport_width, viewport_height;
+  bool lock_to_main;
+  uint64_t mesh_generation, surface_generation;
+  float eps; /* epsilon_px times the frame-time factor, before any budget */
+} _tlod_view_key;
 
 /* What one view keeps between and within frames. */
 typedef struct _tlod_view_state {
@@ -42,6 +69,10 @@ typedef struct _tlod_view_state {
   tlod_draw_strip* strips;
   uint32_t strip_cap;
   tlod_draw_bucket buckets[_TLOD_BUCKETS];
+  _tlod_list_chunk* chunks; /* one per _TLOD_LIST_CHUNK patches */
+  _tlod_view_key key;       /* valid while key_valid */
+  bool key_valid;
+  bool settled; /* the last draw list's morphs were all at rest */
   bool has_history;
 } _tlod_view_state;
 
@@ -60,6 +91,7 @@ typedef struct _tlod_frame {
   const _tlod_view_state* main; /* locked views: view 0 */
   uint32_t budget;              /* triangles: the scheduler's own or its group's; 0 == none */
   double t[TLOD_STAGE_NUM + 1]; /* stage boundaries, ms */
+  bool fused;                   /* fast path: levels and morph done with the metric */
 } _tlod_frame;
 
 struct tlod_scheduler {
@@ -78,6 +110,11 @@ struct tlod_scheduler {
   /* Index + 1 of this scheduler in the group being validated, 0 outside
    * validation: finds a scheduler given twice in one pass, not count^2. */
   uint32_t group_slot;
+  /* Fast path (desc.reference_path false): kernels of the context's SIMD
+   * level and their structure-of-arrays inputs (scheduler_fast.h). */
+  bool fast_path;
+  _tlod_fast_kernels fast;
+  _tlod_soa soa;
 };
 
 /* scheduler_metric.c */
@@ -114,7 +151,31 @@ float _tlod_morph_of(float cont, uint32_t level);
  * only towards a visible neighbour. */
 bool _tlod_strip_needed(const _tlod_frame* fr, const float* cont, uint32_t f, uint32_t e);
 
+/* scheduler_soa.c, scheduler_fast_frame.c: the fast path */
+void _tlod_soa_free(tlod_context* ctx, _tlod_soa* soa);
+/* Copies the inputs again when the mesh or surface generation moved. */
+tlod_result _tlod_soa_update(tlod_scheduler* s, const tlod_mesh_view* mesh, const tlod_surface_view* surface);
+/* Silhouette and metric stages of fr (t[1] set), fused with levels and
+ * morph (fr->fused) when may_fuse and the frame has no budget and is not locked. */
+void _tlod_fast_begin(_tlod_frame* fr, bool may_fuse);
+
 /* scheduler_draw_list.c */
+/* The view's chunk array (freed with the view's other arrays). */
+tlod_result _tlod_list_alloc(tlod_scheduler* s, _tlod_view_state* vs);
 tlod_result _tlod_fill_draw_list(_tlod_frame* fr);
+
+/* scheduler_coherence.c */
+/* Whether patch f's continuous level is where an update without history
+ * puts it for its current target: then the same inputs give the same
+ * level, whatever dt_ms. */
+bool _tlod_morph_settled(const _tlod_frame* fr, uint32_t f);
+/* Whether frame would rebuild exactly the draw lists s holds: every view's
+ * inputs bitwise as last time, the mesh and surface generations unchanged,
+ * every morph at rest. */
+bool _tlod_lists_unchanged(const tlod_scheduler* s, const tlod_frame_desc* frame, const tlod_mesh_view* mesh,
+                           const tlod_surface_view* surface);
+/* Records what the views of frame were just built from. */
+void _tlod_lists_remember(tlod_scheduler* s, const tlod_frame_desc* frame, const tlod_mesh_view* mesh,
+                          const tlod_surface_view* surface);
 
 #endif

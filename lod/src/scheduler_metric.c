@@ -13,6 +13,7 @@
 #include <math.h>
 
 #include "scheduler_frame.h"
+#include "scheduler_math.h"
 
 /* ---- camera ----------------------------------------------------------------- */
 
@@ -206,13 +207,18 @@ static float error_target(const tlod_scheduler_desc* d, const tlod_patch_info* i
 }
 
 /* SILHOUETTE: log2 of the segments the contour asks for, at most the cap
- * and max_level; integral unless morphs are CONTINUOUS. */
+ * and max_level; integral (the compare ladder 2^k >= segments) unless
+ * morphs are CONTINUOUS (scheduler_math.h's log2). The cap is integral. */
 static float silhouette_target(const tlod_scheduler_desc* d, float contour, float cap) {
   float segments = contour * d->silhouette_depth;
-  float t = segments > 1.0f ? log2f(segments) : 0.0f;
+  float t;
+  if (d->morph == TLOD_MORPH_CONTINUOUS) {
+    t = segments > 1.0f ? _tlod_log2(segments) : 0.0f;
+  } else {
+    t = _tlod_ceil_log2(segments);
+  }
   t = t < cap ? t : cap;
-  t = t > (float)d->max_level ? (float)d->max_level : t;
-  return d->morph == TLOD_MORPH_CONTINUOUS ? t : ceilf(t);
+  return t > (float)d->max_level ? (float)d->max_level : t;
 }
 
 float _tlod_level_rule(const tlod_scheduler_desc* d, const tlod_patch_info* info, float scale, float contour, float eps,
@@ -226,7 +232,8 @@ float _tlod_level_rule(const tlod_scheduler_desc* d, const tlod_patch_info* info
     return silhouette_target(d, contour, cap);
   case TLOD_POLICY_HYBRID:
     /* Away from contours (s < 1) shading hides the flat geometry. */
-    return error_target(d, info, scale, eps * powf(d->hybrid_relax, 1.0f - contour));
+    /* relax^(1-s) as 2^((1-s) log2 relax): one log per frame in the fast path. */
+    return error_target(d, info, scale, eps * _tlod_exp2((1.0f - contour) * log2f(d->hybrid_relax)));
   default:
     return error_target(d, info, scale, eps);
   }

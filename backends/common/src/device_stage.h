@@ -58,7 +58,7 @@ static inline uint32_t _tlod_stage_strip_refs(const tlod_patterns* p, const tlod
   uint32_t refs = 0;
   for (uint32_t k = 0; k < dl->strip_count; k++) {
     uint32_t count;
-    tlod_patterns_connection(p, dl->strips[k].level_a, dl->strips[k].level_b, &count);
+    tlod_draw_strip_connection(p, &dl->strips[k], &count);
     refs += 3 * count;
   }
   return refs;
@@ -101,7 +101,7 @@ static inline void _tlod_stage_strips(_tlod_stage* s, const tlod_patterns* p, co
                                     st->level_a | (uint32_t)st->level_b << 8,
                                     {ma, mb, 0.0f, 0.0f}};
     uint32_t count;
-    const uint32_t* tris = tlod_patterns_connection(p, st->level_a, st->level_b, &count);
+    const uint32_t* tris = tlod_draw_strip_connection(p, st, &count);
     for (uint32_t t = 0; t < 3 * count; t++)
       s->refs[s->ref_count][0] = id, s->refs[s->ref_count++][1] = tris[t];
   }

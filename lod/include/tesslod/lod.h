@@ -145,7 +145,11 @@ typedef struct tlod_scheduler_desc {
   float frame_time_target_ms;
   bool no_frustum_cull; /* keep patches outside the frustum; default false (cull) */
   /* The straightforward path, one stage at a time: slow, kept as the oracle
-   * the fast path is tested against (their draw lists are bitwise equal). */
+   * the fast path is tested against (their draw lists are bitwise equal, at
+   * every SIMD level and thread count). The default fast path fuses the
+   * silhouette, metric, level and morph stages into SIMD passes over copies
+   * of the mesh and surface it makes at the first update and again when
+   * their generations move (docs/design.md 3.13). */
   bool reference_path;
   const char* label; /* default "scheduler" */
 } tlod_scheduler_desc;
@@ -189,7 +193,18 @@ typedef struct tlod_draw_strip {
   uint8_t edge_a, edge_b;
   uint8_t level_a, level_b;
   bool crease; /* split normals (or alphas), not a level difference */
+  /* A smooth edge between different levels whose coarser side draws its
+   * edge points exact (morph 1, or level 0): the points the two sides share
+   * coincide, so the strip is tlod_patterns_connection_exact() (only the
+   * |2^la - 2^lb| triangles that fill gaps); else tlod_patterns_connection(). */
+  bool exact;
 } tlod_draw_strip;
+
+/* The connection pattern a strip is drawn with (see exact), its triangle
+ * count in *triangle_count; NULL (count 0) for a NULL strip or patterns,
+ * or levels above the patterns' max level. */
+TLOD_API const uint32_t* tlod_draw_strip_connection(const tlod_patterns* patterns, const tlod_draw_strip* strip,
+                                                    uint32_t* triangle_count);
 
 typedef enum tlod_stage {
   TLOD_STAGE_SILHOUETTE = 0, /* d_i per vertex */

@@ -24,7 +24,8 @@
  *   2. per shape and level: tlod_patterns_vertices(), tlod_patterns_indices()
  *      (upload once: every level indexes the one vertex array);
  *      tlod_patterns_edge() for the vertices along an edge;
- *   3. per level pair: tlod_patterns_connection() for the strips;
+ *   3. per level pair: tlod_patterns_connection() for the strips (or
+ *      tlod_patterns_connection_exact(); tlod_draw_strip_connection() picks);
  *   4. tlod_patterns_destroy(pat) after everything drawing with it.
  *
  * THREADING AND ALLOCATION
@@ -131,6 +132,15 @@ TLOD_API size_t tlod_patterns_memory(const tlod_patterns* patterns, size_t* sepa
  * (la, lb) and shared (Schwarz et al.). */
 TLOD_API const uint32_t* tlod_patterns_connection(const tlod_patterns* patterns, uint32_t la, uint32_t lb,
                                                   uint32_t* triangle_count);
+/* The same strip for polylines whose points at equal parameters (i / 2^la
+ * == j / 2^lb) are the same point: tlod_patterns_connection() without every
+ * triangle that has such a pair, as they have no area there. What is left
+ * fills the gaps between the coarser side's chords and the finer polyline:
+ * |2^la - 2^lb| triangles (none for la == lb). Valid only where both sides
+ * put the shared points at the same position: a smooth edge whose coarser
+ * side draws its edge points exact (tlod_draw_strip.exact). */
+TLOD_API const uint32_t* tlod_patterns_connection_exact(const tlod_patterns* patterns, uint32_t la, uint32_t lb,
+                                                        uint32_t* triangle_count);
 
 /* ------------------------------------------------------------------------ */
 /* Enum names                                                               */

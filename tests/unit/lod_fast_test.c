@@ -1,0 +1,306 @@
+/* The scheduler's fast path (fused SIMD passes, lod/src/scheduler_fast*)
+ * against its oracle, tlod_scheduler_desc.reference_path: over sequences of
+ * frames (morph history, a mesh update and refresh between frames), for
+ * every SIMD level this processor has and 1, 2 and 3 threads, every policy,
+ * morph mode and budget, orthographic and locked views, the draw lists are
+ * bitwise equal (levels, e_max, vertex depths, instances, buckets, strips,
+ * statistics; not stage_ms). */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "shapes.h"
+#include "tesslod/core.h"
+#include "tesslod/lod.h"
+#include "test.h"
+#include "test_camera.h"
+#include "test_lod.h"
+
+#define MAX_LEVEL 6
+#define FRAMES 7
+#define MESHES 5
+
+/* One mesh, its surface and patterns in one context. */
+typedef struct world {
+  tlod_context* ctx;
+  tlod_mesh* mesh[MESHES];
+  tlod_surface* surf[MESHES];
+  tlod_patterns* pat;
+} world;
+
+typedef struct mesh_source {
+  shape s;
+  uint8_t* face_sizes; /* MIXED: some quads split in two triangles */
+  uint32_t* indices;
+  uint32_t index_count, face_count;
+} mesh_source;
+
+/* Every third quad of the quad sphere as two triangles. */
+static mesh_source mixed_source(void) {
+  mesh_source m = {.s = shape_quad_sphere(5)};
+  uint32_t quads = m.s.index_count / 4;
+  m.face_sizes = malloc(2 * quads);
+  m.indices = malloc(sizeof(uint32_t) * 6 * quads);
+  for (uint32_t q = 0; q < quads; ++q) {
+    const uint32_t* c = m.s.indices + 4 * q;
+    if (q % 3 == 0) {
+      uint32_t t[6] = {c[0], c[1], c[2], c[0], c[2], c[3]};
+      memcpy(m.indices + m.index_count, t, sizeof t);
+      m.index_count += 6;
+      m.face_sizes[m.face_count++] = 3, m.face_sizes[m.face_count++] = 3;
+    } else {
+      memcpy(m.indices + m.index_count, c, 4 * sizeof(uint32_t));
+      m.index_count += 4;
+      m.face_sizes[m.face_count++] = 4;
+    }
+  }
+  return m;
+}
+
+static mesh_source g_src[MESHES];
+
+static void sources_make(void) {
+  g_src[0] = (mesh_source){.s = shape_torus(40, 24)};
+  g_src[1] = (mesh_source){.s = shape_quad_sphere(8)};
+  g_src[2] = mixed_source();
+  g_src[3] = (mesh_source){.s = shape_cube_split()};
+  g_src[4] = (mesh_source){.s = shape_open_grid(16)};
+}
+
+static void sources_free(void) {
+  for (int m = 0; m < MESHES; ++m) {
+    shape_free(&g_src[m].s);
+    free(g_src[m].face_sizes);
+    free(g_src[m].indices);
+  }
+}
+
+static tlod_mesh_desc source_desc(const mesh_source* m) {
+  tlod_mesh_desc d = shape_mesh_desc(&m->s);
+  if (m->face_sizes) {
+    d.face_type = TLOD_FACE_MIXED;
+    d.face_sizes = m->face_sizes;
+    d.face_count = m->face_count;
+    d.indices = m->indices;
+    d.index_count = m->index_count;
+  }
+  return d;
+}
+
+static void world_free(world* w) {
+  for (int m = 0; m < MESHES; ++m) {
+    tlod_surface_destroy(w->surf[m]);
+    tlod_mesh_destroy(w->mesh[m]);
+  }
+  tlod_patterns_destroy(w->pat);
+  tlod_context_destroy(w->ctx);
+  memset(w, 0, sizeof *w);
+}
+
+/* Meshes 0 and 4 (triangles) PN, the others Phong (cube_split: creases). */
+static bool world_make(world* w, tlod_simd simd, uint32_t threads) {
+  memset(w, 0, sizeof *w);
+  tlod_context_desc cd = {.thread_count = threads, .simd = simd};
+  if (tlod_context_create(&cd, &w->ctx) != TLOD_SUCCESS) return false;
+  tlod_result r = tlod_patterns_create(w->ctx, &(tlod_patterns_desc){.max_level = MAX_LEVEL}, &w->pat);
+  for (int m = 0; m < MESHES && r == TLOD_SUCCESS; ++m) {
+    tlod_mesh_desc md = source_desc(&g_src[m]);
+    r = tlod_mesh_create(w->ctx, &md, &w->mesh[m]);
+    tlod_surface_type type = m == 0 || m == 4 ? TLOD_SURFACE_PN : TLOD_SURFACE_PHONG;
+    if (r == TLOD_SUCCESS) r = tlod_surface_create(w->ctx, w->mesh[m], &(tlod_surface_desc){.type = type}, &w->surf[m]);
+  }
+  if (r != TLOD_SUCCESS) {
+    fprintf(stderr, "world: %s: %s\n", tlod_result_string(r), tlod_context_last_error(w->ctx));
+    world_free(w);
+  }
+  return r == TLOD_SUCCESS;
+}
+
+/* Frame k's camera: from far to inside the shape, grazing, orthographic. */
+static camera frame_camera(int k) {
+  static const double eyes[FRAMES][3] = {{0, 0, 6},       {0.3, 1.2, 2.6}, {1.3, 0.2, 0.9}, {0.05, 0.02, 0.1},
+                                         {2.0, 0.3, 0.0}, {0.2, 3.0, 0.4}, {0.9, 0.9, 0.9}};
+  camera c = {.eye = {eyes[k][0], eyes[k][1], eyes[k][2]},
+              .target = {0, 0, 0},
+              .up = {0, 1, 0},
+              .fovy = 1.0,
+              .half_h = 1.5,
+              .aspect = 4.0 / 3.0,
+              .znear = 0.02,
+              .zfar = 50,
+              .ortho = k == 5,
+              .width = 640,
+              .height = 480};
+  if (k == 3) c.target[0] = 1.0; /* inside, looking outwards */
+  if (k == 5) c.up[0] = 1, c.up[1] = 0;
+  return c;
+}
+
+/* The desc of case c: policy, morph mode, budget, epsilon. */
+static tlod_scheduler_desc case_desc(int c, bool reference) {
+  static const tlod_lod_policy policies[] = {TLOD_POLICY_FLAT, TLOD_POLICY_UNIFORM, TLOD_POLICY_SILHOUETTE,
+                                             TLOD_POLICY_ERROR, TLOD_POLICY_HYBRID};
+  static const tlod_morph_mode morphs[] = {TLOD_MORPH_NONE, TLOD_MORPH_TIME, TLOD_MORPH_CONTINUOUS};
+  tlod_scheduler_desc d = {.policy = policies[c % 5],
+                           .morph = morphs[(c / 5) % 3],
+                           .triangle_budget = (c / 15) % 2 ? 6000u : 0u,
+                           .epsilon_px = c % 4 == 1 ? 0.02f : 1.5f,
+                           .max_level = MAX_LEVEL - (uint32_t)(c % 7 == 3),
+                           .hybrid_relax = c % 2 ? 0.0f : 3.7f,
+                           .silhouette_depth = c % 3 ? 0.0f : 23.0f,
+                           .morph_ms = 40.0f,
+                           .reference_path = reference};
+  return d;
+}
+#define CASES 30
+
+/* Views of frame k: one, or a second locked one (k odd) or free (k == 4). */
+static uint32_t frame_views(int k, tlod_view_desc v[2]) {
+  camera c = frame_camera(k), c2 = frame_camera((k + 2) % FRAMES);
+  v[0] = make_view(&c);
+  v[1] = make_view(&c2);
+  v[1].lock_to_main = k % 2 == 1;
+  return k % 2 == 1 || k == 4 ? 2u : 1u;
+}
+
+/* Positions of mesh m moved a little (a deforming mesh), then refreshed. */
+static bool deform(world* w, int m, float t) {
+  const shape* s = &g_src[m].s;
+  float* p = malloc(sizeof(float) * 3 * s->vertex_count);
+  for (uint32_t i = 0; i < 3 * s->vertex_count; ++i)
+    p[i] = s->positions[i] * (1.0f + t * (float)(i % 5) * 0.01f);
+  tlod_result r = tlod_mesh_update(w->mesh[m], p, 0, NULL, 0);
+  free(p);
+  if (r == TLOD_SUCCESS) r = tlod_surface_refresh(w->surf[m], NULL);
+  return r == TLOD_SUCCESS;
+}
+
+#define WORLDS (4 * 3 + 1) /* every SIMD level x 1, 2, 3 threads, and the reference world 0 */
+
+/* Runs case c on mesh m of every world over the frames, the reference
+ * world (0: 1 thread, reference path) once; compares every fast world's
+ * lists of every view with the reference's, frame by frame. */
+static void run_case(world* w, int worlds, int m, int c) {
+  tlod_scheduler* s[WORLDS] = {0};
+  bool ok = true;
+  for (int i = 0; i < worlds; ++i)
+    ok = (s[i] = scheduler_create(w[i].ctx, w[i].surf[m], w[i].pat, case_desc(c, i == 0))) && ok;
+  uint32_t vertices = tlod_mesh_vertex_count(tlod_surface_mesh(w[0].surf[m]));
+  char why[96] = "create failed";
+  int k = 0, at = 0;
+  for (; ok && k < FRAMES; ++k) {
+    for (int i = 0; ok && k == 4 && c % 5 == 4 && i < worlds; ++i)
+      ok = deform(&w[i], m, 1.0f);
+    tlod_view_desc views[2];
+    tlod_frame_desc f = {.views = views, .view_count = frame_views(k, views), .dt_ms = 16.0f};
+    for (int i = 0; ok && i < worlds; ++i)
+      ok = tlod_scheduler_update(s[i], &f) == TLOD_SUCCESS;
+    for (at = 1; ok && at < worlds; at += ok) /* stays at the world that differs */
+      for (uint32_t v = 0; ok && v < f.view_count; ++v)
+        ok = draw_lists_equal(tlod_scheduler_draw_list(s[0], v), tlod_scheduler_draw_list(s[at], v), vertices, why,
+                              sizeof why);
+  }
+  for (int i = 0; c % 5 == 4 && i < worlds; ++i)
+    if (!deform(&w[i], m, 0.0f)) ok = false, snprintf(why, sizeof why, "restore");
+  for (int i = 0; i < worlds; ++i)
+    tlod_scheduler_destroy(s[i]);
+  tlod_context* ctx = w[at < worlds ? at : 0].ctx;
+  CHECK_MSG(ok, "%s, %u threads, mesh %s, case %d, frame %d: %s", tlod_simd_name(tlod_context_simd(ctx)),
+            tlod_context_query_desc(ctx).thread_count, g_src[m].s.name, c, k - 1, why);
+}
+
+/* The highest SIMD level this processor has. */
+static tlod_simd best_simd(void) {
+  tlod_context* ctx = NULL;
+  if (tlod_context_create(NULL, &ctx) != TLOD_SUCCESS) return TLOD_SIMD_SCALAR;
+  tlod_simd s = tlod_context_simd(ctx);
+  tlod_context_destroy(ctx);
+  return s;
+}
+
+TEST(test_fast_equals_reference) {
+  world w[WORLDS];
+  int worlds = 0;
+  bool ok = world_make(&w[worlds++], TLOD_SIMD_SCALAR, 1);
+  tlod_simd best = best_simd();
+  for (tlod_simd simd = TLOD_SIMD_SCALAR; ok && simd <= best; simd++)
+    for (uint32_t threads = 1; ok && threads <= 3; ++threads) {
+      ok = world_make(&w[worlds], simd, threads);
+      ok = ok && tlod_context_simd(w[worlds++].ctx) == simd;
+    }
+  for (int m = 0; ok && m < MESHES; ++m)
+    for (int c = 0; c < CASES && ok; ++c) {
+      int failed = _test_checks_failed;
+      run_case(w, worlds, m, c);
+      ok = failed == _test_checks_failed;
+    }
+  for (int i = 0; i < worlds; ++i)
+    world_free(&w[i]);
+  CHECK_MSG(ok, "a world failed (above)");
+}
+
+/* The levels must reach the refined range, or the equality above says little. */
+TEST(test_cases_refine) {
+  world w;
+  CHECK(world_make(&w, TLOD_SIMD_DEFAULT, 2));
+  tlod_scheduler* s = scheduler_create(w.ctx, w.surf[0], w.pat, case_desc(9, false)); /* HYBRID, TIME, eps 0.02 */
+  CHECK(s);
+  uint32_t hist[TLOD_MAX_LEVEL + 1] = {0}, culled = 0;
+  for (int k = 0; k < FRAMES; ++k) {
+    tlod_view_desc views[2];
+    tlod_frame_desc f = {.views = views, .view_count = 1, .dt_ms = 1000.0f};
+    frame_views(k, views);
+    const tlod_draw_list* dl = scheduler_plan(w.ctx, s, &f);
+    CHECK(dl);
+    for (int l = 0; l <= TLOD_MAX_LEVEL; ++l)
+      hist[l] += dl->level_histogram[l];
+    culled += dl->culled;
+  }
+  tlod_scheduler_destroy(s);
+  world_free(&w);
+  uint32_t fine = hist[4] + hist[5] + hist[6];
+  CHECK_MSG(hist[0] && hist[3] && fine && culled, "levels 0 %u, 3 %u, 4-6 %u, culled %u", hist[0], hist[3], fine,
+            culled);
+}
+
+/* A group update under one budget: fast members equal reference members. */
+TEST(test_group_budget) {
+  world ref, w;
+  CHECK(world_make(&ref, TLOD_SIMD_SCALAR, 1));
+  CHECK(world_make(&w, TLOD_SIMD_DEFAULT, 3));
+  tlod_scheduler *a[2], *b[2];
+  for (int i = 0; i < 2; ++i) {
+    a[i] = scheduler_create(ref.ctx, ref.surf[i], ref.pat, case_desc(4 + 5 * i, true));
+    b[i] = scheduler_create(w.ctx, w.surf[i], w.pat, case_desc(4 + 5 * i, false));
+  }
+  bool ok = a[0] && a[1] && b[0] && b[1];
+  char why[96] = "failed";
+  for (int k = 0; ok && k < FRAMES; ++k) {
+    tlod_view_desc views[2];
+    tlod_frame_desc f[2] = {{.views = views, .view_count = frame_views(k, views), .dt_ms = 16.0f}};
+    f[1] = f[0];
+    ok = tlod_scheduler_update_group(a, f, 2, 9000) == TLOD_SUCCESS &&
+         tlod_scheduler_update_group(b, f, 2, 9000) == TLOD_SUCCESS;
+    for (int i = 0; ok && i < 2; ++i)
+      for (uint32_t v = 0; ok && v < f[0].view_count; ++v)
+        ok = draw_lists_equal(tlod_scheduler_draw_list(a[i], v), tlod_scheduler_draw_list(b[i], v),
+                              tlod_mesh_vertex_count(tlod_surface_mesh(ref.surf[i])), why, sizeof why);
+  }
+  for (int i = 0; i < 2; ++i) {
+    tlod_scheduler_destroy(a[i]);
+    tlod_scheduler_destroy(b[i]);
+  }
+  world_free(&w);
+  world_free(&ref);
+  CHECK_MSG(ok, "%s", why);
+}
+
+int main(void) {
+  sources_make();
+  RUN(test_cases_refine);
+  RUN(test_fast_equals_reference);
+  RUN(test_group_budget);
+  sources_free();
+  TEST_END();
+}
