@@ -53,7 +53,7 @@ static tlod_result out_of_memory(const tlod_scheduler* s) {
 
 static void free_view(tlod_context* ctx, _tlod_view_state* v) {
   void* arrays[] = {v->levels, v->e_max,   v->scale,     v->depth,  v->contour, v->target,
-                    v->cont,   v->visible, v->instances, v->strips, v->chunks};
+                    v->cont,   v->visible, v->instances, v->strips, v->chunks,  v->strip_edges};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(ctx, arrays[i]);
   memset(v, 0, sizeof(*v));

@@ -2,20 +2,28 @@
  * those of the last one (views, viewports, effective epsilon, mesh and
  * surface generations), with every geomorph at rest, would rebuild the
  * same draw lists; it keeps them, and their generation, instead. */
-#include <math.h>
 #include <string.h>
 
 #include "scheduler_frame.h"
 
-bool _tlod_morph_settled(const _tlod_frame* fr, uint32_t f) {
-  const tlod_scheduler_desc* d = &fr->s->desc;
-  float t = fr->vs->target[f], rest = d->morph == TLOD_MORPH_CONTINUOUS ? t : ceilf(t);
-  /* The untimed path of _tlod_morph_task: the goal, at least the target of
-   * a bounded policy, at most the budget's level. */
-  bool bounded = d->policy == TLOD_POLICY_ERROR || d->policy == TLOD_POLICY_HYBRID;
-  if (bounded && rest < t) rest = t;
-  if (fr->budget && rest > ceilf(t)) rest = ceilf(t);
-  return fr->vs->cont[f] == rest;
+/* The untimed path of _tlod_morph_task puts a patch at its goal: the
+ * target (CONTINUOUS) or its ceil; its clamps (at least the target, at most
+ * the ceil) never move that goal. A ceil is checked without calling ceilf:
+ * c == ceil(t) exactly when c is integral and c - 1 < t <= c (levels are
+ * small integers, so every step is exact). */
+bool _tlod_morphs_settled(const _tlod_frame* fr, uint32_t begin, uint32_t end) {
+  const float *target = fr->vs->target, *cont = fr->vs->cont;
+  bool settled = true;
+  if (fr->s->desc.morph == TLOD_MORPH_CONTINUOUS) {
+    for (uint32_t f = begin; f < end; f++)
+      settled &= cont[f] == target[f];
+    return settled;
+  }
+  for (uint32_t f = begin; f < end; f++) {
+    float c = cont[f], t = target[f];
+    settled &= c == (float)(int32_t)c && c - 1.0f < t && t <= c;
+  }
+  return settled;
 }
 
 static _tlod_view_key key_of(const tlod_scheduler* s, const tlod_view_desc* v, const tlod_mesh_view* mesh,

@@ -39,8 +39,6 @@ static void chunk_range(const _tlod_frame* fr, uint32_t c, uint32_t* begin, uint
 static void count_visible(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t f, uint32_t l) {
   float e = fr->vs->e_max[f];
   ch->counts[bucket_of(fr, f, l)]++;
-  ch->histogram[l]++;
-  ch->pattern_triangles += tlod_pattern_triangle_count(shape_of(&fr->mesh, f), l);
   ch->e_max_min = e < ch->e_max_min ? e : ch->e_max_min;
   ch->e_max_max = e > ch->e_max_max ? e : ch->e_max_max;
 }
@@ -56,16 +54,20 @@ static tlod_draw_strip strip_of(const _tlod_frame* fr, uint32_t f, uint32_t e, u
   return (tlod_draw_strip){f, link.face, (uint8_t)e, link.edge, (uint8_t)l, (uint8_t)lg, !link.smooth, exact};
 }
 
-/* Strips of visible patch f at level l into its chunk. */
+/* Strips of visible patch f at level l into its chunk; the edges that
+ * have one into strip_edges[f] (bit e), for the second pass. */
 static void count_strips(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t f, uint32_t l) {
+  uint8_t mask = 0;
   for (uint32_t e = 0; e < fr->mesh.face_corners[f]; e++) {
     if (!_tlod_strip_needed(fr, fr->vs->cont, f, e)) continue;
+    mask |= (uint8_t)(1u << e);
     tlod_draw_strip st = strip_of(fr, f, e, l);
     uint32_t n = 0;
     tlod_draw_strip_connection(fr->s->patterns, &st, &n);
     ch->strips++;
     ch->strip_triangles += n;
   }
+  fr->vs->strip_edges[f] = mask;
 }
 
 /* Pass 1 over chunks [begin, end): drawn levels (-1 when culled), bucket
@@ -76,13 +78,13 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
   _tlod_view_state* vs = fr->vs;
   for (uint32_t c = begin; c < end; c++) {
     _tlod_list_chunk* ch = &vs->chunks[c];
-    *ch = (_tlod_list_chunk){.e_max_min = INFINITY, .settled = true};
+    *ch = (_tlod_list_chunk){.e_max_min = INFINITY};
     uint32_t f0, f1;
     chunk_range(fr, c, &f0, &f1);
+    ch->settled = _tlod_morphs_settled(fr, f0, f1);
     for (uint32_t f = f0; f < f1; f++) {
       uint32_t l = _tlod_drawn_level(vs->cont[f]);
       vs->levels[f] = vs->visible[f] ? (int8_t)l : -1;
-      ch->settled = ch->settled && _tlod_morph_settled(fr, f);
       if (!vs->visible[f]) {
         ch->culled++;
         continue;
@@ -110,13 +112,20 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
       vs->instances[ch->counts[bucket_of(fr, f, l)]++] =
           (tlod_draw_instance){.patch = f, .level = l, .morph = _tlod_morph_of(vs->cont[f], l)};
       for (uint32_t e = 0; ch->strips && e < fr->mesh.face_corners[f]; e++)
-        if (_tlod_strip_needed(fr, vs->cont, f, e)) vs->strips[st++] = strip_of(fr, f, e, l);
+        if (vs->strip_edges[f] & (1u << e)) vs->strips[st++] = strip_of(fr, f, e, l);
     }
   }
 }
 
-/* Non-empty buckets into the list; every chunk's counts become its first
- * slot per bucket, in chunk order. Returns the instance count. */
+/* Bucket b's count into the level histogram and the pattern triangles. */
+static void count_bucket(tlod_draw_list* dl, uint32_t levels, uint32_t b, uint32_t count) {
+  dl->level_histogram[b % levels] += count;
+  dl->pattern_triangles += (uint64_t)count * tlod_pattern_triangle_count((tlod_pattern_shape)(b / levels), b % levels);
+}
+
+/* Non-empty buckets into the list (with the histogram and pattern
+ * triangles); every chunk's counts become its first slot per bucket, in
+ * chunk order. Returns the instance count. */
 static uint32_t lay_out_buckets(_tlod_frame* fr, uint32_t chunks) {
   _tlod_view_state* vs = fr->vs;
   uint32_t levels = fr->s->desc.max_level + 1, first = 0, nb = 0;
@@ -127,6 +136,7 @@ static uint32_t lay_out_buckets(_tlod_frame* fr, uint32_t chunks) {
       vs->chunks[c].counts[b] = first;
       first += n;
     }
+    count_bucket(&vs->list, levels, b, first - start);
     if (first > start)
       vs->buckets[nb++] = (tlod_draw_bucket){(tlod_pattern_shape)(b / levels), b % levels, start, first - start};
   }
@@ -138,9 +148,8 @@ static uint32_t lay_out_buckets(_tlod_frame* fr, uint32_t chunks) {
 static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
   _tlod_view_state* vs = fr->vs;
   tlod_draw_list* dl = &vs->list;
-  dl->pattern_triangles = dl->strip_triangles = 0;
+  dl->strip_triangles = 0;
   dl->culled = dl->strip_count = 0;
-  memset(dl->level_histogram, 0, sizeof(dl->level_histogram));
   dl->e_max_min = INFINITY;
   dl->e_max_max = 0.0f;
   vs->settled = true;
@@ -148,11 +157,8 @@ static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
     _tlod_list_chunk* ch = &vs->chunks[c];
     ch->strip_first = dl->strip_count;
     dl->strip_count += ch->strips;
-    dl->pattern_triangles += ch->pattern_triangles;
     dl->strip_triangles += ch->strip_triangles;
     dl->culled += ch->culled;
-    for (uint32_t l = 0; l <= TLOD_MAX_LEVEL; l++)
-      dl->level_histogram[l] += ch->histogram[l];
     dl->e_max_min = ch->e_max_min < dl->e_max_min ? ch->e_max_min : dl->e_max_min;
     dl->e_max_max = ch->e_max_max > dl->e_max_max ? ch->e_max_max : dl->e_max_max;
     vs->settled = vs->settled && ch->settled;
@@ -184,7 +190,8 @@ static void drop_strips(_tlod_view_state* vs, uint32_t chunks) {
 
 tlod_result _tlod_list_alloc(tlod_scheduler* s, _tlod_view_state* vs) {
   vs->chunks = tlod_context_calloc(s->ctx, chunk_count(s->patch_count) + 1, sizeof(_tlod_list_chunk));
-  return vs->chunks ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
+  vs->strip_edges = tlod_context_calloc(s->ctx, (size_t)s->patch_count + 1, 1);
+  return vs->chunks && vs->strip_edges ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
 }
 
 tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
@@ -200,6 +207,8 @@ tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   vs->list.buckets = vs->buckets;
   vs->key_valid = false;
   tlod_context_parallel_for(fr->s->ctx, count_task, fr, chunks);
+  vs->list.pattern_triangles = 0;
+  memset(vs->list.level_histogram, 0, sizeof(vs->list.level_histogram));
   vs->list.instance_count = lay_out_buckets(fr, chunks);
   sum_chunks(fr, chunks);
   tlod_result r = reserve_strips(fr->s, vs, vs->list.strip_count);

@@ -37,11 +37,10 @@ typedef struct _tlod_camera {
 typedef struct _tlod_list_chunk {
   uint32_t counts[_TLOD_BUCKETS]; /* instances per bucket; then the chunk's first slot */
   uint32_t strips, strip_first;
-  uint64_t pattern_triangles, strip_triangles;
+  uint64_t strip_triangles;
   uint32_t culled;
-  uint32_t histogram[TLOD_MAX_LEVEL + 1];
   float e_max_min, e_max_max;
-  bool settled; /* every morph of the chunk at rest (_tlod_morph_settled) */
+  bool settled; /* every morph of the chunk at rest (_tlod_morphs_settled) */
 } _tlod_list_chunk;
 
 /* What the draw list of one view was made from (scheduler_coherence.c). */
@@ -70,6 +69,7 @@ typedef struct _tlod_view_state {
   uint32_t strip_cap;
   tlod_draw_bucket buckets[_TLOD_BUCKETS];
   _tlod_list_chunk* chunks; /* one per _TLOD_LIST_CHUNK patches */
+  uint8_t* strip_edges;     /* per patch: bit e when edge e has a strip (this frame) */
   _tlod_view_key key;       /* valid while key_valid */
   bool key_valid;
   bool settled; /* the last draw list's morphs were all at rest */
@@ -160,15 +160,15 @@ tlod_result _tlod_soa_update(tlod_scheduler* s, const tlod_mesh_view* mesh, cons
 void _tlod_fast_begin(_tlod_frame* fr, bool may_fuse);
 
 /* scheduler_draw_list.c */
-/* The view's chunk array (freed with the view's other arrays). */
+/* The view's chunk and strip-edge arrays (freed with its other arrays). */
 tlod_result _tlod_list_alloc(tlod_scheduler* s, _tlod_view_state* vs);
 tlod_result _tlod_fill_draw_list(_tlod_frame* fr);
 
 /* scheduler_coherence.c */
-/* Whether patch f's continuous level is where an update without history
- * puts it for its current target: then the same inputs give the same
- * level, whatever dt_ms. */
-bool _tlod_morph_settled(const _tlod_frame* fr, uint32_t f);
+/* Whether patches [begin, end) have their continuous levels where an
+ * update without history puts them for their current targets: then the
+ * same inputs give the same levels, whatever dt_ms. */
+bool _tlod_morphs_settled(const _tlod_frame* fr, uint32_t begin, uint32_t end);
 /* Whether frame would rebuild exactly the draw lists s holds: every view's
  * inputs bitwise as last time, the mesh and surface generations unchanged,
  * every morph at rest. */

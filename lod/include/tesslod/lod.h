@@ -187,7 +187,7 @@ typedef struct tlod_draw_instance {
 } tlod_draw_instance;
 
 /* A connection strip between edge ea of patch a and edge eb of patch b,
- * drawn with tlod_patterns_connection(la, lb), polyline b reversed. */
+ * drawn with tlod_draw_strip_connection() (la, lb), polyline b reversed. */
 typedef struct tlod_draw_strip {
   uint32_t patch_a, patch_b;
   uint8_t edge_a, edge_b;
@@ -236,8 +236,12 @@ typedef struct tlod_draw_list {
   float e_max_min, e_max_max; /* over visible patches */
   float effective_epsilon;    /* after budget and frame-time control */
   double stage_ms[TLOD_STAGE_NUM];
-  /* Grows whenever an update changes anything above but stage_ms: equal
-   * generations, equal draw lists (a backend need not re-send it). */
+  /* Equal generations, equal draw lists (a backend need not re-send it).
+   * An update whose views (bitwise), effective epsilon and mesh and surface
+   * generations are the last update's, with every geomorph at rest, keeps
+   * the list and its generation (no stage runs: stage_ms all 0); any other
+   * update, a group update and the first one after tlod_scheduler_reset
+   * build the list anew with a new generation. */
   uint64_t generation;
 } tlod_draw_list;
 
