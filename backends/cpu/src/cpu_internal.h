@@ -16,6 +16,20 @@ typedef struct level_table {
   uint32_t nv, interior;
   uint8_t* kind;
   uint32_t* param;
+  /* The fast path's (cpu_fast.c; NULL on the reference path): interior
+   * vertices in ordinal order (their output ids are consecutive) with
+   * (u, v) as tlod_surface_eval_grid() computes them and as vertex_uv
+   * holds them; the boundary vertices sorted by kind (corners, then edge
+   * e's at [edge_at[e], edge_at[e + 1])) with their grid points; the index
+   * template (interior ordinal per index) and the indices naming a
+   * boundary vertex, the only ones the welded remap touches. */
+  uint32_t* int_x;
+  float *int_u, *int_v;
+  float (*int_uv)[2];
+  uint32_t nb, edge_at[5];
+  uint32_t* bnd_x;
+  uint16_t (*bnd_ij)[2];
+  uint32_t *tmpl, *slot_k, nslot;
 } level_table;
 
 /* Per worker: pattern vertex -> output id, the patch's evaluated points and
@@ -25,7 +39,8 @@ typedef struct scratch {
   uint32_t* map;
   float (*pos)[3];
   float (*nrm)[3];
-  float (*attr)[4]; /* NULL without attributes */
+  float (*cpos)[3], (*cnrm)[3]; /* fast path: points in evaluation order */
+  float (*attr)[4];             /* NULL without attributes */
 } scratch;
 
 /* A strip vertex of b's polyline carrying a's attributes (cpu_strips.c):
@@ -42,6 +57,7 @@ typedef struct tess {
   tlod_surface_view sv; /* ... and of the surface (per-vertex alpha) */
   const tlod_patterns* pat;
   tlod_cpu_tessellate_desc d;
+  tlod_simd simd; /* the context's: the interior kernels' instruction set */
   uint32_t lmax, n_grid;
   uint32_t na; /* the mesh's attribute count */
   int8_t* level;
@@ -84,8 +100,32 @@ static inline bool linked(const tess* t, uint32_t f, uint32_t e, tlod_edge_link*
 
 static inline float edge_blend(const tess* t, uint32_t f, uint32_t e) { return t->morph ? t->morph[f][1 + e] : 1.0f; }
 
+/* Welded: a patch's corner ids and edge slots, looked up once per patch;
+ * the output id of a boundary vertex from its kind and parameter. */
+typedef struct patch_lookup {
+  uint32_t corner[4], ebase[4], shift[4];
+  bool erev[4];
+} patch_lookup;
+
+void _tlod_cpu_lookup(const tess* t, uint32_t f, patch_lookup* lk);
+static inline uint32_t boundary_id(const tess* t, const patch_lookup* lk, uint8_t kind, uint32_t p) {
+  if (kind < KIND_EDGE) return lk->corner[kind];
+  uint32_t e = kind - KIND_EDGE;
+  return lk->ebase[e] + ((lk->erev[e] ? t->n_grid - p : p) >> lk->shift[e]);
+}
+
 /* cpu_tessellate.c: output id of every pattern vertex of patch f. */
 void _tlod_cpu_patch_map(const tess* t, uint32_t f, uint32_t* map);
+/* cpu_tessellate.c: after patch f's points are in w->pos / w->nrm (by
+ * pattern vertex): its attributes, geomorphs and output vertices. */
+void _tlod_cpu_finish_patch(tess* t, uint32_t f, scratch* w);
+/* Whether patch f has a geomorph blend below 1 (it needs its parents). */
+bool _tlod_cpu_morphs(const tess* t, uint32_t f);
+/* cpu_fast.c: the fast path's tables, patch pass and index pass. */
+tlod_result _tlod_cpu_fast_table(tess* t, tlod_pattern_shape shape, uint32_t level);
+void _tlod_cpu_fast_free(tess* t, level_table* lt);
+void _tlod_cpu_fast_eval(void* data, uint32_t begin, uint32_t end, uint32_t worker);
+void _tlod_cpu_fast_emit(void* data, uint32_t begin, uint32_t end, uint32_t worker);
 /* cpu_tessellate.c: both sides of edge e of f evaluate the same points
  * (smooth geometry, one level and blend, or a non-blending coarser side). */
 bool _tlod_cpu_edge_coincides(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link);

@@ -37,7 +37,7 @@ static tlod_result build_table(tess* t, tlod_pattern_shape shape, uint32_t level
         (uint8_t)tlod_grid_point_kind(shape == TLOD_PATTERN_QUAD ? 4u : 3u, t->lmax, pv[x].i, pv[x].j, &lt->param[x]);
     if (lt->kind[x] == KIND_INTERIOR) lt->param[x] = lt->interior++;
   }
-  return TLOD_SUCCESS;
+  return t->d.reference ? TLOD_SUCCESS : _tlod_cpu_fast_table(t, shape, level);
 }
 
 /* ---- welded numbering ---------------------------------------------------- */
@@ -148,6 +148,16 @@ static void assign_unwelded(tess* t) {
   t->vertex_count = base;
 }
 
+void _tlod_cpu_lookup(const tess* t, uint32_t f, patch_lookup* lk) {
+  for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
+    uint32_t slot = f * 4 + e, owner = t->slot_owner[slot];
+    lk->corner[e] = t->corner_id[t->m.faces[f][e]];
+    lk->ebase[e] = t->slot_base[owner] - 1;
+    lk->shift[e] = t->lmax - t->slot_level[owner];
+    lk->erev[e] = owner != slot;
+  }
+}
+
 /* Output id of every pattern vertex of patch f, with the patch's corner and
  * edge-slot lookups done once. */
 void _tlod_cpu_patch_map(const tess* t, uint32_t f, uint32_t* map) {
@@ -158,26 +168,11 @@ void _tlod_cpu_patch_map(const tess* t, uint32_t f, uint32_t* map) {
       map[x] = ib + x;
     return;
   }
-  uint32_t corner[4] = {0}, ebase[4] = {0}, shift[4] = {0};
-  bool erev[4] = {false};
-  for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
-    uint32_t slot = f * 4 + e, owner = t->slot_owner[slot];
-    corner[e] = t->corner_id[t->m.faces[f][e]];
-    ebase[e] = t->slot_base[owner] - 1;
-    shift[e] = t->lmax - t->slot_level[owner];
-    erev[e] = owner != slot;
-  }
+  patch_lookup lk = {.corner = {0}};
+  _tlod_cpu_lookup(t, f, &lk);
   for (uint32_t x = 0; x < lt->nv; x++) {
     uint8_t kind = lt->kind[x];
-    uint32_t p = lt->param[x];
-    if (kind < KIND_EDGE) {
-      map[x] = corner[kind];
-    } else if (kind == KIND_INTERIOR) {
-      map[x] = ib + p;
-    } else {
-      uint32_t e = kind - KIND_EDGE;
-      map[x] = ebase[e] + ((erev[e] ? t->n_grid - p : p) >> shift[e]);
-    }
+    map[x] = kind == KIND_INTERIOR ? ib + lt->param[x] : boundary_id(t, &lk, kind, lt->param[x]);
   }
 }
 
@@ -234,25 +229,38 @@ static bool writes(const tess* t, uint32_t f, const level_table* lt, uint32_t x)
   return t->slot_owner[slot] == slot;
 }
 
+bool _tlod_cpu_morphs(const tess* t, uint32_t f) {
+  if (!t->morph || level_of(t, f) <= 0) return false;
+  for (int k = 0; k < 5; k++)
+    if (t->morph[f][k] != 1.0f) return true;
+  return false;
+}
+
+void _tlod_cpu_finish_patch(tess* t, uint32_t f, scratch* w) {
+  int lv = level_of(t, f);
+  uint32_t count;
+  const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape_of(t, f), &count);
+  const level_table* lt = table_of(t, f);
+  _tlod_cpu_patch_map(t, f, w->map);
+  if (t->na) tlod_mesh_eval_attributes_grid(t->mesh, f, t->lmax, &pv[0].i, sizeof(*pv), lt->nv, w->attr);
+  if (t->morph && lv > 0) {
+    for (uint32_t x = tlod_pattern_vertex_count(shape_of(t, f), (uint32_t)lv - 1); x < lt->nv; x++)
+      morph_vertex(t, f, pv, x, w);
+  }
+  for (uint32_t x = 0; x < lt->nv; x++) {
+    if (writes(t, f, lt, x)) put(t, w->map[x], w->pos[x], w->nrm[x], f, pv[x].u, pv[x].v, attr_at(w->attr, x, t->na));
+  }
+}
+
 static void eval_patches(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   tess* t = data;
   scratch* w = &t->work[worker];
   for (uint32_t f = begin; f < end; f++) {
-    int lv = level_of(t, f);
-    if (lv < 0) continue;
+    if (level_of(t, f) < 0) continue;
     uint32_t count;
     const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape_of(t, f), &count);
-    const level_table* lt = table_of(t, f);
-    _tlod_cpu_patch_map(t, f, w->map);
-    tlod_surface_eval_grid(t->s, f, t->lmax, &pv[0].i, sizeof(*pv), lt->nv, &w->pos[0][0], &w->nrm[0][0]);
-    if (t->na) tlod_mesh_eval_attributes_grid(t->mesh, f, t->lmax, &pv[0].i, sizeof(*pv), lt->nv, w->attr);
-    if (t->morph && lv > 0) {
-      for (uint32_t x = tlod_pattern_vertex_count(shape_of(t, f), (uint32_t)lv - 1); x < lt->nv; x++)
-        morph_vertex(t, f, pv, x, w);
-    }
-    for (uint32_t x = 0; x < lt->nv; x++) {
-      if (writes(t, f, lt, x)) put(t, w->map[x], w->pos[x], w->nrm[x], f, pv[x].u, pv[x].v, attr_at(w->attr, x, t->na));
-    }
+    tlod_surface_eval_grid(t->s, f, t->lmax, &pv[0].i, sizeof(*pv), table_of(t, f)->nv, &w->pos[0][0], &w->nrm[0][0]);
+    _tlod_cpu_finish_patch(t, f, w);
   }
 }
 
@@ -305,6 +313,7 @@ static void tess_free(tess* t) {
     for (int l = 0; l <= TLOD_MAX_LEVEL; l++) {
       tlod_context_free(t->ctx, t->tables[sh][l].kind);
       tlod_context_free(t->ctx, t->tables[sh][l].param);
+      _tlod_cpu_fast_free(t, &t->tables[sh][l]);
     }
   }
   for (uint32_t w = 0; t->work && w < t->work_count; w++) {
@@ -312,6 +321,8 @@ static void tess_free(tess* t) {
     tlod_context_free(t->ctx, t->work[w].pos);
     tlod_context_free(t->ctx, t->work[w].nrm);
     tlod_context_free(t->ctx, t->work[w].attr);
+    tlod_context_free(t->ctx, t->work[w].cpos);
+    tlod_context_free(t->ctx, t->work[w].cnrm);
   }
   void* arrays[] = {t->level,      t->morph,       t->corner_id,     t->corner_src, t->slot_owner,
                     t->slot_level, t->slot_base,   t->interior_base, t->tri_base,   t->strip_tris,
@@ -432,6 +443,9 @@ static tlod_result alloc_work(tess* t) {
     t->work[w].pos = tlod_context_alloc(t->ctx, sizeof(float[3]) * n);
     t->work[w].nrm = tlod_context_alloc(t->ctx, sizeof(float[3]) * n);
     if (!t->work[w].map || !t->work[w].pos || !t->work[w].nrm) return TLOD_ERROR_OUT_OF_MEMORY;
+    if (!t->d.reference && (!(t->work[w].cpos = tlod_context_alloc(t->ctx, sizeof(float[3]) * n)) ||
+                            !(t->work[w].cnrm = tlod_context_alloc(t->ctx, sizeof(float[3]) * n))))
+      return TLOD_ERROR_OUT_OF_MEMORY;
     if (t->na && !(t->work[w].attr = tlod_context_alloc(t->ctx, sizeof(float[4]) * t->na * n)))
       return TLOD_ERROR_OUT_OF_MEMORY;
   }
@@ -521,11 +535,11 @@ static tlod_result run(tess* t) {
                ? tlod_context_fail(t->ctx, r, "tlod_cpu_tessellate: output would exceed 2^30 triangles")
                : tlod_context_fail(t->ctx, r, "tlod_cpu_tessellate: out of memory for %u vertices", t->vertex_count);
   eval_corners(t);
-  tlod_context_parallel_for(t->ctx, eval_patches, t, t->m.face_count);
+  tlod_context_parallel_for(t->ctx, t->d.reference ? eval_patches : _tlod_cpu_fast_eval, t, t->m.face_count);
   if (_tlod_cpu_stitch(t) != TLOD_SUCCESS || emit_strip_vertices(t) != TLOD_SUCCESS ||
       alloc_output(t, true) != TLOD_SUCCESS)
     return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for triangles");
-  tlod_context_parallel_for(t->ctx, emit_patches, t, t->m.face_count);
+  tlod_context_parallel_for(t->ctx, t->d.reference ? emit_patches : _tlod_cpu_fast_emit, t, t->m.face_count);
   if (t->strip_count) {
     memcpy(t->out->indices + 3 * (size_t)t->pattern_tris, t->strip_tris, sizeof(uint32_t) * 3 * t->strip_count);
     for (uint32_t k = 0; k < t->strip_count; k++)
@@ -547,6 +561,7 @@ tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surf
             .pat = patterns,
             .d = *desc,
             .out = mesh};
+  t.simd = tlod_context_simd(ctx);
   t.lmax = tlod_patterns_max_level(patterns);
   t.n_grid = 1u << t.lmax;
   t.na = t.m.attribute_count;

@@ -762,6 +762,23 @@ TLOD_API tlod_result tlod_surface_eval_grid(const tlod_surface* surface, uint32_
                                             const uint16_t* ij, size_t ij_stride, uint32_t count, float* positions,
                                             float* normals);
 
+/* The batch form of tlod_surface_eval_grid() for points strictly inside
+ * the patch (neither corner nor edge): count points (u[k], v[k]), each
+ * u = i / 2^g and v = j / 2^g computed in float for an interior grid point,
+ * evaluated with the instruction set simd (one the processor has, e.g.
+ * tlod_context_simd(ctx); TLOD_SIMD_DEFAULT and SCALAR: plain C). The
+ * results are bitwise those of tlod_surface_eval_grid() at the same points,
+ * at every simd level. positions and normals receive 3 floats per point;
+ * normals NULL: no normal is computed. Thread-safe.
+ * TLOD_ERROR_INVALID_ARGUMENT, nothing written: NULL surface, patch >= the
+ * patch count, u, v or positions NULL with count > 0.
+ * UNDEFINED (not checked, the caller's pattern tables classify the points):
+ * a point on the patch's boundary or off it gives the patch formula's value
+ * there, not the canonical edge function's. */
+TLOD_API tlod_result tlod_surface_eval_interior(const tlod_surface* surface, uint32_t patch, tlod_simd simd,
+                                                uint32_t count, const float* u, const float* v, float* positions,
+                                                float* normals);
+
 /* Attributes at count grid points of one patch, with the grid and ij
  * arguments of tlod_surface_eval_grid(): corners are the vertex's values
  * exactly, edge points come from the canonical edge function (bitwise equal

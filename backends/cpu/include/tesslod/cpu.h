@@ -43,6 +43,18 @@
  *     invariant 1 (docs/design.md) makes shared positions bitwise equal, so
  *     welding the output by exact position gives back a closed mesh.
  *
+ * FAST PATH (default; .reference = true turns it off)
+ *   The output is bitwise the reference evaluator's for every surface type,
+ *   level, draw list, option, instruction set (tlod_context_simd(), chosen
+ *   by the context desc's .simd) and thread count. Interior points go
+ *   through tlod_surface_eval_interior() (vectorised kernels per patch),
+ *   each shared edge point is evaluated once, by its owner, through the
+ *   canonical edge function; corners come from the mesh; indices are the
+ *   pattern's template plus the patch's offset, remapped only where they
+ *   name a corner or edge point. A patch with a geomorph blend below 1,
+ *   attributes, or no_weld takes the point-by-point write of the reference
+ *   after the same vectorised evaluation.
+ *
  * VERTEX ATTRIBUTES AND (PATCH, U, V)
  *   Every output vertex carries the mesh's attributes (tesslod/core.h,
  *   "Vertex attributes"), evaluated with tlod_mesh_eval_attributes_grid() at
@@ -92,6 +104,9 @@ typedef struct tlod_cpu_tessellate_desc {
   bool no_weld;    /* see OUTPUT VERTICES */
   bool no_stitch;  /* leave out connection strips (shows the cracks) */
   bool no_normals; /* skip the normal evaluation */
+  /* The straightforward evaluator, point by point: the oracle the fast path
+   * (FAST PATH above) is tested against; same output, bit for bit. */
+  bool reference;
 } tlod_cpu_tessellate_desc;
 
 typedef struct tlod_cpu_mesh {

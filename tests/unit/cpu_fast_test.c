@@ -1,0 +1,242 @@
+/*
+ * cpu_fast_test.c -- the CPU tessellator's fast path (tesslod/cpu.h FAST
+ * PATH) against its reference path (.reference = true), bit for bit: every
+ * output array compared with memcmp, for flat, Phong (shading and true
+ * normals), PN and quadratic surfaces, uniform levels 0..6, random levels,
+ * draw lists with geomorph blends and strips, welded and no_weld,
+ * no_normals, a mesh with attributes, every instruction set this processor
+ * has and 1, 2, 3 threads. Public API only.
+ */
+#include <stdint.h>
+#include <stdio.h>
+
+#include "shapes.h"
+#include "tesslod/cpu.h"
+#include "tesslod/lod.h"
+#include "test.h"
+#include "test_lod.h"
+
+#define MAX_LEVEL 6
+
+typedef struct scene {
+  tlod_context* ctx;
+  tlod_mesh* mesh;
+  tlod_surface* surf;
+  tlod_patterns* pat;
+  const char* name;
+} scene;
+
+static tlod_context* context(tlod_simd simd, uint32_t threads) {
+  tlod_context* ctx = NULL;
+  tlod_result r = tlod_context_create(&(tlod_context_desc){.thread_count = threads, .simd = simd}, &ctx);
+  return r == TLOD_SUCCESS ? ctx : NULL;
+}
+
+static bool scene_make(scene* sc, const shape* s, const tlod_attribute_desc* attrs, uint32_t attr_count,
+                       tlod_surface_desc sd) {
+  memset(sc, 0, sizeof *sc);
+  sc->ctx = context(TLOD_SIMD_SCALAR, 1);
+  sc->name = s->name;
+  tlod_mesh_desc md = shape_mesh_desc(s);
+  md.attributes = attrs;
+  md.attribute_count = attr_count;
+  tlod_result r = sc->ctx ? tlod_mesh_create(sc->ctx, &md, &sc->mesh) : TLOD_ERROR_OUT_OF_MEMORY;
+  if (r == TLOD_SUCCESS) r = tlod_surface_create(sc->ctx, sc->mesh, &sd, &sc->surf);
+  if (r == TLOD_SUCCESS) r = tlod_patterns_create(sc->ctx, &(tlod_patterns_desc){.max_level = MAX_LEVEL}, &sc->pat);
+  if (r != TLOD_SUCCESS)
+    fprintf(stderr, "scene %s %s: %s: %s\n", s->name, type_name(sd.type), tlod_result_string(r),
+            sc->ctx ? tlod_context_last_error(sc->ctx) : "no context");
+  return r == TLOD_SUCCESS;
+}
+
+static void scene_free(scene* sc) {
+  tlod_surface_destroy(sc->surf);
+  tlod_mesh_destroy(sc->mesh);
+  tlod_patterns_destroy(sc->pat);
+  tlod_context_destroy(sc->ctx);
+}
+
+static bool same_array(const void* a, const void* b, size_t bytes) {
+  if (!a || !b) return a == b;
+  return memcmp(a, b, bytes) == 0;
+}
+
+/* Every count and array of two outputs, bitwise. */
+static bool same_mesh(const tlod_cpu_mesh* a, const tlod_cpu_mesh* b) {
+  if (a->vertex_count != b->vertex_count || a->triangle_count != b->triangle_count) return false;
+  if (a->pattern_triangles != b->pattern_triangles || a->strip_triangles != b->strip_triangles) return false;
+  if (a->strips != b->strips || a->folds_skipped != b->folds_skipped || a->attribute_count != b->attribute_count)
+    return false;
+  size_t nv = a->vertex_count, nt = a->triangle_count;
+  return same_array(a->positions, b->positions, 12 * nv) && same_array(a->normals, b->normals, 12 * nv) &&
+         same_array(a->indices, b->indices, 12 * nt) && same_array(a->triangle_patch, b->triangle_patch, 4 * nt) &&
+         same_array(a->vertex_patch, b->vertex_patch, 4 * nv) && same_array(a->vertex_uv, b->vertex_uv, 8 * nv) &&
+         same_array(a->attributes, b->attributes, 16 * nv * a->attribute_count);
+}
+
+static tlod_cpu_mesh* run(tlod_context* ctx, const scene* sc, tlod_cpu_tessellate_desc d) {
+  tlod_cpu_mesh* out = NULL;
+  if (tlod_cpu_tessellate(ctx, sc->surf, sc->pat, &d, &out) != TLOD_SUCCESS) {
+    fprintf(stderr, "%s: %s\n", sc->name, tlod_context_last_error(ctx));
+    return NULL;
+  }
+  return out;
+}
+
+/* The fast path at every instruction set and 1..3 threads equals the
+ * reference. */
+static void check_case(const scene* sc, tlod_cpu_tessellate_desc d, const char* what) {
+  tlod_cpu_tessellate_desc rd = d;
+  rd.reference = true;
+  tlod_cpu_mesh* ref = run(sc->ctx, sc, rd);
+  CHECK_MSG(ref && ref->vertex_count > 0, "%s %s: reference", sc->name, what);
+  d.reference = false;
+  for (tlod_simd simd = TLOD_SIMD_SCALAR; ref && simd < TLOD_SIMD_NUM; simd++) {
+    for (uint32_t threads = 1; threads <= 3; threads++) {
+      tlod_context* ctx = context(simd, threads);
+      if (tlod_context_simd(ctx) != simd) { /* this processor lacks it */
+        tlod_context_destroy(ctx);
+        break;
+      }
+      tlod_cpu_mesh* got = run(ctx, sc, d);
+      CHECK_MSG(got && same_mesh(ref, got), "%s %s: %s, %u threads differ from the reference", sc->name, what,
+                tlod_simd_name(simd), threads);
+      tlod_cpu_mesh_destroy(ctx, got);
+      tlod_context_destroy(ctx);
+    }
+  }
+  tlod_cpu_mesh_destroy(sc->ctx, ref);
+}
+
+static int8_t* random_levels(uint32_t patches, uint64_t seed, int max_level) {
+  shape_rng rng = {seed};
+  int8_t* l = malloc(patches + 1);
+  for (uint32_t p = 0; p < patches; ++p)
+    l[p] = (int8_t)((int)(shape_rng_next(&rng) % (uint64_t)(max_level + 2)) - 1); /* -1: left out */
+  return l;
+}
+
+/* A draw list over random levels: blends 1, 0 or in between, and a strip on
+ * every drawn edge whose sides differ in level or are a crease. */
+typedef struct crafted {
+  tlod_draw_list dl;
+  int8_t* levels;
+  tlod_draw_instance* inst;
+  tlod_draw_strip* strips;
+} crafted;
+
+static crafted craft(const scene* sc, uint64_t seed) {
+  uint32_t nf = tlod_mesh_face_count(sc->mesh);
+  crafted c = {.levels = random_levels(nf, seed, 4)};
+  c.inst = calloc(nf + 1, sizeof(*c.inst));
+  c.strips = calloc(4 * (size_t)nf + 1, sizeof(*c.strips));
+  shape_rng rng = {seed ^ 0x5eed};
+  uint32_t ni = 0, ns = 0;
+  tlod_mesh_view m = tlod_mesh_query_view(sc->mesh);
+  for (uint32_t f = 0; f < nf; f++) {
+    if (c.levels[f] < 0) continue;
+    uint64_t r = shape_rng_next(&rng) % 3;
+    c.inst[ni++] = (tlod_draw_instance){f, (uint32_t)c.levels[f], r == 0 ? 1.0f : r == 1 ? 0.0f : 0.37f};
+    for (uint32_t e = 0; e < m.face_corners[f]; e++) {
+      tlod_edge_link l = m.links[f][e];
+      if (l.face == UINT32_MAX || l.face < f || c.levels[l.face] < 0) continue;
+      if (l.smooth && c.levels[l.face] == c.levels[f]) continue;
+      c.strips[ns++] =
+          (tlod_draw_strip){f, l.face, (uint8_t)e, l.edge, (uint8_t)c.levels[f], (uint8_t)c.levels[l.face], !l.smooth};
+    }
+  }
+  c.dl = (tlod_draw_list){.patch_count = nf,
+                          .levels = c.levels,
+                          .instances = c.inst,
+                          .instance_count = ni,
+                          .strips = c.strips,
+                          .strip_count = ns};
+  return c;
+}
+
+static void crafted_free(crafted* c) {
+  free(c->levels);
+  free(c->inst);
+  free(c->strips);
+}
+
+/* Uniform levels up to top, random levels, a crafted draw list; each
+ * welded and not, with and without normals. */
+static void check_scene(const scene* sc, uint32_t top) {
+  char what[64];
+  for (uint32_t l = 0; l <= top; l++) {
+    snprintf(what, sizeof what, "level %u", l);
+    check_case(sc, (tlod_cpu_tessellate_desc){.level = l}, what);
+  }
+  uint32_t nf = tlod_mesh_face_count(sc->mesh);
+  int8_t* levels = random_levels(nf, 7, 5);
+  crafted c = craft(sc, 11);
+  for (int v = 0; v < 4; v++) {
+    bool no_weld = v & 1, no_normals = v & 2;
+    snprintf(what, sizeof what, "levels%s%s", no_weld ? " no_weld" : "", no_normals ? " no_normals" : "");
+    check_case(sc, (tlod_cpu_tessellate_desc){.levels = levels, .no_weld = no_weld, .no_normals = no_normals}, what);
+    snprintf(what, sizeof what, "draw list%s%s", no_weld ? " no_weld" : "", no_normals ? " no_normals" : "");
+    check_case(sc, (tlod_cpu_tessellate_desc){.draw_list = &c.dl, .no_weld = no_weld, .no_normals = no_normals}, what);
+  }
+  free(levels);
+  crafted_free(&c);
+}
+
+static void check_shape(shape s, tlod_surface_desc sd, uint32_t top) {
+  scene sc;
+  CHECK_MSG(scene_make(&sc, &s, NULL, 0, sd), "%s", s.name);
+  if (sc.surf) check_scene(&sc, top);
+  scene_free(&sc);
+  shape_free(&s);
+}
+
+TEST(test_flat) {
+  check_shape(shape_icosphere(0), (tlod_surface_desc){.type = TLOD_SURFACE_FLAT}, 6);
+  check_shape(shape_quad_sphere(2), (tlod_surface_desc){.type = TLOD_SURFACE_FLAT}, 4);
+}
+
+TEST(test_phong) {
+  check_shape(shape_icosphere(0), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, 6);
+  check_shape(shape_torus(8, 6), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, 3);
+  check_shape(shape_cube_split(), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, 4);
+  check_shape(shape_open_grid(3), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, 3);
+  check_shape(shape_quad_sphere(2), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, 4);
+  check_shape(shape_icosphere(0),
+              (tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .shading_normal = TLOD_SHADING_NORMAL_TRUE}, 3);
+}
+
+TEST(test_pn) {
+  check_shape(shape_icosphere(0), (tlod_surface_desc){.type = TLOD_SURFACE_PN}, 6);
+  check_shape(shape_cube_split(), (tlod_surface_desc){.type = TLOD_SURFACE_PN}, 4);
+}
+
+TEST(test_quadratic) {
+  check_shape(shape_icosphere(0), (tlod_surface_desc){.type = TLOD_SURFACE_QUADRATIC}, 4);
+  check_shape(shape_quad_cube(), (tlod_surface_desc){.type = TLOD_SURFACE_QUADRATIC}, 4);
+}
+
+/* A seam sphere with a UV attribute: seams keep their own vertices. */
+TEST(test_attributes) {
+  shape s = shape_seam_sphere(4, 6);
+  uint32_t cols = 7;
+  float* uv = calloc(2 * (size_t)5 * cols, sizeof(float));
+  for (uint32_t i = 0; i <= 4; i++)
+    for (uint32_t j = 0; j <= 6; j++)
+      uv[2 * (i * cols + j)] = (float)j / 6.0f, uv[2 * (i * cols + j) + 1] = (float)i / 4.0f;
+  tlod_attribute_desc a = {.data = uv, .components = 2, .name = "TEXCOORD_0"};
+  scene sc;
+  CHECK(scene_make(&sc, &s, &a, 1, (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}));
+  if (sc.surf) check_scene(&sc, 3);
+  scene_free(&sc);
+  shape_free(&s);
+  free(uv);
+}
+
+int main(void) {
+  RUN(test_flat);
+  RUN(test_phong);
+  RUN(test_pn);
+  RUN(test_quadratic);
+  RUN(test_attributes);
+  TEST_END();
+}
