@@ -55,6 +55,9 @@
 
 /* Vertex attribute of the strip program: (strip, point) pairs. */
 #define TLOD_ATTRIB_STRIP_REF 0
+/* CPU-mesh mode (mesh.vert): the evaluated mesh's positions and normals. */
+#define TLOD_ATTRIB_MESH_POSITION 0
+#define TLOD_ATTRIB_MESH_NORMAL 1
 
 /* Pattern vertex code: kind | level << 8 (kind: 0-3 corner, 4-7 edge, 8 interior,
  * as tlod_grid_point_kind()). */

@@ -20,6 +20,7 @@ extern const char* const _tlod_shader_flat;
 extern const char* const _tlod_shader_quadratic;
 extern const char* const _tlod_shader_pattern_vert;
 extern const char* const _tlod_shader_strip_vert;
+extern const char* const _tlod_shader_mesh_vert;
 extern const char* const _tlod_shader_shade_frag;
 extern const char* const _tlod_shader_attributes;
 extern const char* const _tlod_shader_varyings;

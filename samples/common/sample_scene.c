@@ -1,6 +1,7 @@
 /* sample_scene.c -- the samples' shared mesh, material, camera and tesslod objects. */
 #include "sample_scene.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -153,5 +154,17 @@ bool sample_scene_plan(sample_scene* s, const tlod_view_desc* v, float dt_ms, tl
   *draw = (tlod_draw_desc){.items = item, .item_count = 1, .viewport = {0, 0, v->viewport_width, v->viewport_height}};
   memcpy(draw->view, v->view, sizeof draw->view);
   memcpy(draw->proj, v->proj, sizeof draw->proj);
+  return true;
+}
+
+bool sample_parse_int(const char* who, const char* flag, const char* text, int lo, int hi, int* out) {
+  char* end = NULL;
+  errno = 0;
+  long v = strtol(text, &end, 10);
+  if (errno || end == text || *end || v < lo || v > hi) {
+    fprintf(stderr, "%s: %s '%s': expected a whole number in %d..%d\n", who, flag, text, lo, hi);
+    return false;
+  }
+  *out = (int)v;
   return true;
 }

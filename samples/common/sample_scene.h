@@ -60,6 +60,11 @@ void sample_scene_free(sample_scene* s);
 bool sample_scene_plan(sample_scene* s, const tlod_view_desc* v, float dt_ms, tlod_draw_item* item,
                        tlod_draw_desc* draw, const char* who);
 
+/* The value of option `flag` as a whole number in lo..hi into *out; false
+ * with "<who>: <flag> '<text>': ..." printed otherwise (atoi read "12x" as
+ * 12 and "x" as 0). The samples' one parser of numeric options. */
+bool sample_parse_int(const char* who, const char* flag, const char* text, int lo, int hi, int* out);
+
 /* Prints "<who>: <call>: <result>: <last error>" unless r is TLOD_SUCCESS. */
 bool sample_check(tlod_result r, const sample_scene* s, const char* call, const char* who);
 

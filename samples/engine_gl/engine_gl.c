@@ -56,18 +56,16 @@ static bool parse_options(int argc, char** argv, options* o) {
     bool has_value = i + 1 < argc;
     if (!strcmp(argv[i], "-o") && has_value)
       o->out = argv[++i];
-    else if (!strcmp(argv[i], "--frames") && has_value)
-      o->frames = atoi(argv[++i]);
-    else if (!strcmp(argv[i], "--size") && has_value)
-      o->size = atoi(argv[++i]);
-    else {
+    else if (!strcmp(argv[i], "--frames") && has_value) {
+      if (!sample_parse_int("engine_gl", argv[i], argv[i + 1], 1, 1000000, &o->frames)) return false;
+      ++i;
+    } else if (!strcmp(argv[i], "--size") && has_value) {
+      if (!sample_parse_int("engine_gl", argv[i], argv[i + 1], 16, 4096, &o->size)) return false;
+      ++i;
+    } else {
       fprintf(stderr, "usage: engine_gl [-o out.png] [--frames N] [--size PIXELS]\n");
       return false;
     }
-  }
-  if (o->frames < 1 || o->size < 16 || o->size > 4096) {
-    fprintf(stderr, "engine_gl: --frames must be >= 1 and --size 16..4096\n");
-    return false;
   }
   return true;
 }

@@ -109,11 +109,15 @@ static bool parse_options(int argc, char** argv, options* o) {
     bool has_value = i + 1 < argc;
     if (!strcmp(argv[i], "-o") && has_value)
       o->out = argv[++i];
-    else if (!strcmp(argv[i], "--frames") && has_value)
-      o->frames = atoi(argv[++i]);
-    else if (!strcmp(argv[i], "--size") && has_value)
-      o->size = (uint32_t)atoi(argv[++i]);
-    else if (!strcmp(argv[i], "--shader-cache") && has_value)
+    else if (!strcmp(argv[i], "--frames") && has_value) {
+      if (!sample_parse_int("engine_vulkan", argv[i], argv[i + 1], 1, 1000000, &o->frames)) return false;
+      ++i;
+    } else if (!strcmp(argv[i], "--size") && has_value) {
+      int size = 0;
+      if (!sample_parse_int("engine_vulkan", argv[i], argv[i + 1], 16, 4096, &size)) return false;
+      o->size = (uint32_t)size;
+      ++i;
+    } else if (!strcmp(argv[i], "--shader-cache") && has_value)
       o->shader_cache = argv[++i];
     else if (!strcmp(argv[i], "--validate"))
       o->validate = true;
@@ -122,10 +126,6 @@ static bool parse_options(int argc, char** argv, options* o) {
                       "[--validate]\n");
       return false;
     }
-  }
-  if (o->frames < 1 || o->size < 16 || o->size > 4096) {
-    fprintf(stderr, "engine_vulkan: --frames must be >= 1 and --size 16..4096\n");
-    return false;
   }
   return true;
 }

@@ -21,7 +21,7 @@
 #include <string.h>
 
 #include "sample_scene.h"
-#include "tlod_platform.h"
+#include "tlod_platform_device.h" /* tlod_platform.h and the vulkan device desc from it */
 #if VIEWER_HAS_IMPORT
 #include "tlod_import.h"
 #endif
@@ -55,10 +55,12 @@ static bool parse_value(options* o, const char* flag, const char* value) {
   if (!strcmp(flag, "-o"))
     o->out = value;
   else if (!strcmp(flag, "--frames"))
-    o->frames = atoi(value);
-  else if (!strcmp(flag, "--size"))
-    o->size = (uint32_t)atoi(value);
-  else if (!strcmp(flag, "--backend") && (!strcmp(value, "gl") || !strcmp(value, "vulkan")))
+    return sample_parse_int("viewer", flag, value, 0, 1000000, &o->frames);
+  else if (!strcmp(flag, "--size")) {
+    int size = 0;
+    if (!sample_parse_int("viewer", flag, value, 16, 4096, &size)) return false;
+    o->size = (uint32_t)size;
+  } else if (!strcmp(flag, "--backend") && (!strcmp(value, "gl") || !strcmp(value, "vulkan")))
     o->api = !strcmp(value, "gl") ? TLOD_PLATFORM_GL : TLOD_PLATFORM_VULKAN;
   else
     return false;
@@ -203,20 +205,8 @@ static void poll_drag(GLFWwindow* w, view_state* v) {
 static tlod_device_desc device_desc(tlod_platform* p, bool checker) {
   const char* hook = checker ? sample_checker_hook : NULL;
   tlod_device_desc d = {.backend = "gl", .gl = {.surface_types = TYPES, .fragment_hook = hook}};
-  tlod_platform_vk vk;
-  if (!tlod_platform_vk_info(p, &vk)) return d;
-  d.backend = "vulkan";
-  d.vk = (tlod_device_vk_desc){.instance = vk.instance,
-                               .physical_device = vk.physical_device,
-                               .device = vk.device,
-                               .queue = vk.queue,
-                               .queue_family = vk.queue_family,
-                               .frames_in_flight = vk.frames_in_flight,
-                               .color_format = vk.color_format,
-                               .depth_format = vk.depth_format,
-                               .host_query_reset = vk.host_query_reset,
-                               .surface_types = TYPES,
-                               .fragment_hook = hook};
+  d.vk = (tlod_device_vk_desc){.surface_types = TYPES, .fragment_hook = hook};
+  if (tlod_platform_vk_device_desc(p, &d.vk)) d.backend = "vulkan";
   return d;
 }
 

@@ -45,7 +45,7 @@ FRAME_OBJECT = obj(dict({"name": STR, "scheduler_ms": NUM, "stage_ms": STAGE_MS}
 FRAME = obj(dict({"frame": INT, "time_s": NUM, "eye": vec(3), "target": vec(3), "up": vec(3), "fovy": NUM,
                   "near": NUM, "far": NUM, "frame_ms": NUM, "anim_ms": NUM, "scheduler_ms": NUM, "stage_ms": STAGE_MS,
                   "screenshot_ms": NUM, "screenshot": STR, "objects": ("list", FRAME_OBJECT)}, **COUNTS))
-TRACE = obj({"schema": STR, "tool": STR, "scene": STR, "mode": STR, "backend": STR, "renderer": STR, "surface": STR,
+TRACE = obj({"schema": STR, "tool": STR, "scene": STR, "mode": STR, "backend": STR, "renderer": STR, "gpu_eval": STR, "surface": STR,
              "policy": STR, "epsilon_px": NUM, "max_level": INT, "scene_budget": INT, "path": STR, "path_duration_s": NUM, "loop": BOOL,
              "fps": NUM, "dt_ms": NUM, "width": INT, "height": INT, "screenshot_every": INT,
              "frames_requested": INT, "frames_completed": INT, "stopped": STR, "wall_s": NUM,
@@ -66,7 +66,7 @@ RUN = obj({"mode": STR, "dir": STR, "policy": STR, "epsilon_px": NUM, "max_level
            "validation_messages": INT, "vk": obj({k: NUM for k in VK_STATS})})
 GL_OBJECTS = obj({k: INT for k in ("buffers", "textures", "renderbuffers", "framebuffers", "vertex_arrays", "programs",
                                    "shaders", "queries")})
-SUMMARY = obj({"schema": STR, "status": STR, "error": STR, "tool": STR, "scene": STR, "backend": STR, "renderer": STR, "surface": STR, "path": STR,
+SUMMARY = obj({"schema": STR, "status": STR, "error": STR, "tool": STR, "scene": STR, "backend": STR, "renderer": STR, "gpu_eval": STR, "surface": STR, "path": STR,
                "animation": STR, "debug_view": STR, "warning_count": INT, "warnings": ("list", STR), "fps": NUM, "width": INT, "height": INT, "out_dir": STR, "runs": ("list", RUN),
                "resize_at": obj({"frame": INT, "width": INT, "height": INT}), "validate": BOOL,
                "validation_messages": INT, "shader_cache": STR})
@@ -331,6 +331,25 @@ if have_gl:
     rc, out, err = run("play", "--backend", "gl", "--mode", "uniform:2", "--path", "zoom", "--frames", "12",
                        "--size", "128x72", "--out", os.path.join(WORK, "gl_uniform"), "-q")
     check("gl: uniform:2 along the zoom path exits 0", rc == 0, err)
+    # --gpu-eval: the choice and why, in the summary and the trace (llvmpipe: auto is the CPU mesh)
+    if gl:
+        check("gl: auto on llvmpipe draws the CPU mesh and says why (trace gpu_eval)",
+              gl["gpu_eval"].startswith("off (auto: llvmpipe"), gl["gpu_eval"])
+    on_dir = os.path.join(WORK, "gl_eval_on")
+    rc, out, err = run("play", "--backend", "gl", "--gpu-eval", "on", "--frames", "5", "--size", SIZE_ARG,
+                       "--out", on_dir)
+    on = load_json(os.path.join(on_dir, "trace.json"))
+    check("gl: --gpu-eval on is printed and traced; it draws the triangles the CPU mesh drew",
+          rc == 0 and "gpu eval: on (asked for: desc.gl.gpu_eval on)" in out and isinstance(on, dict)
+          and on["gpu_eval"].startswith("on (asked for") and gl is not None
+          and [f["drawn_triangles"] for f in on["frames"]] == [f["drawn_triangles"] for f in gl["frames"][:5]],
+          (rc, out[-300:], err))
+    rc, out, err = run("play", "--backend", "gl", "--debug-view", "strips", "--frames", "2", "--size", "128x72",
+                       "--out", os.path.join(WORK, "gl_eval_strips"))
+    check("gl: auto stays on the GPU for --debug-view strips (the CPU mesh carries no strip flag)",
+          rc == 0 and "gpu eval: on (auto: --debug-view strips needs it)" in out, (rc, out[-300:], err))
+    rc, out, err = run("play", "--backend", "cpu", "--gpu-eval", "off", "--frames", "2")
+    check("--gpu-eval with a backend that draws no image is a usage error", rc == 2 and "--gpu-eval" in err, (rc, err))
 
 # ---- --compare -------------------------------------------------------------------------
 cmp_dir = os.path.join(WORK, "compare")

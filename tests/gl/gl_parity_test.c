@@ -32,6 +32,12 @@
  *     draw_list pattern_triangles + strip_triangles == the CPU mesh's
  *     triangle_count + folds_skipped (the degenerate strip triangles the
  *     CPU leaves out, which a GPU draws as zero-area).
+ * CPU-MESH MODE (tlod_gpu_eval OFF): image C of a second "gl" device that
+ * evaluates the list on the CPU is compared with image A (the GPU
+ * evaluation as the reference) under the same tolerances; it reports the
+ * mode, evaluates once, and a second draw of the same list re-evaluates
+ * nothing and gives C again bitwise (as a second GPU-eval draw uploads no
+ * buffer and gives A again bitwise: strips indexed, lists not re-sent).
  */
 #include "gl_test.h"
 #include "quadratic_cube.h"
@@ -53,24 +59,81 @@ static struct {
 typedef struct gl_env {
   tlod_platform* platform;
   ref_renderer ref;
-  uint8_t *img_a, *img_b;
+  uint8_t *img_a, *img_b, *img_c, *img_again;
+  tlod_device* dev_cpu;        /* gpu_eval OFF */
+  tlod_device_surface* ds_cpu; /* the fixture's surface on dev_cpu */
 } gl_env;
 
-/* Renders one draw list both ways and compares. */
-static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const tlod_draw_list* dl,
-                        const tlod_view_desc* v, const char* what) {
-  /* A: the GL device */
+/* One draw of dl on dev (surface ds) into img; the device's stats after it in *t. */
+static void draw_into(gl_env* env, tlod_device* dev, const tlod_device_surface* ds, const fixture* fx,
+                      const tlod_draw_list* dl, const tlod_view_desc* v, uint8_t* img, const char* what,
+                      tlod_device_stats* t) {
   tlod_platform_bind(env->platform);
   clear_frame(W, H);
   one_draw d;
-  one_draw_make(&d, fx->ds, dl, v);
+  one_draw_make(&d, ds, dl, v);
   tlod_result r = tlod_device_draw(dev, &d.desc);
   CHECK_MSG(r == TLOD_SUCCESS, "%s: tlod_device_draw: %s: %s", what, tlod_result_string(r),
             tlod_context_last_error(fx->ctx));
   GLenum err = glGetError();
   CHECK_MSG(err == GL_NO_ERROR, "%s: GL error after tlod_device_draw: %s (0x%04X)", what, gl_error_name(err), err);
-  gl_read_rgba(W, H, env->img_a);
-  tlod_device_stats t = tlod_device_query_stats(dev);
+  gl_read_rgba(W, H, img);
+  *t = tlod_device_query_stats(dev);
+}
+
+/* The tolerances of the file comment, image a against reference b. */
+static void check_tolerances(const compare_result* c, const char* what, const char* against) {
+  double colour_fraction = c->covered_both ? (double)c->colour_ok / c->covered_both : 1.0;
+  CHECK_MSG(c->covered_b > 500, "%s: the %s covers only %u pixels (camera misses the object)", what, against,
+            c->covered_b);
+  CHECK_MSG(c->covered_a > 0, "%s: nothing drawn", what);
+  CHECK_MSG(c->off_band == 0,
+            "%s: %u pixels differ from the %s in coverage off the silhouette band, first at (%d, %d) (row 0 = "
+            "bottom)",
+            what, c->off_band, against, c->off_band_x, c->off_band_y);
+  CHECK_MSG(c->coverage_diff * 1000 <= 5 * c->covered_either,
+            "%s: coverage differs from the %s on %u of %u pixels "
+            "(> 0.5%%)",
+            what, against, c->coverage_diff, c->covered_either);
+  CHECK_MSG(colour_fraction >= 0.99, "%s: only %.2f%% of the %u pixels covered with the %s within 8/255 (max %u)", what,
+            100.0 * colour_fraction, c->covered_both, against, c->max_colour_diff);
+}
+
+/* Image C (CPU mesh) against image A, the mode reported, the skips. */
+static void compare_cpu_mesh(gl_env* env, tlod_device* dev, const fixture* fx, const tlod_draw_list* dl,
+                             const tlod_view_desc* v, const char* what) {
+  char label[128];
+  snprintf(label, sizeof label, "%s cpu mesh", what);
+  tlod_device_stats t;
+  CALL(draw_into(env, env->dev_cpu, env->ds_cpu, fx, dl, v, env->img_c, label, &t));
+  CHECK_MSG(t.cpu_mesh && strstr(t.gpu_eval_reason, "off"), "%s: mode not reported: cpu_mesh %d, reason '%s'", label,
+            t.cpu_mesh, t.gpu_eval_reason);
+  CHECK_MSG(t.mesh_evaluations == 1 && t.mesh_bytes > 0, "%s: %u evaluations, %llu bytes (expected 1, > 0)", label,
+            t.mesh_evaluations, (unsigned long long)t.mesh_bytes);
+  CHECK_MSG(t.triangles == dl->pattern_triangles + dl->strip_triangles, "%s: %llu triangles, the list has %llu", label,
+            (unsigned long long)t.triangles, (unsigned long long)(dl->pattern_triangles + dl->strip_triangles));
+  compare_result c = compare_images(env->img_c, env->img_a, W, H, 8);
+  printf("  %-30s against GPU eval: covered %5u/%5u, differ %3u, off band %u | colour max %3u, %.2f%% <= 8\n", label,
+         c.covered_a, c.covered_b, c.coverage_diff, c.off_band, c.max_colour_diff,
+         c.covered_both ? 100.0 * c.colour_ok / c.covered_both : 100.0);
+  check_tolerances(&c, label, "GPU-eval image");
+  CALL(draw_into(env, env->dev_cpu, env->ds_cpu, fx, dl, v, env->img_again, label, &t));
+  CHECK_MSG(t.mesh_evaluations == 0 && t.mesh_bytes == 0,
+            "%s: the same list again: %u evaluations, %llu bytes (expected none)", label, t.mesh_evaluations,
+            (unsigned long long)t.mesh_bytes);
+  CHECK_MSG(!memcmp(env->img_again, env->img_c, 4 * W * H), "%s: the reused mesh draws another image", label);
+  CALL(draw_into(env, dev, fx->ds, fx, dl, v, env->img_again, what, &t));
+  CHECK_MSG(t.gl.buffer_streams == 0 && !t.cpu_mesh, "%s: the same list again: %u buffer uploads (expected 0)", what,
+            t.gl.buffer_streams);
+  CHECK_MSG(!memcmp(env->img_again, env->img_a, 4 * W * H), "%s: the list not re-sent draws another image", what);
+}
+
+/* Renders one draw list both ways and compares. */
+static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const tlod_draw_list* dl,
+                        const tlod_view_desc* v, const char* what) {
+  /* A: the GL device */
+  tlod_device_stats t;
+  CALL(draw_into(env, dev, fx->ds, fx, dl, v, env->img_a, what, &t));
 
   /* B: the CPU reference through the independent renderer */
   tlod_cpu_mesh* m = ref_draw_list(&env->ref, fx, dl, v, W, H, false);
@@ -84,6 +147,8 @@ static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const 
     morphing += in->morph < 1.0f;
   }
   tlod_cpu_mesh_destroy(fx->ctx, m);
+  CHECK_MSG(t.gl.buffer_streams == 4, "%s: a new list made %u buffer uploads (expected 4)", what, t.gl.buffer_streams);
+  CALL(compare_cpu_mesh(env, dev, fx, dl, v, what));
 
   compare_result c = compare_images(env->img_a, env->img_b, W, H, 8);
   double colour_fraction = c.covered_both ? (double)c.colour_ok / c.covered_both : 1.0;
@@ -107,15 +172,7 @@ static void compare_one(gl_env* env, tlod_device* dev, const fixture* fx, const 
             (unsigned long long)dl->pattern_triangles, (unsigned long long)dl->strip_triangles);
   CHECK_MSG(cpu_triangles == draw_list_triangles, "%s: CPU mesh has %llu triangles + folds skipped, the draw list %llu",
             what, (unsigned long long)cpu_triangles, (unsigned long long)draw_list_triangles);
-  CHECK_MSG(c.covered_b > 500, "%s: the reference covers only %u pixels (camera misses the object)", what, c.covered_b);
-  CHECK_MSG(c.covered_a > 0, "%s: the GL backend drew nothing", what);
-  CHECK_MSG(c.off_band == 0,
-            "%s: %u pixels differ in coverage off the silhouette band, first at (%d, %d) (row 0 = bottom)", what,
-            c.off_band, c.off_band_x, c.off_band_y);
-  CHECK_MSG(c.coverage_diff * 1000 <= 5 * c.covered_either, "%s: coverage differs on %u of %u pixels (> 0.5%%)", what,
-            c.coverage_diff, c.covered_either);
-  CHECK_MSG(colour_fraction >= 0.99, "%s: only %.2f%% of the %u commonly covered pixels within 8/255 (max diff %u)",
-            what, 100.0 * colour_fraction, c.covered_both, c.max_colour_diff);
+  check_tolerances(&c, what, "reference");
 }
 
 /* One surface on dev (a new device surface on the same device), both
@@ -124,6 +181,7 @@ static void one_surface(gl_env* env, tlod_device* dev, tlod_context* ctx, const 
                         const tlod_mesh_desc* md, tlod_surface_type type) {
   fixture fx;
   CHECK_MSG(fixture_make_desc(&fx, ctx, md, type, pat, dev), "fixture %s %s", md->label, type_name(type));
+  CHECK(tlod_device_create_surface(env->dev_cpu, fx.surf, &env->ds_cpu) == TLOD_SUCCESS);
   for (int mode = 0; mode < 2; ++mode) {
     tlod_scheduler_desc sd = {.max_level = MAX_LEVEL};
     if (mode == 1)
@@ -156,6 +214,7 @@ static void one_surface(gl_env* env, tlod_device* dev, tlod_context* ctx, const 
     }
     tlod_scheduler_destroy(sch);
   }
+  tlod_device_destroy_surface(env->dev_cpu, env->ds_cpu);
   fixture_free(&fx);
 }
 
@@ -166,7 +225,9 @@ TEST(test_parity) {
   CHECK_MSG(env.platform, "cannot create a GL context: %s", err);
   env.img_a = malloc(4 * W * H);
   env.img_b = malloc(4 * W * H);
-  CHECK(env.img_a && env.img_b);
+  env.img_c = malloc(4 * W * H);
+  env.img_again = malloc(4 * W * H);
+  CHECK(env.img_a && env.img_b && env.img_c && env.img_again);
   CHECK_MSG(ref_init(&env.ref), "reference renderer failed");
 
   tlod_context* ctx = NULL;
@@ -176,6 +237,11 @@ TEST(test_parity) {
   tlod_device* dev = new_gl_device(ctx, pat, "gl_parity", (tlod_device_gl_desc){0});
   CHECK(dev);
   CHECK_MSG(strcmp(tlod_device_backend(dev), "gl") == 0, "backend name %s", tlod_device_backend(dev));
+  env.dev_cpu = new_gl_device(ctx, pat, "gl_parity cpu mesh", (tlod_device_gl_desc){.gpu_eval = TLOD_GPU_EVAL_OFF});
+  CHECK(env.dev_cpu);
+  tlod_device_stats on = tlod_device_query_stats(dev);
+  CHECK_MSG(!on.cpu_mesh && strstr(on.gpu_eval_reason, "on"), "GPU-eval device reports cpu_mesh %d, '%s'", on.cpu_mesh,
+            on.gpu_eval_reason);
 
   shape shapes[3] = {shape_icosphere(2), shape_torus(16, 10), shape_cube_soft()};
   const tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_PN};
@@ -198,12 +264,15 @@ TEST(test_parity) {
          (unsigned long long)s_totals.off_band, s_totals.worst_colour, 100.0 * s_totals.worst_colour_fraction);
   for (int k = 0; k < 3; ++k)
     shape_free(&shapes[k]);
+  tlod_device_destroy(env.dev_cpu);
   tlod_device_destroy(dev);
   tlod_patterns_destroy(pat);
   tlod_context_destroy(ctx);
   ref_free(&env.ref);
   free(env.img_a);
   free(env.img_b);
+  free(env.img_c);
+  free(env.img_again);
   tlod_platform_destroy(env.platform);
 }
 

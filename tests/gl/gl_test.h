@@ -122,6 +122,9 @@ static inline void gl_stencil_facing_end(void) { glDisable(GL_STENCIL_TEST); }
 /* A "gl" device on the current context, or NULL with the reason printed. */
 static inline tlod_device* new_gl_device(tlod_context* ctx, const tlod_patterns* patterns, const char* label,
                                          tlod_device_gl_desc gl) {
+  /* The GL tests are of the vertex-shader path: AUTO (the CPU mesh on
+   * llvmpipe) is ON unless a test asks for OFF. */
+  if (gl.gpu_eval == TLOD_GPU_EVAL_DEFAULT) gl.gpu_eval = TLOD_GPU_EVAL_ON;
   return new_device(ctx, &(tlod_device_desc){.backend = "gl", .patterns = patterns, .gl = gl, .label = label});
 }
 

@@ -36,6 +36,11 @@
  *       colour: on pixels covered by both, max channel difference <= 2/255
  *         on >= 99.5% of them (depth ties between a front and a back face
  *         at a silhouette can swap which one wins);
+ *   CPU-mesh mode (a third device, "vulkan" with gpu_eval OFF: the list
+ *     evaluated by tlod_cpu_tessellate_into, one indexed draw) against the
+ *     GPU-eval Vulkan image, with the tolerances against R below; it
+ *     reports the mode, evaluates once, and a second draw of the same list
+ *     evaluates nothing and gives its image again bitwise.
  *   Vulkan vs the CPU mesh (R): as tests/gl/gl_parity_test.c for GL: the
  *     GPU evaluates the surface in float with its own operation order, so
  *     coverage may differ on R's silhouette band only (at most 0.5%), and
@@ -58,7 +63,8 @@
 typedef struct parity_env {
   vk_gl_env b;
   tlod_device *gl_dev, *vk_dev;
-  uint8_t *img_gl, *img_vk, *img_ref;
+  tlod_device* vk_cpu_dev; /* gpu_eval OFF (not on the hardware path) */
+  uint8_t *img_gl, *img_vk, *img_ref, *img_cpu, *img_again;
 } parity_env;
 
 /* Totals for the summary line. */
@@ -120,6 +126,27 @@ static void draw_reference(parity_env* env, const fixture* fx, const tlod_draw_l
   CHECK(tlod_platform_read_rgba(env->b.gl, env->img_ref));
 }
 
+/* The CPU-mesh device's image of item vi (its surface on vk_cpu_dev)
+ * against the GPU-eval Vulkan image; the mode reported; the second draw
+ * evaluating nothing. */
+static void check_cpu_mesh(parity_env* env, const tlod_draw_desc* desc, tlod_draw_item vi, const char* what) {
+  tlod_draw_desc vd = *desc;
+  vd.items = &vi;
+  char label[128];
+  snprintf(label, sizeof label, "%s cpu mesh", what);
+  CHECK_MSG(vk_draw_frame(env->b.vk, env->vk_cpu_dev, env->b.ctx, &vd, env->img_cpu), "%s: vulkan frame", label);
+  tlod_device_stats t = tlod_device_query_stats(env->vk_cpu_dev);
+  CHECK_MSG(t.cpu_mesh && strstr(t.gpu_eval_reason, "off"), "%s: mode not reported: cpu_mesh %d, '%s'", label,
+            t.cpu_mesh, t.gpu_eval_reason);
+  CHECK_MSG(t.mesh_evaluations == 1 && t.mesh_bytes > 0, "%s: %u evaluations, %llu bytes", label, t.mesh_evaluations,
+            (unsigned long long)t.mesh_bytes);
+  CALL(check_pair(env->img_cpu, env->img_vk, k_vs_ref, label, "vk", &s_totals.ref_diff, &s_totals.ref_worst));
+  CHECK_MSG(vk_draw_frame(env->b.vk, env->vk_cpu_dev, env->b.ctx, &vd, env->img_again), "%s: vulkan frame", label);
+  t = tlod_device_query_stats(env->vk_cpu_dev);
+  CHECK_MSG(t.mesh_evaluations == 0, "%s: the same list again: %u evaluations (expected 0)", label, t.mesh_evaluations);
+  CHECK_MSG(!memcmp(env->img_again, env->img_cpu, 4 * W * H), "%s: the reused mesh draws another image", label);
+}
+
 /* with_cpu: also against the CPU mesh (not on the hardware path: its
  * triangles are the tessellator's, not the draw list's). */
 static void one_surface(parity_env* env, const tlod_mesh_desc* md, tlod_surface_type type, bool with_cpu) {
@@ -128,6 +155,8 @@ static void one_surface(parity_env* env, const tlod_mesh_desc* md, tlod_surface_
   tlod_device_surface* vds = NULL;
   tlod_result r = tlod_device_create_surface(env->vk_dev, fx.surf, &vds);
   CHECK_MSG(r == TLOD_SUCCESS, "vulkan surface: %s: %s", tlod_result_string(r), tlod_context_last_error(env->b.ctx));
+  tlod_device_surface* cds = NULL;
+  if (env->vk_cpu_dev) CHECK(tlod_device_create_surface(env->vk_cpu_dev, fx.surf, &cds) == TLOD_SUCCESS);
   tlod_scheduler* sch = new_scheduler(&fx, (tlod_scheduler_desc){.max_level = MAX_LEVEL});
   CHECK(sch);
   camera cams[2] = {camera_look(2.6, -3.4, 1.9, 0, 0, 0, 45, W, H),
@@ -144,12 +173,15 @@ static void one_surface(parity_env* env, const tlod_mesh_desc* md, tlod_surface_
     vi.surface = vds;
     CALL(draw_both(env, &d.desc, &vi, what));
     CALL(check_pair(env->img_vk, env->img_gl, k_vs_gl, what, "gl", &s_totals.gl_diff, &s_totals.gl_worst));
+    vi.surface = cds;
+    if (cds) CALL(check_cpu_mesh(env, &d.desc, vi, what));
     if (!with_cpu) continue;
     CALL(draw_reference(env, &fx, dl, &v));
     CALL(check_pair(env->img_vk, env->img_ref, k_vs_ref, what, "cpu", &s_totals.ref_diff, &s_totals.ref_worst));
   }
   tlod_scheduler_destroy(sch);
   tlod_device_destroy_surface(env->vk_dev, vds);
+  tlod_device_destroy_surface(env->vk_cpu_dev, cds);
   fixture_free(&fx);
 }
 
@@ -158,12 +190,17 @@ static bool env_open(parity_env* env, bool hardware) {
   memset(env, 0, sizeof *env);
   if (!vk_gl_open(&env->b, W, H, MAX_LEVEL)) return false;
   env->img_gl = malloc(4 * W * H), env->img_vk = malloc(4 * W * H), env->img_ref = malloc(4 * W * H);
-  if (!env->img_gl || !env->img_vk || !env->img_ref) return false;
+  env->img_cpu = malloc(4 * W * H), env->img_again = malloc(4 * W * H);
+  if (!env->img_gl || !env->img_vk || !env->img_ref || !env->img_cpu || !env->img_again) return false;
   tlod_device_gl_desc gl = {.hardware_tessellation = hardware};
   if (!(env->gl_dev = new_gl_device(env->b.ctx, env->b.pat, "parity gl", gl))) return false;
   tlod_device_vk_desc vk = vk_desc_of(env->b.vk);
   vk.hardware_tessellation = hardware;
   env->vk_dev = new_vk_device(env->b.ctx, env->b.pat, "parity vulkan", vk);
+  if (!hardware) {
+    vk.gpu_eval = TLOD_GPU_EVAL_OFF;
+    if (!(env->vk_cpu_dev = new_vk_device(env->b.ctx, env->b.pat, "parity vulkan cpu mesh", vk))) return false;
+  }
   tlod_platform_bind(env->b.gl);
   return env->vk_dev != NULL;
 }
@@ -185,7 +222,8 @@ static void env_close(parity_env* env) {
   if (env->b.gl) tlod_platform_bind(env->b.gl);
   tlod_device_destroy(env->gl_dev);
   tlod_device_destroy(env->vk_dev);
-  free(env->img_gl), free(env->img_vk), free(env->img_ref);
+  tlod_device_destroy(env->vk_cpu_dev);
+  free(env->img_gl), free(env->img_vk), free(env->img_ref), free(env->img_cpu), free(env->img_again);
   vk_gl_close(&env->b);
   memset(env, 0, sizeof *env);
 }

@@ -71,6 +71,9 @@ static inline tlod_device_vk_desc vk_desc_of(const tlod_platform* p) {
 /* A "vulkan" device, or NULL with the reason printed. */
 static inline tlod_device* new_vk_device(tlod_context* ctx, const tlod_patterns* patterns, const char* label,
                                          tlod_device_vk_desc vk) {
+  /* The Vulkan tests are of the vertex-shader path: AUTO (the CPU mesh on
+   * lavapipe) is ON unless a test asks for OFF. */
+  if (vk.gpu_eval == TLOD_GPU_EVAL_DEFAULT) vk.gpu_eval = TLOD_GPU_EVAL_ON;
   return new_device(ctx, &(tlod_device_desc){.backend = "vulkan", .patterns = patterns, .vk = vk, .label = label});
 }
 

@@ -63,6 +63,17 @@ const char* tlod_backend_names(void) {
                      : (TLOD_HAS_VULKAN ? "cpu,null,vulkan" : "cpu,null");
 }
 
+static const char* const gpu_eval_names[TLOD_GPU_EVAL_NUM] = {"default", "on", "off"};
+
+const char* tlod_gpu_eval_name(tlod_gpu_eval e) { return (unsigned)e < TLOD_GPU_EVAL_NUM ? gpu_eval_names[e] : "?"; }
+
+tlod_gpu_eval tlod_gpu_eval_from_name(const char* name) {
+  if (name && !strcmp(name, "auto")) return TLOD_GPU_EVAL_DEFAULT;
+  for (int e = 0; name && e < TLOD_GPU_EVAL_NUM; e++)
+    if (!strcmp(name, gpu_eval_names[e])) return (tlod_gpu_eval)e;
+  return TLOD_GPU_EVAL_NUM;
+}
+
 tlod_result tlod_device_create(tlod_context* ctx, const tlod_device_desc* desc, tlod_device** out) {
   if (out) *out = NULL;
   if (!ctx) return TLOD_ERROR_INVALID_ARGUMENT;
@@ -85,6 +96,11 @@ tlod_result tlod_device_create(tlod_context* ctx, const tlod_device_desc* desc, 
                              desc->gl.surface_types & ~((1u << TLOD_SURFACE_NUM) - 1u) ? "gl" : "vk",
                              desc->gl.surface_types & ~((1u << TLOD_SURFACE_NUM) - 1u) ? desc->gl.surface_types
                                                                                        : desc->vk.surface_types);
+  if ((unsigned)desc->gl.gpu_eval >= TLOD_GPU_EVAL_NUM || (unsigned)desc->vk.gpu_eval >= TLOD_GPU_EVAL_NUM)
+    return tlod_context_fail(
+        ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_device_create: desc.%s.gpu_eval %u is past TLOD_GPU_EVAL_NUM",
+        (unsigned)desc->gl.gpu_eval >= TLOD_GPU_EVAL_NUM ? "gl" : "vk",
+        (unsigned)desc->gl.gpu_eval >= TLOD_GPU_EVAL_NUM ? (unsigned)desc->gl.gpu_eval : (unsigned)desc->vk.gpu_eval);
   tlod_device* dev = tlod_context_calloc(ctx, 1, sizeof(*dev));
   if (!dev) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_device_create: out of memory");
   dev->ctx = ctx;

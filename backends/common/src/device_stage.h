@@ -13,19 +13,35 @@
 #include "device_internal.h"
 #include "layout.h" /* backends/shaders: tlod_gl_instance, tlod_gl_strip */
 
-/* Item k's start in the staged arrays. */
+/* Item k's start in the staged arrays: its instances, and its strip
+ * triangles as index_count indices from index_first (into refs). */
 typedef struct _tlod_stage_range {
-  uint32_t instance_first, ref_first, ref_count;
+  uint32_t instance_first, index_first, index_count, ref_count;
 } _tlod_stage_range;
+
+/* What the staged arrays were made from, per item (_tlod_stage_unchanged). */
+typedef struct _tlod_stage_key {
+  const tlod_draw_list* dl;
+  uint64_t generation;
+  const tlod_surface* surface;
+  uint32_t instance_count, strip_count, patch_count;
+} _tlod_stage_key;
 
 typedef struct _tlod_stage {
   bool hardware; /* edge levels for the tessellation path */
+  bool valid;    /* keys and saved describe the staged arrays */
+  _tlod_stage_key* keys;
+  uint32_t key_cap, key_count;
+  unsigned char* saved; /* every list's instances, strips (and levels, hardware) as staged */
+  uint32_t saved_cap;
   tlod_gl_instance* instances;
   uint32_t instance_cap, instance_count;
   tlod_gl_strip* strips;
   uint32_t strip_cap, strip_count;
-  uint32_t (*refs)[2]; /* (strip, point) per strip vertex */
+  uint32_t (*refs)[2]; /* (strip, point): each point of each strip once */
   uint32_t ref_cap, ref_count;
+  uint32_t* indices; /* strip triangles, 3 refs each: strips are drawn indexed (one invocation per point) */
+  uint32_t index_cap, index_count;
   uint32_t* instance_of; /* patch -> instance of the item being staged */
   uint32_t instance_of_cap;
   _tlod_stage_range* ranges;
@@ -36,7 +52,8 @@ typedef struct _tlod_stage {
 } _tlod_stage;
 
 static inline void _tlod_stage_free(const tlod_context* ctx, _tlod_stage* s) {
-  void* arrays[] = {s->instances, s->strips, s->refs, s->instance_of, s->ranges, s->order, s->order_depth};
+  void* arrays[] = {s->instances, s->strips, s->refs, s->indices, s->instance_of,
+                    s->ranges,    s->order,  s->keys, s->saved,   s->order_depth};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(ctx, arrays[i]);
 }
@@ -54,29 +71,35 @@ static inline uint32_t _tlod_stage_edge_levels(const tlod_mesh_view* m, const tl
   return packed;
 }
 
-static inline uint32_t _tlod_stage_strip_refs(const tlod_patterns* p, const tlod_draw_list* dl) {
-  uint32_t refs = 0;
+/* The points of a strip between levels la and lb: a's edge polyline
+ * (2^la + 1 points) then b's (2^lb + 1), strip.vert's numbering. */
+static inline uint32_t _tlod_stage_strip_points(uint32_t la, uint32_t lb) { return (1u << la) + (1u << lb) + 2u; }
+
+/* The references (points) and indices of a draw list's strips. */
+static inline void _tlod_stage_strip_counts(const tlod_patterns* p, const tlod_draw_list* dl, uint32_t* refs,
+                                            uint32_t* indices) {
   for (uint32_t k = 0; k < dl->strip_count; k++) {
     uint32_t count;
     tlod_draw_strip_connection(p, &dl->strips[k], &count);
-    refs += 3 * count;
+    *indices += 3 * count;
+    *refs += count ? _tlod_stage_strip_points(dl->strips[k].level_a, dl->strips[k].level_b) : 0u;
   }
-  return refs;
 }
 
 static inline bool _tlod_stage_reserve(const tlod_context* ctx, _tlod_stage* s, const tlod_patterns* p,
                                        const tlod_draw_desc* desc, const _tlod_draw_ref* items) {
-  uint32_t instances = 0, strips = 0, refs = 0, patches = 0;
+  uint32_t instances = 0, strips = 0, refs = 0, indices = 0, patches = 0;
   for (uint32_t k = 0; k < desc->item_count; k++) {
     const tlod_draw_list* dl = items[k].item->draw_list;
     instances += dl->instance_count;
     strips += dl->strip_count;
-    refs += _tlod_stage_strip_refs(p, dl);
+    _tlod_stage_strip_counts(p, dl, &refs, &indices);
     patches = dl->patch_count > patches ? dl->patch_count : patches;
   }
   return _tlod_device_grow(ctx, (void**)&s->instances, &s->instance_cap, instances + 1, sizeof(tlod_gl_instance)) &&
          _tlod_device_grow(ctx, (void**)&s->strips, &s->strip_cap, strips + 1, sizeof(tlod_gl_strip)) &&
          _tlod_device_grow(ctx, (void**)&s->refs, &s->ref_cap, refs + 1, sizeof(uint32_t[2])) &&
+         _tlod_device_grow(ctx, (void**)&s->indices, &s->index_cap, indices + 1, sizeof(uint32_t)) &&
          _tlod_device_grow(ctx, (void**)&s->instance_of, &s->instance_of_cap, patches + 1, sizeof(uint32_t)) &&
          _tlod_device_grow(ctx, (void**)&s->ranges, &s->range_cap, desc->item_count, sizeof(*s->ranges));
 }
@@ -100,29 +123,152 @@ static inline void _tlod_stage_strips(_tlod_stage* s, const tlod_patterns* p, co
                                     st->edge_a | (uint32_t)st->edge_b << 8,
                                     st->level_a | (uint32_t)st->level_b << 8,
                                     {ma, mb, 0.0f, 0.0f}};
-    uint32_t count;
+    uint32_t count, base = s->ref_count;
     const uint32_t* tris = tlod_draw_strip_connection(p, st, &count);
+    uint32_t points = count ? _tlod_stage_strip_points(st->level_a, st->level_b) : 0u;
+    for (uint32_t r = 0; r < points; r++)
+      s->refs[base + r][0] = id, s->refs[base + r][1] = r;
+    s->ref_count += points;
     for (uint32_t t = 0; t < 3 * count; t++)
-      s->refs[s->ref_count][0] = id, s->refs[s->ref_count++][1] = tris[t];
+      s->indices[s->index_count++] = base + tris[t];
   }
   s->strip_count += dl->strip_count;
 }
 
+/* The bytes of a list the staged arrays depend on: instances, strips and
+ * (hardware: the edge levels) every patch's level. */
+static inline size_t _tlod_stage_list_bytes(const _tlod_stage* s, const tlod_draw_list* dl) {
+  return sizeof(tlod_draw_instance) * dl->instance_count + sizeof(tlod_draw_strip) * dl->strip_count +
+         (s->hardware ? dl->patch_count : 0u);
+}
+
+static inline _tlod_stage_key _tlod_stage_key_of(const _tlod_draw_ref* it) {
+  const tlod_draw_list* dl = it->item->draw_list;
+  return (_tlod_stage_key){dl, dl->generation, it->surface, dl->instance_count, dl->strip_count, dl->patch_count};
+}
+
+static inline bool _tlod_stage_key_equal(const _tlod_stage_key* a, const _tlod_stage_key* b) {
+  return a->dl == b->dl && a->generation == b->generation && a->surface == b->surface &&
+         a->instance_count == b->instance_count && a->strip_count == b->strip_count && a->patch_count == b->patch_count;
+}
+
+/* Appends (copy) or compares (!copy) list dl's instances, strips and
+ * (levels) its levels at saved + *at. */
+static inline bool _tlod_list_bytes(unsigned char* saved, bool levels, const tlod_draw_list* dl, size_t* at,
+                                    bool copy) {
+  const void* parts[3] = {dl->instances, dl->strips, dl->levels};
+  size_t sizes[3] = {sizeof(tlod_draw_instance) * dl->instance_count, sizeof(tlod_draw_strip) * dl->strip_count,
+                     levels ? dl->patch_count : 0u};
+  bool same = true;
+  for (int k = 0; k < 3; k++) {
+    if (!sizes[k]) continue;
+    if (copy)
+      memcpy(saved + *at, parts[k], sizes[k]);
+    else
+      same = same && !memcmp(saved + *at, parts[k], sizes[k]);
+    *at += sizes[k];
+  }
+  return same;
+}
+
+static inline bool _tlod_stage_list_saved(_tlod_stage* s, const tlod_draw_list* dl, size_t* at, bool copy) {
+  return _tlod_list_bytes(s->saved, s->hardware, dl, at, copy);
+}
+
+/* One item's list as last evaluated (the CPU-mesh mode's cache): its key,
+ * the surface's and mesh's generations, its bytes. */
+typedef struct _tlod_list_snapshot {
+  bool valid;
+  _tlod_stage_key key;
+  uint64_t surface_generation, mesh_generation;
+  unsigned char* bytes;
+  uint32_t cap;
+} _tlod_list_snapshot;
+
+static inline void _tlod_snapshot_generations(const tlod_surface* s, uint64_t* surface, uint64_t* mesh) {
+  *surface = tlod_surface_query_view(s).generation;
+  *mesh = tlod_mesh_query_view(tlod_surface_mesh(s)).generation;
+}
+
+/* True when the item's list, surface and mesh are those of the snapshot. */
+static inline bool _tlod_snapshot_same(const _tlod_list_snapshot* sn, const _tlod_draw_ref* it) {
+  _tlod_stage_key key = _tlod_stage_key_of(it);
+  uint64_t sg, mg;
+  _tlod_snapshot_generations(it->surface, &sg, &mg);
+  size_t at = 0;
+  return sn->valid && _tlod_stage_key_equal(&key, &sn->key) && sg == sn->surface_generation &&
+         mg == sn->mesh_generation && _tlod_list_bytes(sn->bytes, true, it->item->draw_list, &at, false);
+}
+
+/* Out of memory only loses the next skip. */
+static inline void _tlod_snapshot_take(const tlod_context* ctx, _tlod_list_snapshot* sn, const _tlod_draw_ref* it) {
+  const tlod_draw_list* dl = it->item->draw_list;
+  size_t bytes = sizeof(tlod_draw_instance) * dl->instance_count + sizeof(tlod_draw_strip) * dl->strip_count +
+                 dl->patch_count + 1u;
+  sn->valid = bytes <= UINT32_MAX && _tlod_device_grow(ctx, (void**)&sn->bytes, &sn->cap, (uint32_t)bytes, 1);
+  if (!sn->valid) return;
+  sn->key = _tlod_stage_key_of(it);
+  _tlod_snapshot_generations(it->surface, &sn->surface_generation, &sn->mesh_generation);
+  size_t at = 0;
+  _tlod_list_bytes(sn->bytes, true, dl, &at, true);
+}
+
+/* True when the staged arrays are those of this draw's items: the same
+ * lists at the same generations over the same surfaces, and (an address and
+ * generation can come back after a scheduler is destroyed and another made)
+ * the same instances, strips and levels byte for byte. */
+static inline bool _tlod_stage_unchanged(_tlod_stage* s, const tlod_draw_desc* desc, const _tlod_draw_ref* items) {
+  if (!s->valid || s->key_count != desc->item_count) return false;
+  for (uint32_t k = 0; k < desc->item_count; k++) {
+    _tlod_stage_key key = _tlod_stage_key_of(&items[k]);
+    if (!_tlod_stage_key_equal(&key, &s->keys[k])) return false;
+  }
+  size_t at = 0;
+  for (uint32_t k = 0; k < desc->item_count; k++) {
+    if (!_tlod_stage_list_saved(s, items[k].item->draw_list, &at, false)) return false;
+  }
+  return true;
+}
+
+/* Records what was staged; out of memory only loses the next skip. */
+static inline void _tlod_stage_remember(const tlod_context* ctx, _tlod_stage* s, const tlod_draw_desc* desc,
+                                        const _tlod_draw_ref* items) {
+  size_t bytes = 1;
+  for (uint32_t k = 0; k < desc->item_count; k++)
+    bytes += _tlod_stage_list_bytes(s, items[k].item->draw_list);
+  s->valid = bytes <= UINT32_MAX &&
+             _tlod_device_grow(ctx, (void**)&s->keys, &s->key_cap, desc->item_count, sizeof(_tlod_stage_key)) &&
+             _tlod_device_grow(ctx, (void**)&s->saved, &s->saved_cap, (uint32_t)bytes, 1);
+  if (!s->valid) return;
+  size_t at = 0;
+  for (uint32_t k = 0; k < desc->item_count; k++) {
+    s->keys[k] = _tlod_stage_key_of(&items[k]);
+    _tlod_stage_list_saved(s, items[k].item->draw_list, &at, true);
+  }
+  s->key_count = desc->item_count;
+}
+
 /* Every item's instances, strips and strip references into one array each
  * (one upload per array per draw); item k's start in ranges[k], its staging
- * time in item_stats[k].cpu_ms. */
+ * time in item_stats[k].cpu_ms. When the items' lists are those staged
+ * last (_tlod_stage_unchanged) the arrays are kept and *restaged is false:
+ * the device need not send them again. */
 static inline tlod_result _tlod_stage_items(tlod_context* ctx, _tlod_stage* s, const tlod_patterns* p, const char* who,
                                             const tlod_draw_desc* desc, const _tlod_draw_ref* items,
-                                            tlod_draw_item_stats* item_stats) {
+                                            tlod_draw_item_stats* item_stats, bool* restaged) {
+  *restaged = !_tlod_stage_unchanged(s, desc, items);
+  if (!*restaged) return TLOD_SUCCESS;
+  s->valid = false;
   if (!_tlod_stage_reserve(ctx, s, p, desc, items))
     return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "%s: out of memory staging a draw", who);
-  s->instance_count = s->strip_count = s->ref_count = 0;
+  s->instance_count = s->strip_count = s->ref_count = s->index_count = 0;
   for (uint32_t k = 0; k < desc->item_count; k++) {
     double t0 = tlod_now_ms();
     const tlod_draw_list* dl = items[k].item->draw_list;
     tlod_mesh_view m = tlod_mesh_query_view(tlod_surface_mesh(items[k].surface));
     s->ranges[k].instance_first = s->instance_count;
-    s->ranges[k].ref_first = s->ref_count;
+    s->ranges[k].index_first = s->index_count;
+    uint32_t ref_first = s->ref_count;
     for (uint32_t j = 0; j < dl->instance_count; j++) {
       const tlod_draw_instance* in = &dl->instances[j];
       s->instances[s->instance_count + j] =
@@ -134,10 +280,12 @@ static inline tlod_result _tlod_stage_items(tlod_context* ctx, _tlod_stage* s, c
       if (in->patch < dl->patch_count) s->instance_of[in->patch] = j;
     }
     _tlod_stage_strips(s, p, dl);
-    s->ranges[k].ref_count = s->ref_count - s->ranges[k].ref_first;
+    s->ranges[k].index_count = s->index_count - s->ranges[k].index_first;
+    s->ranges[k].ref_count = s->ref_count - ref_first;
     s->instance_count += dl->instance_count;
     item_stats[k].cpu_ms = tlod_now_ms() - t0;
   }
+  _tlod_stage_remember(ctx, s, desc, items);
   return TLOD_SUCCESS;
 }
 

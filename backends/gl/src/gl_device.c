@@ -63,6 +63,7 @@ typedef struct gl_programs {
   bool linked;
   gl_program pattern, strip;
   gl_program tess[2]; /* hardware path: triangles, quads */
+  gl_program mesh;    /* CPU-mesh mode (PLAIN only): mesh.vert */
 } gl_programs;
 
 typedef struct gl_device {
@@ -72,13 +73,14 @@ typedef struct gl_device {
   tlod_device_stats* stats;
   uint32_t lmax;
   bool hardware;
+  bool cpu_mesh;       /* tlod_gpu_eval resolved to OFF: PLAIN items draw their CPU mesh (gl_mesh.c) */
   char* fragment_hook; /* a copy of the desc's (FULL and MASK programs link later); NULL == material.glsl */
   /* By resolved surface type and variant: programs with `discard` (MASK
    * items) are their own: a shader that may discard loses the early depth
    * test (llvmpipe: ~10% of a heavy frame), so the others never carry it. */
   gl_programs programs[TYPE_COUNT][VARIANT_COUNT];
   GLuint vao_pattern, vao_strip;
-  GLuint buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs;
+  GLuint buf_pattern, buf_indices, buf_instances, buf_strips, buf_refs, buf_strip_indices;
   uint32_t index_first[2][TLOD_MAX_LEVEL + 1], index_count[2][TLOD_MAX_LEVEL + 1], shape_base[2];
   GLuint queries[QUERY_RING];
   GLuint prim_queries[QUERY_RING];
@@ -98,6 +100,7 @@ typedef struct gl_surface {
   tlod_surface_type type;
   uint32_t patch_count;
   const tlod_surface* surface;
+  gl_mesh mesh; /* CPU-mesh mode */
 } gl_surface;
 
 static tlod_result check_context(tlod_context* ctx) {
@@ -116,8 +119,8 @@ static tlod_result check_context(tlod_context* ctx) {
 
 static void gl_destroy(void* state) {
   gl_device* d = state;
-  GLuint bufs[5] = {d->buf_pattern, d->buf_indices, d->buf_instances, d->buf_strips, d->buf_refs};
-  glDeleteBuffers(5, bufs);
+  GLuint bufs[6] = {d->buf_pattern, d->buf_indices, d->buf_instances, d->buf_strips, d->buf_refs, d->buf_strip_indices};
+  glDeleteBuffers(6, bufs);
   glDeleteVertexArrays(1, &d->vao_pattern);
   glDeleteVertexArrays(1, &d->vao_strip);
   glDeleteQueries(QUERY_RING, d->queries);
@@ -128,6 +131,7 @@ static void gl_destroy(void* state) {
       glDeleteProgram(d->programs[t][m].strip.id);
       glDeleteProgram(d->programs[t][m].tess[0].id);
       glDeleteProgram(d->programs[t][m].tess[1].id);
+      glDeleteProgram(d->programs[t][m].mesh.id);
     }
   }
   tlod_context_free(d->ctx, d->fragment_hook);
@@ -169,6 +173,12 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type, int vari
   ps->pattern.id = _tlod_gl_program(pattern, np, frag, nf, error, sizeof(error));
   if (ps->pattern.id) ps->strip.id = _tlod_gl_program(strip, ns, frag, nf, error, sizeof(error));
   bool ok = ps->pattern.id && ps->strip.id;
+  if (ok && d->cpu_mesh && variant == VARIANT_PLAIN) {
+    const char* mesh[_TLOD_SHADER_STAGE_SOURCES];
+    int nm = _tlod_shader_vertex_side(mesh, version, NULL, surface, true, _tlod_shader_mesh_vert);
+    ps->mesh.id = _tlod_gl_program(mesh, nm, frag, nf, error, sizeof(error));
+    ok = ps->mesh.id != 0;
+  }
   for (int sh = 0; sh < 2 && d->hardware && ok; sh++) {
     const char* corners = _tlod_shader_corners(sh ? 4 : 3);
     const char *vs[_TLOD_SHADER_STAGE_SOURCES], *tcs[_TLOD_SHADER_STAGE_SOURCES], *tes[_TLOD_SHADER_STAGE_SOURCES];
@@ -184,6 +194,7 @@ static tlod_result build_programs(gl_device* d, tlod_surface_type type, int vari
                              tlod_surface_type_name(type), error);
   locate(d, &ps->pattern);
   locate(d, &ps->strip);
+  if (ps->mesh.id) locate(d, &ps->mesh);
   for (int sh = 0; sh < 2 && d->hardware; sh++)
     locate(d, &ps->tess[sh]);
   ps->linked = true;
@@ -220,6 +231,9 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   d->lmax = tlod_patterns_max_level(desc->patterns);
   d->hardware = desc->gl.hardware_tessellation;
   d->st.hardware = d->hardware;
+  const char* renderer = (const char*)glGetString(GL_RENDERER);
+  d->cpu_mesh = _tlod_resolve_gpu_eval(stats, desc->gl.gpu_eval, _tlod_software_renderer(renderer), d->hardware,
+                                       "desc.gl.gpu_eval", renderer);
   if (desc->gl.fragment_hook) {
     size_t n = strlen(desc->gl.fragment_hook) + 1;
     d->fragment_hook = tlod_context_alloc(ctx, n);
@@ -231,10 +245,10 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   }
   snprintf(d->label, sizeof(d->label), "%s", desc->label);
   /* Named objects only (DSA): creating them binds nothing of the engine's. */
-  GLuint bufs[5];
-  glCreateBuffers(5, bufs);
+  GLuint bufs[6];
+  glCreateBuffers(6, bufs);
   d->buf_pattern = bufs[0], d->buf_indices = bufs[1], d->buf_instances = bufs[2];
-  d->buf_strips = bufs[3], d->buf_refs = bufs[4];
+  d->buf_strips = bufs[3], d->buf_refs = bufs[4], d->buf_strip_indices = bufs[5];
   glCreateVertexArrays(1, &d->vao_pattern);
   glCreateVertexArrays(1, &d->vao_strip);
   glVertexArrayElementBuffer(d->vao_pattern, d->buf_indices);
@@ -242,6 +256,7 @@ static tlod_result gl_create(tlod_context* ctx, const tlod_device_desc* desc, tl
   glVertexArrayAttribIFormat(d->vao_strip, TLOD_ATTRIB_STRIP_REF, 2, GL_UNSIGNED_INT, 0);
   glVertexArrayAttribBinding(d->vao_strip, TLOD_ATTRIB_STRIP_REF, 0);
   glVertexArrayVertexBuffer(d->vao_strip, 0, d->buf_refs, 0, sizeof(uint32_t[2]));
+  glVertexArrayElementBuffer(d->vao_strip, d->buf_strip_indices);
   glCreateQueries(GL_TIME_ELAPSED, QUERY_RING, d->queries);
   glCreateQueries(GL_PRIMITIVES_GENERATED, QUERY_RING, d->prim_queries);
   uint32_t mask = desc->gl.surface_types ? desc->gl.surface_types : (1u << TLOD_SURFACE_NUM) - 1u;
@@ -335,27 +350,31 @@ static void gl_destroy_surface(void* state, void* surface_state) {
   gl_surface* gs = surface_state;
   glDeleteBuffers(1, &gs->buf_patches);
   glDeleteBuffers(1, &gs->buf_attributes);
+  _tlod_gl_mesh_free(d->ctx, &gs->mesh);
   tlod_context_free(d->ctx, gs);
 }
 
 /* ---- staging ----------------------------------------------------------------- */
 
-/* Every item's instances, strips and strip references (device_stage.h),
- * then one upload per array. */
+/* Every item's instances, strips, strip references and indices
+ * (device_stage.h), then one upload per array; none when the items' draw
+ * lists are those of the last draw (the buffers hold them already). */
 static tlod_result stage(gl_device* d, const tlod_draw_desc* desc, const _tlod_draw_ref* items,
                          tlod_draw_item_stats* item_stats) {
-  tlod_result r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "gl device", desc, items, item_stats);
-  if (r != TLOD_SUCCESS) return r;
+  bool restaged = true;
+  tlod_result r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "gl device", desc, items, item_stats, &restaged);
+  d->stats->gl.buffer_streams = 0;
+  if (r != TLOD_SUCCESS || !restaged) return r;
   /* Orphans each buffer and fills it: the driver never waits for a draw in flight. */
-  const GLuint bufs[3] = {d->buf_instances, d->buf_strips, d->buf_refs};
-  const void* data[3] = {d->st.instances, d->st.strips, d->st.refs};
-  const size_t bytes[3] = {sizeof(tlod_gl_instance) * d->st.instance_count, sizeof(tlod_gl_strip) * d->st.strip_count,
-                           sizeof(uint32_t[2]) * d->st.ref_count};
-  for (int b = 0; b < 3; b++) {
+  const GLuint bufs[4] = {d->buf_instances, d->buf_strips, d->buf_refs, d->buf_strip_indices};
+  const void* data[4] = {d->st.instances, d->st.strips, d->st.refs, d->st.indices};
+  const size_t bytes[4] = {sizeof(tlod_gl_instance) * d->st.instance_count, sizeof(tlod_gl_strip) * d->st.strip_count,
+                           sizeof(uint32_t[2]) * d->st.ref_count, sizeof(uint32_t) * d->st.index_count};
+  for (int b = 0; b < 4; b++) {
     glNamedBufferData(bufs[b], (GLsizeiptr)(bytes[b] ? bytes[b] : 16), NULL, GL_STREAM_DRAW);
     if (bytes[b]) glNamedBufferSubData(bufs[b], 0, (GLsizeiptr)bytes[b], data[b]);
   }
-  d->stats->gl.buffer_streams = 3;
+  d->stats->gl.buffer_streams = 4;
   return TLOD_SUCCESS;
 }
 
@@ -364,8 +383,11 @@ static tlod_result stage(gl_device* d, const tlod_draw_desc* desc, const _tlod_d
 /* The programs of a surface type in use: pattern and strip, and the two
  * tessellation programs with hardware tessellation. */
 static int programs_of(const gl_device* d, const gl_programs* ps, const gl_program* out[4]) {
-  out[0] = &ps->pattern, out[1] = &ps->strip, out[2] = &ps->tess[0], out[3] = &ps->tess[1];
-  return d->hardware ? 4 : 2;
+  int n = 0;
+  out[n++] = &ps->pattern, out[n++] = &ps->strip;
+  if (d->hardware) out[n++] = &ps->tess[0], out[n++] = &ps->tess[1];
+  if (ps->mesh.id) out[n++] = &ps->mesh; /* never with hardware tessellation */
+  return n;
 }
 
 /* The view's uniforms, on every program the device linked. */
@@ -449,10 +471,12 @@ static uint32_t issue_draws(const gl_device* d, const gl_programs* ps, const tlo
     *vertices += (uint64_t)tlod_pattern_vertex_count(bk->shape, bk->level) * bk->count;
     calls++;
   }
-  if (range->ref_count) {
+  if (range->index_count) {
+    /* Indexed: each strip point is shaded once, not once per triangle. */
     glUseProgram(ps->strip.id);
     glBindVertexArray(d->vao_strip);
-    glDrawArrays(GL_TRIANGLES, (GLint)range->ref_first, (GLsizei)range->ref_count);
+    glDrawElements(GL_TRIANGLES, (GLsizei)range->index_count, GL_UNSIGNED_INT,
+                   (const void*)(sizeof(uint32_t) * (size_t)range->index_first));
     *vertices += range->ref_count;
     calls++;
   }
@@ -507,9 +531,36 @@ static int variant_of(const gl_device* d, const _tlod_draw_ref* it) {
   return _tlod_stage_variant(d->fragment_hook != NULL, gs->attribute_count, it->item);
 }
 
+/* CPU-mesh mode: the item's mesh (evaluated again only when its list,
+ * surface or mesh changed), then one indexed draw (two with wireframe). */
+static tlod_result draw_mesh(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, const gl_programs* ps,
+                             tlod_draw_item_stats* st) {
+  gl_surface* gs = it->surface_state;
+  bool evaluated = false;
+  double t0 = tlod_now_ms();
+  tlod_result r = _tlod_gl_mesh_update(d->ctx, d->patterns, it, &gs->mesh, &evaluated, &d->stats->mesh_bytes);
+  if (r != TLOD_SUCCESS) return r;
+  if (evaluated) d->stats->mesh_evaluations++, d->stats->mesh_eval_ms += tlod_now_ms() - t0;
+  glUseProgram(ps->mesh.id);
+  _tlod_gl_mesh_draw(&gs->mesh);
+  st->draw_calls = 1;
+  if (fr->wireframe) {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    set_debug(d, ps, 4u);
+    _tlod_gl_mesh_draw(&gs->mesh);
+    set_debug(d, ps, (uint32_t)fr->debug);
+    st->draw_calls = 2;
+  }
+  const tlod_cpu_mesh* c = gs->mesh.eval.cpu;
+  st->triangles = c ? (uint64_t)c->triangle_count + c->folds_skipped : 0u;
+  st->vertices = c ? c->vertex_count : 0u;
+  return TLOD_SUCCESS;
+}
+
 /* Item k: its patterns and strips, then (wireframe) its edges over them. */
-static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, uint32_t k,
-                      tlod_draw_item_stats* st) {
+static tlod_result draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* it, uint32_t k,
+                             tlod_draw_item_stats* st) {
   double t0 = tlod_now_ms();
   const gl_surface* gs = it->surface_state;
   const gl_programs* ps = &d->programs[gs->type][variant_of(d, it)];
@@ -526,6 +577,11 @@ static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
   }
+  if (ps->mesh.id) {
+    tlod_result r = draw_mesh(d, fr, it, ps, st);
+    st->cpu_ms += tlod_now_ms() - t0;
+    return r;
+  }
   uint64_t vertices = 0;
   uint32_t calls =
       d->hardware ? issue_tess_draws(d, ps, dl, range, &vertices) : issue_draws(d, ps, dl, range, &vertices);
@@ -537,10 +593,11 @@ static void draw_item(gl_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
     calls += d->hardware ? issue_tess_draws(d, ps, dl, range, &unused) : issue_draws(d, ps, dl, range, &unused);
     set_debug(d, ps, (uint32_t)fr->debug);
   }
-  st->triangles = d->hardware ? dl->pattern_triangles : dl->pattern_triangles + range->ref_count / 3;
+  st->triangles = d->hardware ? dl->pattern_triangles : dl->pattern_triangles + range->index_count / 3;
   st->vertices = vertices;
   st->draw_calls = calls;
   st->cpu_ms += tlod_now_ms() - t0;
+  return TLOD_SUCCESS;
 }
 
 /* The FULL and MASK programs of the surface types of this draw's items
@@ -600,9 +657,10 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
     glBeginQuery(GL_PRIMITIVES_GENERATED, d->prim_queries[d->frame % QUERY_RING]);
   }
   set_view_uniforms(d, fr);
-  for (uint32_t j = 0; j < fr->item_count; j++) {
+  d->stats->mesh_evaluations = 0, d->stats->mesh_eval_ms = 0.0, d->stats->mesh_bytes = 0;
+  for (uint32_t j = 0; j < fr->item_count && r == TLOD_SUCCESS; j++) {
     uint32_t k = d->st.order[j];
-    draw_item(d, fr, &items[k], k, &item_stats[k]);
+    r = draw_item(d, fr, &items[k], k, &item_stats[k]);
   }
   if (timed) {
     glEndQuery(GL_PRIMITIVES_GENERATED);
@@ -612,6 +670,7 @@ static tlod_result gl_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   }
   _tlod_gl_restore_state(&saved);
   d->stats->cpu_ms = tlod_now_ms() - t0;
+  if (r != TLOD_SUCCESS) return r;
   if (fr->finish) {
     glFinish();
     d->stats->wall_ms = tlod_now_ms() - t0;

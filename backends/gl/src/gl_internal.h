@@ -7,6 +7,7 @@
 #include <GL/glext.h>
 
 #include "device_internal.h"
+#include "device_mesh.h"    /* the CPU-mesh mode's evaluation */
 #include "layout.h"         /* backends/shaders: binding points and buffer structs, shared with GLSL */
 #include "shader_sources.h" /* backends/shaders as C strings */
 #include "tesslod/gl.h"
@@ -43,6 +44,22 @@ typedef struct gl_texture {
 
 tlod_result _tlod_gl_texture_create(tlod_context* ctx, const tlod_texture_desc* desc, gl_texture** out);
 void _tlod_gl_texture_destroy(tlod_context* ctx, gl_texture* t);
+
+/* CPU-mesh mode (tlod_gpu_eval OFF): one device surface's evaluated mesh
+ * and its GL copy (gl_mesh.c). Vertex buffer: positions, then normals. */
+typedef struct gl_mesh {
+  _tlod_item_mesh eval; /* the mesh and what it (and the buffers) were made from */
+  GLuint vao, vertices, indices;
+  uint32_t index_count;
+} gl_mesh;
+
+/* Evaluates item it's draw list into m and uploads it, unless it is the
+ * one m holds (*evaluated false); the uploaded bytes are added to *bytes. */
+tlod_result _tlod_gl_mesh_update(tlod_context* ctx, const tlod_patterns* p, const _tlod_draw_ref* it, gl_mesh* m,
+                                 bool* evaluated, uint64_t* bytes);
+/* One indexed draw of the mesh, with the program and state in place. */
+void _tlod_gl_mesh_draw(const gl_mesh* m);
+void _tlod_gl_mesh_free(tlod_context* ctx, gl_mesh* m);
 
 /* The first line number of the fragment stage's material source (its
  * #line directive): the log's lines from here on are the hook's. */

@@ -63,6 +63,9 @@ static tlod_result check_device(vk_device* d, const tlod_device_vk_desc* v) {
                              "feature, which %s lacks",
                              d->label, props.deviceName);
   d->wireframe_ok = f.fillModeNonSolid;
+  bool software = props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU || _tlod_software_renderer(props.deviceName);
+  d->cpu_mesh = d->pipelines.cpu_mesh = _tlod_resolve_gpu_eval(
+      d->stats, v->gpu_eval, software, v->hardware_tessellation, "desc.vk.gpu_eval", props.deviceName);
   tlod_result r = check_format(d, v->color_format, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT, "color_format",
                                "a blendable colour attachment");
   if (r == TLOD_SUCCESS)
@@ -111,6 +114,7 @@ static void vk_destroy(void* state) {
   _tlod_stage_free(d->ctx, &d->st);
   tlod_context_free(d->ctx, d->uniforms);
   tlod_context_free(d->ctx, d->sets);
+  tlod_context_free(d->ctx, d->mesh_at);
   tlod_context_free(d->ctx, d->pipelines.hook);
   tlod_context_free(d->ctx, d->shader_cache);
   tlod_context_free(d->ctx, d);

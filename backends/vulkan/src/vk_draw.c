@@ -1,7 +1,7 @@
 /* tesslod::vulkan -- tlod_device_draw(): validates the draw's Vulkan
  * fields, begins the frame slot, makes the pipelines the items need,
  * stages every item exactly as the gl device (device_stage.h), writes
- * instances, strips, strip references and one uniform block per item into
+ * instances, strips, strip references and indices and one uniform block per item into
  * the slot's ring, writes one descriptor set per item and records, per
  * item in draw order (BLEND last, farthest first): its pattern draws
  * (indexed, instanced) or its tessellation batches, its strips, and with
@@ -14,7 +14,7 @@
 typedef struct ring_view {
   VkBuffer buffer;
   char* mapped;
-  VkDeviceSize uniforms, instances, strips, refs;
+  VkDeviceSize uniforms, instances, strips, refs, indices;
   VkDeviceSize instance_bytes, strip_bytes;
 } ring_view;
 
@@ -42,14 +42,21 @@ static int variant_of(const vk_device* d, const _tlod_draw_ref* it) {
   return _tlod_stage_variant(d->pipelines.hook != NULL, vs->attribute_count, it->item);
 }
 
+/* CPU-mesh mode: the PLAIN items draw their CPU mesh (the others, and
+ * hardware tessellation, evaluate on the GPU). */
+static bool uses_mesh(const vk_device* d, const _tlod_draw_ref* it) {
+  return d->cpu_mesh && variant_of(d, it) == VK_VARIANT_PLAIN;
+}
+
 /* Every pipeline the items need, before anything is recorded (a failure
  * leaves the command buffer untouched). */
 static tlod_result prepare(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items) {
   for (uint32_t k = 0; k < fr->item_count; k++) {
     const vk_surface* vs = items[k].surface_state;
     int v = variant_of(d, &items[k]), k0 = d->hardware ? VK_KIND_TESS3 : VK_KIND_PATTERN;
-    bool blend = items[k].item->blend == TLOD_BLEND_BLEND;
-    for (int kind = k0; kind < k0 + 2; kind++) {
+    bool blend = items[k].item->blend == TLOD_BLEND_BLEND, mesh = uses_mesh(d, &items[k]);
+    if (mesh) k0 = VK_KIND_MESH;
+    for (int kind = k0; kind < k0 + (mesh ? 1 : 2); kind++) {
       for (int line = 0; line <= (int)fr->wireframe; line++) {
         VkPipeline p;
         tlod_result r = _tlod_vkb_pipeline(&d->pipelines, vs->type, v, kind, blend, line, &p);
@@ -86,20 +93,77 @@ static void item_uniforms(const vk_device* d, const tlod_draw_desc* fr, const _t
   u->attribute_count = vs->attribute_count;
 }
 
-/* The strip references, each triangle rotated by one vertex (a b c -> c a
+/* The strip indices, each triangle rotated by one vertex (a b c -> c a
  * b: the same triangle and winding). Flat varyings come from a triangle's
  * first vertex in Vulkan and from its last in GL; a strip triangle spans
  * two levels (v_level), so without the rotation the levels view and a
  * hook reading f.level would colour strips differently from GL. */
-static void write_refs(uint32_t (*out)[2], const uint32_t (*refs)[2], uint32_t count) {
+static void write_indices(uint32_t* out, const uint32_t* indices, uint32_t count) {
   for (uint32_t t = 0; t + 2 < count; t += 3) {
-    memcpy(out[t], refs[t + 2], sizeof(uint32_t[2]));
-    memcpy(out[t + 1], refs[t], sizeof(uint32_t[2]));
-    memcpy(out[t + 2], refs[t + 1], sizeof(uint32_t[2]));
+    out[t] = indices[t + 2];
+    out[t + 1] = indices[t];
+    out[t + 2] = indices[t + 1];
   }
 }
 
-/* The ring block of this draw: uniforms, instances, strips, references. */
+/* CPU-mesh mode: each mesh item's list evaluated (again only when it
+ * changed), before the ring block is sized. */
+static tlod_result evaluate_meshes(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items) {
+  d->stats->mesh_evaluations = 0, d->stats->mesh_eval_ms = 0.0, d->stats->mesh_bytes = 0;
+  if (!d->cpu_mesh) return TLOD_SUCCESS;
+  if (!_tlod_device_grow(d->ctx, (void**)&d->mesh_at, &d->mesh_at_cap, fr->item_count, sizeof(VkDeviceSize[2])))
+    return tlod_context_fail(d->ctx, TLOD_ERROR_OUT_OF_MEMORY, "vulkan device '%s': out of memory", d->label);
+  for (uint32_t k = 0; k < fr->item_count; k++) {
+    if (!uses_mesh(d, &items[k])) continue;
+    double t0 = tlod_now_ms();
+    bool evaluated = false;
+    vk_surface* vs = items[k].surface_state;
+    tlod_result r = _tlod_item_mesh_update(d->ctx, d->patterns, &items[k], &vs->mesh, &evaluated);
+    if (r != TLOD_SUCCESS) return r;
+    if (evaluated) d->stats->mesh_evaluations++, d->stats->mesh_eval_ms += tlod_now_ms() - t0;
+  }
+  return TLOD_SUCCESS;
+}
+
+/* A mesh's vertex (positions then normals) and index bytes. */
+static void mesh_bytes(const tlod_cpu_mesh* c, VkDeviceSize* vb, VkDeviceSize* ib) {
+  *vb = c ? 2 * sizeof(float[3]) * (VkDeviceSize)c->vertex_count : 0;
+  *ib = c ? sizeof(uint32_t[3]) * (VkDeviceSize)c->triangle_count : 0;
+}
+
+/* The ring bytes of the mesh items after `end`, each section aligned. */
+static VkDeviceSize meshes_size(const vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
+                                VkDeviceSize end) {
+  for (uint32_t k = 0; k < fr->item_count; k++) {
+    if (!uses_mesh(d, &items[k])) continue;
+    VkDeviceSize vb, ib;
+    mesh_bytes(((const vk_surface*)items[k].surface_state)->mesh.cpu, &vb, &ib);
+    end = _tlod_vkb_align(_tlod_vkb_align(end, d->ring_align) + vb, d->ring_align) + ib;
+  }
+  return end;
+}
+
+/* The mesh items' vertices and indices into the ring from `at` (every
+ * draw: the ring is the slot's); where each went into d->mesh_at. */
+static void write_meshes(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items, const ring_view* rv,
+                         VkDeviceSize at) {
+  for (uint32_t k = 0; k < fr->item_count; k++) {
+    if (!uses_mesh(d, &items[k])) continue;
+    const tlod_cpu_mesh* c = ((const vk_surface*)items[k].surface_state)->mesh.cpu;
+    VkDeviceSize vb, ib;
+    mesh_bytes(c, &vb, &ib);
+    d->mesh_at[k][0] = _tlod_vkb_align(at, d->ring_align);
+    d->mesh_at[k][1] = _tlod_vkb_align(d->mesh_at[k][0] + vb, d->ring_align);
+    at = d->mesh_at[k][1] + ib;
+    if (!c) continue;
+    memcpy(rv->mapped + d->mesh_at[k][0], c->positions, (size_t)vb / 2);
+    memcpy(rv->mapped + d->mesh_at[k][0] + vb / 2, c->normals, (size_t)vb / 2);
+    memcpy(rv->mapped + d->mesh_at[k][1], c->indices, (size_t)ib);
+    d->stats->mesh_bytes += vb + ib;
+  }
+}
+
+/* The ring block of this draw: uniforms, instances, strips, references, strip indices, CPU meshes. */
 static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items, ring_view* rv) {
   VkDeviceSize a = d->ring_align, n = fr->item_count;
   VkDeviceSize ib = sizeof(tlod_gl_instance) * (VkDeviceSize)d->st.instance_count;
@@ -107,7 +171,9 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
   VkDeviceSize rb = sizeof(uint32_t[2]) * (VkDeviceSize)d->st.ref_count;
   rv->instance_bytes = ib ? ib : 16, rv->strip_bytes = sb ? sb : 16;
   VkDeviceSize i0 = _tlod_vkb_align(n * d->uniform_stride, a), s0 = _tlod_vkb_align(i0 + rv->instance_bytes, a);
-  VkDeviceSize r0 = _tlod_vkb_align(s0 + rv->strip_bytes, a), total = r0 + (rb ? rb : 16), base = 0;
+  VkDeviceSize xb = sizeof(uint32_t) * (VkDeviceSize)d->st.index_count;
+  VkDeviceSize r0 = _tlod_vkb_align(s0 + rv->strip_bytes, a), x0 = _tlod_vkb_align(r0 + (rb ? rb : 16), a);
+  VkDeviceSize meshes_from = x0 + (xb ? xb : 16), total = meshes_size(d, fr, items, meshes_from), base = 0;
   VkResult r = _tlod_vkb_ring_take(&d->frames, total, a, &base, d->stats);
   if (r != VK_SUCCESS)
     return tlod_context_fail(d->ctx, r == VK_ERROR_OUT_OF_HOST_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
@@ -116,7 +182,7 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
   const vk_slot* s = &d->frames.slots[d->frames.current];
   rv->buffer = s->ring.buffer;
   rv->mapped = s->ring.mem.mapped;
-  rv->uniforms = base, rv->instances = base + i0, rv->strips = base + s0, rv->refs = base + r0;
+  rv->uniforms = base, rv->instances = base + i0, rv->strips = base + s0, rv->refs = base + r0, rv->indices = base + x0;
   float view[3][3];
   _tlod_view_vectors(fr, view[0], view[1], view[2]);
   for (uint32_t k = 0; k < fr->item_count; k++)
@@ -124,8 +190,10 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
                   (tlod_vk_uniforms*)(rv->mapped + base + k * d->uniform_stride));
   memcpy(rv->mapped + rv->instances, d->st.instances, (size_t)ib);
   memcpy(rv->mapped + rv->strips, d->st.strips, (size_t)sb);
-  write_refs((uint32_t(*)[2])(rv->mapped + rv->refs), d->st.refs, d->st.ref_count);
-  d->stats->vk.upload_bytes = n * sizeof(tlod_vk_uniforms) + ib + sb + rb;
+  memcpy(rv->mapped + rv->refs, d->st.refs, (size_t)rb);
+  write_indices((uint32_t*)(rv->mapped + rv->indices), d->st.indices, d->st.index_count);
+  write_meshes(d, fr, items, rv, base + meshes_from);
+  d->stats->vk.upload_bytes = n * sizeof(tlod_vk_uniforms) + ib + sb + rb + xb;
   return TLOD_SUCCESS;
 }
 
@@ -186,6 +254,9 @@ typedef struct item_rec {
   bool blend;
   const tlod_draw_list* dl;
   const _tlod_stage_range* range;
+  const ring_view* rv;
+  uint32_t k;
+  bool mesh; /* uses_mesh */
 } item_rec;
 
 static void push(vk_device* d, VkCommandBuffer cmd, uint32_t first, uint32_t shape_base, uint32_t corners,
@@ -203,6 +274,7 @@ static void bind(vk_device* d, const item_rec* ir, int kind, bool line) {
 static uint32_t issue_draws(vk_device* d, const item_rec* ir, bool line, uint32_t debug, uint64_t* vertices) {
   uint32_t calls = 0;
   bind(d, ir, VK_KIND_PATTERN, line);
+  vkCmdBindIndexBuffer(ir->cmd, d->pattern_indices.buffer, 0, VK_INDEX_TYPE_UINT32);
   for (uint32_t k = 0; k < ir->dl->bucket_count; k++) {
     const tlod_draw_bucket* bk = &ir->dl->buckets[k];
     uint32_t sh = (uint32_t)bk->shape;
@@ -211,10 +283,13 @@ static uint32_t issue_draws(vk_device* d, const item_rec* ir, bool line, uint32_
     *vertices += (uint64_t)tlod_pattern_vertex_count(bk->shape, bk->level) * bk->count;
     calls++;
   }
-  if (ir->range->ref_count) {
+  if (ir->range->index_count) {
+    /* Indexed: each strip point is shaded once, not once per triangle. */
     bind(d, ir, VK_KIND_STRIP, line);
     push(d, ir->cmd, 0, 0, 0, debug);
-    vkCmdDraw(ir->cmd, ir->range->ref_count, 1, ir->range->ref_first, 0);
+    vkCmdBindVertexBuffers(ir->cmd, 0, 1, &ir->rv->buffer, &ir->rv->refs); /* a mesh item may have bound its own */
+    vkCmdBindIndexBuffer(ir->cmd, ir->rv->buffer, ir->rv->indices, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(ir->cmd, ir->range->index_count, 1, ir->range->index_first, 0, 0);
     *vertices += ir->range->ref_count;
     calls++;
   }
@@ -240,7 +315,24 @@ static uint32_t issue_tess_draws(vk_device* d, const item_rec* ir, bool line, ui
   return calls;
 }
 
+/* CPU-mesh mode: the item's mesh from the ring (write_meshes), one indexed draw. */
+static uint32_t issue_mesh(vk_device* d, const item_rec* ir, bool line, uint32_t debug, uint64_t* vertices) {
+  const tlod_cpu_mesh* c = ir->vs->mesh.cpu;
+  if (!c || !c->triangle_count) return 0;
+  bind(d, ir, VK_KIND_MESH, line);
+  push(d, ir->cmd, 0, 0, 0, debug);
+  const VkDeviceSize* at = d->mesh_at[ir->k];
+  VkBuffer bufs[2] = {ir->rv->buffer, ir->rv->buffer};
+  VkDeviceSize offs[2] = {at[0], at[0] + sizeof(float[3]) * (VkDeviceSize)c->vertex_count};
+  vkCmdBindVertexBuffers(ir->cmd, 0, 2, bufs, offs);
+  vkCmdBindIndexBuffer(ir->cmd, ir->rv->buffer, at[1], VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexed(ir->cmd, 3 * c->triangle_count, 1, 0, 0, 0);
+  *vertices += c->vertex_count;
+  return 1;
+}
+
 static uint32_t issue(vk_device* d, const item_rec* ir, bool line, uint32_t debug, uint64_t* vertices) {
+  if (ir->mesh) return issue_mesh(d, ir, line, debug, vertices);
   return d->hardware ? issue_tess_draws(d, ir, line, debug, vertices) : issue_draws(d, ir, line, debug, vertices);
 }
 
@@ -256,7 +348,10 @@ static void draw_item(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
                  .variant = variant_of(d, it),
                  .blend = it->item->blend == TLOD_BLEND_BLEND,
                  .dl = it->item->draw_list,
-                 .range = &d->st.ranges[k]};
+                 .range = &d->st.ranges[k],
+                 .rv = rv,
+                 .k = k,
+                 .mesh = uses_mesh(d, it)};
   vkCmdSetCullMode(cmd, it->item->cull_back_faces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE);
   vkCmdSetDepthWriteEnable(cmd, ir.blend ? VK_FALSE : VK_TRUE);
   vkCmdSetDepthBiasEnable(cmd, fr->wireframe ? VK_TRUE : VK_FALSE);
@@ -268,7 +363,10 @@ static void draw_item(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
     vkCmdSetDepthBiasEnable(cmd, VK_FALSE);
     calls += issue(d, &ir, true, 4u, &unused);
   }
-  st->triangles = d->hardware ? ir.dl->pattern_triangles : ir.dl->pattern_triangles + ir.range->ref_count / 3;
+  const tlod_cpu_mesh* c = ir.vs->mesh.cpu;
+  st->triangles = ir.mesh       ? (c ? (uint64_t)c->triangle_count + c->folds_skipped : 0u)
+                  : d->hardware ? ir.dl->pattern_triangles
+                                : ir.dl->pattern_triangles + ir.range->index_count / 3;
   st->vertices = vertices;
   st->draw_calls = calls;
   st->cpu_ms += tlod_now_ms() - t0;
@@ -276,7 +374,7 @@ static void draw_item(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_r
 
 /* Viewport flipped (negative height: GL's y up, so the image and the
  * winding are GL's); origin at the framebuffer's top-left (Vulkan's). */
-static void begin_state(vk_device* d, const tlod_draw_desc* fr, const ring_view* rv) {
+static void begin_state(const tlod_draw_desc* fr) {
   VkCommandBuffer cmd = fr->vk.command_buffer;
   const uint32_t* v = fr->viewport;
   VkViewport vp = {(float)v[0], (float)v[1] + (float)v[3], (float)v[2], -(float)v[3], 0.0f, 1.0f};
@@ -284,9 +382,6 @@ static void begin_state(vk_device* d, const tlod_draw_desc* fr, const ring_view*
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &sc);
   vkCmdSetDepthBias(cmd, 1.0f, 0.0f, 1.0f);
-  vkCmdBindIndexBuffer(cmd, d->pattern_indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-  VkDeviceSize off = rv->refs;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &rv->buffer, &off);
 }
 
 /* The first draw of a frame is measured: timestamps around it and the
@@ -317,14 +412,17 @@ tlod_result _tlod_vkb_draw(void* state, const tlod_draw_desc* fr, const _tlod_dr
   _tlod_vkb_frames_begin(&d->frames, fr->vk.frame_index);
   r = prepare(d, fr, items);
   _tlod_vkb_shader_stats(d);
-  if (r == TLOD_SUCCESS) r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "vulkan device", fr, items, item_stats);
+  bool restaged; /* the ring is the slot's: it is written every draw, from the staged arrays */
+  if (r == TLOD_SUCCESS)
+    r = _tlod_stage_items(d->ctx, &d->st, d->patterns, "vulkan device", fr, items, item_stats, &restaged);
   if (r == TLOD_SUCCESS) r = _tlod_stage_order(d->ctx, &d->st, "vulkan device", fr, items, vk_surface_center);
   ring_view rv;
+  if (r == TLOD_SUCCESS) r = evaluate_meshes(d, fr, items);
   if (r == TLOD_SUCCESS) r = upload(d, fr, items, &rv);
   if (r == TLOD_SUCCESS) r = descriptors(d, fr, items, &rv);
   if (r != TLOD_SUCCESS) return r;
   VkCommandBuffer cmd = fr->vk.command_buffer;
-  begin_state(d, fr, &rv);
+  begin_state(fr);
   bool timed = begin_queries(d, cmd);
   for (uint32_t j = 0; j < fr->item_count; j++) {
     uint32_t k = d->st.order[j];

@@ -155,7 +155,7 @@ VkResult _tlod_vkb_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize alig
     vk_buffer ring;
     VkResult r = _tlod_vkb_buffer_create(f->memory, cap,
                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
-                                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
                                          1, &ring);
     if (r != VK_SUCCESS) return r;
     stats->vk.ring_bytes += cap - s->ring.size;

@@ -4,8 +4,8 @@
 
 #include <vulkan/vulkan.h>
 
-#include "device_stage.h"
-#include "layout.h" /* backends/shaders: bindings and buffer structs, shared with GLSL */
+#include "device_mesh.h" /* CPU-mesh mode; device_stage.h */
+#include "layout.h"      /* backends/shaders: bindings and buffer structs, shared with GLSL */
 #include "tesslod/vulkan.h"
 
 #if TLOD_VK_BINDING_PATCHES != TLOD_BINDING_PATCHES || TLOD_VK_BINDING_PATTERNS != TLOD_BINDING_PATTERN ||             \
@@ -102,11 +102,13 @@ enum { VK_TYPES = TLOD_SURFACE_NUM };
 /* As gl_device.c: PLAIN (no texture coordinates, no attributes; made at
  * creation), FULL (texture, a hook's attributes), MASK (FULL + discard). */
 enum { VK_VARIANT_PLAIN, VK_VARIANT_FULL, VK_VARIANT_MASK, VK_VARIANTS };
-enum { VK_KIND_PATTERN, VK_KIND_STRIP, VK_KIND_TESS3, VK_KIND_TESS4, VK_KINDS };
+/* MESH: the CPU-mesh mode's mesh.vert (positions, normals as vertex input). */
+enum { VK_KIND_PATTERN, VK_KIND_STRIP, VK_KIND_TESS3, VK_KIND_TESS4, VK_KIND_MESH, VK_KINDS };
 
 typedef struct vk_modules {
   bool built;
   VkShaderModule pattern_vert, strip_vert, tess_vert[2], tesc[2], tese[2];
+  VkShaderModule mesh_vert; /* PLAIN with cpu_mesh */
 } vk_modules;
 
 typedef struct vk_pipelines {
@@ -123,6 +125,7 @@ typedef struct vk_pipelines {
   VkFormat color_format, depth_format;
   VkSampleCountFlagBits samples;
   bool hardware;
+  bool cpu_mesh;      /* tlod_gpu_eval resolved to OFF: mesh.vert for the PLAIN variant */
   char* hook;         /* the desc's fragment hook, copied; NULL == material.glsl */
   void* shader_cache; /* vk_shader_cache (vk_shader.h) */
   vk_modules modules[VK_TYPES][VK_VARIANTS];
@@ -230,6 +233,9 @@ typedef struct vk_device {
   uint32_t uniform_cap;
   VkDescriptorSet* sets;
   uint32_t set_cap;
+  bool cpu_mesh;              /* tlod_gpu_eval resolved to OFF: PLAIN items draw their CPU mesh */
+  VkDeviceSize (*mesh_at)[2]; /* per item of the draw: ring offsets of its mesh's vertices, indices */
+  uint32_t mesh_at_cap;
 } vk_device;
 
 /* A device surface: the patch records and attributes on the CPU, and one
@@ -246,6 +252,7 @@ typedef struct vk_surface {
   size_t attribute_bytes;
   vk_buffer patches[TLOD_VK_MAX_FRAMES_IN_FLIGHT], attrs[TLOD_VK_MAX_FRAMES_IN_FLIGHT];
   uint32_t dirty;
+  _tlod_item_mesh mesh; /* CPU-mesh mode: evaluated again only when its list changed */
 } vk_surface;
 
 tlod_result _tlod_vkb_surface_create(void* state, const tlod_surface* s, void** surface_state);

@@ -50,6 +50,7 @@ static void destroy_module(vk_pipelines* p, VkShaderModule m) {
 static void destroy_modules(vk_pipelines* p, vk_modules* m) {
   destroy_module(p, m->pattern_vert);
   destroy_module(p, m->strip_vert);
+  destroy_module(p, m->mesh_vert);
   for (int sh = 0; sh < 2; sh++) {
     destroy_module(p, m->tess_vert[sh]);
     destroy_module(p, m->tesc[sh]);
@@ -131,6 +132,8 @@ tlod_result _tlod_vkb_modules(vk_pipelines* p, tlod_surface_type type, int varia
       vertex_module(p, GLSLANG_STAGE_VERTEX, defines, 0, type, true, _tlod_shader_pattern_vert, &m->pattern_vert);
   if (r == TLOD_SUCCESS)
     r = vertex_module(p, GLSLANG_STAGE_VERTEX, defines, 0, type, true, _tlod_shader_strip_vert, &m->strip_vert);
+  if (r == TLOD_SUCCESS && p->cpu_mesh && variant == VK_VARIANT_PLAIN)
+    r = vertex_module(p, GLSLANG_STAGE_VERTEX, defines, 0, type, true, _tlod_shader_mesh_vert, &m->mesh_vert);
   const char* frag[_TLOD_SHADER_FRAGMENT_SOURCES];
   int nf = _tlod_shader_fragment(frag, defines, NULL, p->hook);
   if (r == TLOD_SUCCESS && !p->frag[variant]) r = make_module(p, GLSLANG_STAGE_FRAGMENT, frag, nf, &p->frag[variant]);
@@ -149,8 +152,8 @@ tlod_result _tlod_vkb_modules(vk_pipelines* p, tlod_surface_type type, int varia
  * (cull mode, depth writes, depth bias) is dynamic. */
 typedef struct fixed_state {
   VkPipelineVertexInputStateCreateInfo vertex;
-  VkVertexInputBindingDescription vb;
-  VkVertexInputAttributeDescription va;
+  VkVertexInputBindingDescription vb[2];
+  VkVertexInputAttributeDescription va[2];
   VkPipelineInputAssemblyStateCreateInfo assembly;
   VkPipelineTessellationDomainOriginStateCreateInfo origin;
   VkPipelineTessellationStateCreateInfo tess;
@@ -170,14 +173,24 @@ static bool has_stencil(VkFormat f) {
 }
 
 static void vertex_input(fixed_state* f, int kind) {
-  f->vb = (VkVertexInputBindingDescription){0, sizeof(uint32_t[2]), VK_VERTEX_INPUT_RATE_VERTEX};
-  f->va = (VkVertexInputAttributeDescription){TLOD_ATTRIB_STRIP_REF, 0, VK_FORMAT_R32G32_UINT, 0};
-  bool strip = kind == VK_KIND_STRIP, tess = kind >= VK_KIND_TESS3;
+  uint32_t inputs = kind == VK_KIND_STRIP ? 1u : kind == VK_KIND_MESH ? 2u : 0u;
+  bool tess = kind == VK_KIND_TESS3 || kind == VK_KIND_TESS4;
+  if (kind == VK_KIND_MESH) {
+    /* positions at binding 0, normals at binding 1 (vk_draw.c binds both in the ring) */
+    for (uint32_t b = 0; b < 2; b++) {
+      f->vb[b] = (VkVertexInputBindingDescription){b, sizeof(float[3]), VK_VERTEX_INPUT_RATE_VERTEX};
+      f->va[b] = (VkVertexInputAttributeDescription){b ? TLOD_ATTRIB_MESH_NORMAL : TLOD_ATTRIB_MESH_POSITION, b,
+                                                     VK_FORMAT_R32G32B32_SFLOAT, 0};
+    }
+  } else {
+    f->vb[0] = (VkVertexInputBindingDescription){0, sizeof(uint32_t[2]), VK_VERTEX_INPUT_RATE_VERTEX};
+    f->va[0] = (VkVertexInputAttributeDescription){TLOD_ATTRIB_STRIP_REF, 0, VK_FORMAT_R32G32_UINT, 0};
+  }
   f->vertex = (VkPipelineVertexInputStateCreateInfo){.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
-                                                     .vertexBindingDescriptionCount = strip ? 1 : 0,
-                                                     .pVertexBindingDescriptions = &f->vb,
-                                                     .vertexAttributeDescriptionCount = strip ? 1 : 0,
-                                                     .pVertexAttributeDescriptions = &f->va};
+                                                     .vertexBindingDescriptionCount = inputs,
+                                                     .pVertexBindingDescriptions = f->vb,
+                                                     .vertexAttributeDescriptionCount = inputs,
+                                                     .pVertexAttributeDescriptions = f->va};
   f->assembly = (VkPipelineInputAssemblyStateCreateInfo){
       .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
       .topology = tess ? VK_PRIMITIVE_TOPOLOGY_PATCH_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
@@ -244,8 +257,8 @@ static int stages_of(const vk_modules* m, VkShaderModule frag, int kind, VkPipel
   VkShaderModule mods[4] = {0};
   VkShaderStageFlagBits bits[4] = {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_FRAGMENT_BIT, 0, 0};
   int n = 2;
-  if (kind == VK_KIND_PATTERN || kind == VK_KIND_STRIP) {
-    mods[0] = kind == VK_KIND_PATTERN ? m->pattern_vert : m->strip_vert;
+  if (kind == VK_KIND_PATTERN || kind == VK_KIND_STRIP || kind == VK_KIND_MESH) {
+    mods[0] = kind == VK_KIND_PATTERN ? m->pattern_vert : kind == VK_KIND_STRIP ? m->strip_vert : m->mesh_vert;
     mods[1] = frag;
   } else {
     int sh = kind == VK_KIND_TESS4;
@@ -274,23 +287,23 @@ tlod_result _tlod_vkb_pipeline(vk_pipelines* p, tlod_surface_type type, int vari
   fixed_state f;
   fixed(p, &f, kind, blend, line);
   VkPipelineShaderStageCreateInfo st[4];
-  VkGraphicsPipelineCreateInfo gi = {.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-                                     .pNext = p->render_pass ? NULL : &f.rendering,
-                                     .stageCount =
-                                         (uint32_t)stages_of(&p->modules[type][variant], p->frag[variant], kind, st),
-                                     .pStages = st,
-                                     .pVertexInputState = &f.vertex,
-                                     .pInputAssemblyState = &f.assembly,
-                                     .pTessellationState = kind >= VK_KIND_TESS3 ? &f.tess : NULL,
-                                     .pViewportState = &f.viewport,
-                                     .pRasterizationState = &f.raster,
-                                     .pMultisampleState = &f.multisample,
-                                     .pDepthStencilState = &f.depth,
-                                     .pColorBlendState = &f.blend,
-                                     .pDynamicState = &f.dynamic,
-                                     .layout = p->layout,
-                                     .renderPass = p->render_pass,
-                                     .subpass = p->subpass};
+  VkGraphicsPipelineCreateInfo gi = {
+      .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+      .pNext = p->render_pass ? NULL : &f.rendering,
+      .stageCount = (uint32_t)stages_of(&p->modules[type][variant], p->frag[variant], kind, st),
+      .pStages = st,
+      .pVertexInputState = &f.vertex,
+      .pInputAssemblyState = &f.assembly,
+      .pTessellationState = kind == VK_KIND_TESS3 || kind == VK_KIND_TESS4 ? &f.tess : NULL,
+      .pViewportState = &f.viewport,
+      .pRasterizationState = &f.raster,
+      .pMultisampleState = &f.multisample,
+      .pDepthStencilState = &f.depth,
+      .pColorBlendState = &f.blend,
+      .pDynamicState = &f.dynamic,
+      .layout = p->layout,
+      .renderPass = p->render_pass,
+      .subpass = p->subpass};
   VkResult vr = vkCreateGraphicsPipelines(p->device, p->cache, 1, &gi, p->cb, slot);
   if (vr != VK_SUCCESS) {
     *slot = VK_NULL_HANDLE;

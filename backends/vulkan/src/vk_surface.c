@@ -46,6 +46,7 @@ static void free_surface(vk_device* d, vk_surface* vs) {
   }
   tlod_context_free(d->ctx, vs->records);
   tlod_context_free(d->ctx, vs->attributes);
+  _tlod_item_mesh_free(d->ctx, &vs->mesh);
   tlod_context_free(d->ctx, vs);
 }
 

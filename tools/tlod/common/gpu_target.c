@@ -5,7 +5,7 @@
 #include <string.h>
 
 #if TLOD_HAS_GL || TLOD_HAS_VULKAN
-#include "tlod_platform.h"
+#include "tlod_platform_device.h"
 #endif
 
 bool gpu_backend(const char* backend) { return backend && (!strcmp(backend, "gl") || !strcmp(backend, "vulkan")); }
@@ -37,20 +37,13 @@ void gpu_target_close(tlod_platform* p) { tlod_platform_destroy(p); }
 
 void gpu_target_device_desc(const tlod_platform* p, const char* shader_cache_dir, bool hardware, tlod_device_desc* d) {
   tlod_platform_vk vk;
-  if (!p || !tlod_platform_vk_info(p, &vk)) return;
-  d->vk = (tlod_device_vk_desc){.instance = vk.instance,
-                                .physical_device = vk.physical_device,
-                                .device = vk.device,
-                                .queue = vk.queue,
-                                .queue_family = vk.queue_family,
-                                .frames_in_flight = vk.frames_in_flight,
-                                .color_format = vk.color_format,
-                                .depth_format = vk.depth_format,
-                                .host_query_reset = vk.host_query_reset,
-                                .shader_cache_dir = shader_cache_dir,
-                                .hardware_tessellation = hardware && vk.tessellation,
-                                .surface_types = d->gl.surface_types,
-                                .fragment_hook = d->gl.fragment_hook};
+  tlod_device_vk_desc v = {.shader_cache_dir = shader_cache_dir,
+                           .surface_types = d->gl.surface_types,
+                           .fragment_hook = d->gl.fragment_hook,
+                           .gpu_eval = d->gl.gpu_eval};
+  if (!tlod_platform_vk_device_desc(p, &v) || !tlod_platform_vk_info(p, &vk)) return;
+  v.hardware_tessellation = hardware && vk.tessellation;
+  d->vk = v;
 }
 
 bool gpu_frame_begin(tlod_platform* p, const float clear_rgba[4], tlod_draw_desc* d, char* err, size_t err_size) {

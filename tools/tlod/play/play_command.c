@@ -29,6 +29,7 @@ typedef struct play_session {
   uint8_t* pixels;
   char out_dir[PLAY_PATH_MAX];
   char renderer[512];
+  char gpu_eval[160];      /* describe_gpu_eval */
   char shader_cache[4096]; /* the default folder's name */
   const char* shader_dir;  /* vulkan: the SPIR-V cache folder in use; NULL none */
   char version[32];
@@ -132,6 +133,27 @@ static int alloc_pixels(play_session* p) {
   return CLI_OK;
 }
 
+/* --gpu-eval for the device: auto stays on GPU evaluation for the debug
+ * views the CPU mesh does not carry (levels, strips). */
+static tlod_gpu_eval gpu_eval(const play_options* o) {
+  bool needs_gpu = o->debug_view == PLAY_DEBUG_LEVELS || o->debug_view == PLAY_DEBUG_STRIPS;
+  if (o->gpu_eval == 0 && needs_gpu) return TLOD_GPU_EVAL_ON;
+  return (tlod_gpu_eval)o->gpu_eval;
+}
+
+/* What the device chose and why (summary and trace: "gpu_eval"). */
+static void describe_gpu_eval(play_session* p) {
+  const play_options* o = &p->o;
+  tlod_device_stats st = tlod_device_query_stats(p->scene.device);
+  if (!gpu_backend(p->backend))
+    snprintf(p->gpu_eval, sizeof(p->gpu_eval), "none (the %s backend)", p->backend);
+  else if (o->gpu_eval == 0 && gpu_eval(o) == TLOD_GPU_EVAL_ON)
+    snprintf(p->gpu_eval, sizeof(p->gpu_eval), "on (auto: --debug-view %s needs it)",
+             play_debug_view_names[o->debug_view]);
+  else
+    snprintf(p->gpu_eval, sizeof(p->gpu_eval), "%s (%s)", st.cpu_mesh ? "off" : "on", st.gpu_eval_reason);
+}
+
 /* Everything that can fail on bad input happens before the run folder exists. */
 static int set_up(play_session* p) {
   const play_options* o = &p->o;
@@ -147,7 +169,8 @@ static int set_up(play_session* p) {
   p->backend = o->backend ? o->backend : "gl";
   if (rc == CLI_OK && gpu_backend(p->backend)) p->platform = play_platform_open(o, &rc, &p->backend);
   if (rc == CLI_OK && !strcmp(p->backend, "vulkan")) rc = shader_cache(p);
-  if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, p->platform, p->shader_dir);
+  if (rc == CLI_OK) rc = play_scene_create_device(&p->scene, p->backend, p->platform, p->shader_dir, gpu_eval(o));
+  if (rc == CLI_OK) describe_gpu_eval(p);
   if (rc == CLI_OK && o->screenshot_every) rc = alloc_pixels(p);
   if (rc == CLI_OK) rc = play_server_start(o, &p->server); /* a port in use fails before the folder is made */
   if (rc == CLI_OK) rc = play_make_run_folder(o, p->out_dir, sizeof(p->out_dir), &p->lock_fd);
@@ -175,6 +198,7 @@ static play_trace trace_of(const play_session* p, const play_mode* m, uint32_t f
                       .mode = m->name,
                       .backend = p->backend,
                       .renderer = p->renderer,
+                      .gpu_eval = p->gpu_eval,
                       .surface = tool_surface_name(p->scene.surface_type),
                       .path = p->path.name,
                       .path_duration_s = camera_path_duration(&p->path),

@@ -14,6 +14,7 @@
 #include "tool_names.h"
 
 const char* const play_debug_view_names[] = {"none", "levels", "silhouette", "strips", "wireframe", NULL};
+const char* const play_gpu_eval_names[] = {"auto", "on", "off", NULL};
 
 void play_usage(FILE* f) {
   fprintf(
@@ -57,6 +58,10 @@ void play_usage(FILE* f) {
       "  --screenshot-every N  gl, vulkan: write screenshots/frame_NNNNN.png every N frames (from frame 0)\n"
       "  --debug-view V      gl, vulkan: levels (colour by level) | silhouette | strips (strips in pink)\n"
       "                      | wireframe (edges over the shading) | none (default); in trace and screenshots\n"
+      "  --gpu-eval E        gl, vulkan: auto (default: off on llvmpipe and other software rasterisers, else on)\n"
+      "                      | on (surfaces evaluated in the vertex shader) | off (CPU mesh: the draw list\n"
+      "                      evaluated on the CPU, one indexed draw per object); auto is on with --debug-view\n"
+      "                      levels or strips (the CPU mesh carries neither)\n"
       "  --window            gl, vulkan: draw into a GLFW window (needs DISPLAY) instead of headless\n"
       "  --resize-at N:WxH   resize the framebuffer and viewport to WxH before frame N (every mode)\n"
       "  --validate          vulkan: Vulkan validation layer (with synchronization validation) on; any\n"
@@ -214,6 +219,11 @@ static int parse_output(int argc, char** argv, int* i, play_options* o) {
     o->debug_view = (play_debug_view)e;
     return CLI_OK;
   }
+  if (!strcmp(a, "--gpu-eval")) {
+    if (!(v = cli_value(argc, argv, i)) || (e = cli_parse_enum(a, v, play_gpu_eval_names)) < 0) return CLI_USAGE;
+    o->gpu_eval = e;
+    return CLI_OK;
+  }
   if (!strcmp(a, "--resize-at")) return cli_usage_unless((v = cli_value(argc, argv, i)) && parse_resize(a, v, o));
   if (!strcmp(a, "--shader-cache")) {
     if (!(o->shader_cache = cli_value(argc, argv, i))) return CLI_USAGE;
@@ -263,6 +273,8 @@ static int check(const play_options* o) {
   if (!image && o->debug_view)
     return cli_error(CLI_USAGE, "--debug-view: the %s backend draws no image (needs --backend gl or vulkan)",
                      o->backend);
+  if (!image && o->gpu_eval)
+    return cli_error(CLI_USAGE, "--gpu-eval: the %s backend draws no image (needs --backend gl or vulkan)", o->backend);
   if (!image && o->window)
     return cli_error(CLI_USAGE, "--window: the %s backend draws no image (needs --backend gl or vulkan)", o->backend);
   if (o->validate && (!o->backend || strcmp(o->backend, "vulkan")))

@@ -32,6 +32,8 @@ typedef enum play_debug_view {
 } play_debug_view;
 /* "none", "levels", "silhouette", "strips", "wireframe", NULL: by play_debug_view. */
 extern const char* const play_debug_view_names[];
+/* "auto", "on", "off", NULL: --gpu-eval, in tlod_gpu_eval's order. */
+extern const char* const play_gpu_eval_names[];
 
 typedef struct play_options {
   const char* scene;   /* NULL: the built-in demo scene */
@@ -56,6 +58,7 @@ typedef struct play_options {
   bool loop;
   uint32_t screenshot_every;
   play_debug_view debug_view;
+  int gpu_eval; /* --gpu-eval: 0 auto, 1 on, 2 off (tlod_gpu_eval's order, play_gpu_eval_names) */
   bool window;
   bool validate;            /* vulkan: the validation layer on; any message fails the run */
   const char* shader_cache; /* vulkan: --shader-cache DIR or "off"; NULL: the default folder */

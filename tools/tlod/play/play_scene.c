@@ -184,14 +184,15 @@ int play_scene_load(const play_options* o, play_scene* s) {
   return CLI_OK;
 }
 
-int play_scene_create_device(play_scene* s, const char* backend, tlod_platform* platform,
-                             const char* shader_cache_dir) {
+int play_scene_create_device(play_scene* s, const char* backend, tlod_platform* platform, const char* shader_cache_dir,
+                             tlod_gpu_eval gpu_eval) {
   play_scene_destroy_device(s);
   /* One surface type per run: the gl device links its two programs only. */
-  tlod_device_desc d = {.backend = backend,
-                        .patterns = s->patterns,
-                        .gl = {.surface_types = 1u << s->surface_type, .fragment_hook = s->field.hook},
-                        .label = "tlod play"};
+  tlod_device_desc d = {
+      .backend = backend,
+      .patterns = s->patterns,
+      .gl = {.surface_types = 1u << s->surface_type, .fragment_hook = s->field.hook, .gpu_eval = gpu_eval},
+      .label = "tlod play"};
   gpu_target_device_desc(platform, shader_cache_dir, false, &d);
   if (tlod_device_create(s->ctx, &d, &s->device) != TLOD_SUCCESS)
     return cli_error(CLI_FAILED, "backend %s: %s", backend, tlod_context_last_error(s->ctx));

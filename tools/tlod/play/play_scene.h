@@ -116,7 +116,8 @@ typedef struct tlod_platform tlod_platform;
 /* The run's device (programs and patterns made once), one device surface
  * per surface and one device texture per image. vulkan: on the platform's
  * device (NULL otherwise), SPIR-V cached in shader_cache_dir (NULL: none). */
-int play_scene_create_device(play_scene* s, const char* backend, tlod_platform* platform, const char* shader_cache_dir);
+int play_scene_create_device(play_scene* s, const char* backend, tlod_platform* platform, const char* shader_cache_dir,
+                             tlod_gpu_eval gpu_eval);
 /* The device draws with the platform's context: destroy it while it exists. */
 void play_scene_destroy_device(play_scene* s);
 

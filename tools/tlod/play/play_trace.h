@@ -120,6 +120,7 @@ typedef struct play_trace {
   const char* mode;    /* "adaptive", "uniform:3", "flat" */
   const char* backend; /* "cpu", "gl", "null" or "vulkan" */
   const char* renderer;
+  const char* gpu_eval; /* gl: "on (why)" / "off (why)": where the surfaces were evaluated (--gpu-eval) */
   const char* surface;
   const char* policy;    /* adaptive: the policy; uniform / flat: "error" */
   float epsilon;         /* as given to the scheduler */

@@ -106,6 +106,7 @@ static bool summary_json(FILE* f, const void* data) {
   json_string(&w, "scene", t0->scene);
   json_string(&w, "backend", t0->backend);
   json_string(&w, "renderer", t0->renderer);
+  json_string(&w, "gpu_eval", t0->gpu_eval ? t0->gpu_eval : "");
   json_string(&w, "surface", t0->surface);
   json_string(&w, "path", t0->path);
   json_string(&w, "animation", t0->animation ? t0->animation : "");

@@ -23,6 +23,7 @@ void play_print_summary(FILE* f, const play_trace* const* runs, uint32_t run_cou
   fprintf(f, "), %s surface, path %s (%.3g s%s), %ux%u, %g fps fixed step\n", t0->surface, t0->path,
           t0->path_duration_s, t0->loop ? ", looped" : "", t0->width, t0->height, t0->fps);
   fprintf(f, "backend %s: %s\n", t0->backend, t0->renderer);
+  if (t0->gpu_eval && *t0->gpu_eval) fprintf(f, "gpu eval: %s\n", t0->gpu_eval);
   if (t0->resize_width)
     fprintf(f, "resized to %ux%u before frame %u\n", t0->resize_width, t0->resize_height, t0->resize_frame);
   fprintf(f, "%-12s %11s | frame ms: %7s %7s %7s %7s %7s | %6s | %9s %9s | %10s\n", "mode", "frames", "mean", "p50",

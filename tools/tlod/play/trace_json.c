@@ -47,6 +47,7 @@ void trace_json_settings(json_writer* w, const play_trace* t) {
   json_string(w, "mode", t->mode);
   json_string(w, "backend", t->backend);
   json_string(w, "renderer", t->renderer);
+  json_string(w, "gpu_eval", t->gpu_eval ? t->gpu_eval : "");
   json_string(w, "surface", t->surface);
   json_string(w, "policy", t->policy);
   json_number(w, "epsilon_px", t->epsilon);

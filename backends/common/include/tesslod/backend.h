@@ -115,6 +115,26 @@ typedef enum tlod_debug_view {
 /* Device                                                                   */
 /* ------------------------------------------------------------------------ */
 
+/* Where the "gl" device evaluates the surfaces it draws. */
+typedef enum tlod_gpu_eval {
+  /* AUTO: OFF on a software rasteriser (GL_RENDERER naming llvmpipe,
+   * softpipe or SwiftShader), where a vertex costs CPU time and each
+   * pattern vertex's evaluation is that much work again; else ON. */
+  TLOD_GPU_EVAL_DEFAULT = 0,
+  TLOD_GPU_EVAL_ON,  /* patterns evaluated in the vertex shader (tesslod/gl.h) */
+  TLOD_GPU_EVAL_OFF, /* CPU mesh: each item's draw list evaluated by tlod_cpu_tessellate_into
+                        (welded, with normals), uploaded, one indexed draw; skipped while the
+                        list, its surface and mesh are unchanged (tlod_device_stats.cpu_mesh) */
+  TLOD_GPU_EVAL_NUM,
+  _TLOD_GPU_EVAL_FORCE_U32 = 0x7FFFFFFF
+} tlod_gpu_eval;
+
+/* "default", "on", "off" (tlod_gpu_eval_from_name: also "auto" == DEFAULT);
+ * "?" past the enum. */
+TLOD_API const char* tlod_gpu_eval_name(tlod_gpu_eval e);
+/* TLOD_GPU_EVAL_NUM for an unknown name or NULL. */
+TLOD_API tlod_gpu_eval tlod_gpu_eval_from_name(const char* name);
+
 /* Options of the "gl" device (ignored by the others). */
 typedef struct tlod_device_gl_desc {
   /* Draw with GL_PATCHES and tessellation shaders instead of refinement
@@ -139,6 +159,12 @@ typedef struct tlod_device_gl_desc {
    * carrying the driver's log with the hook's own line numbers
    * ("fragment_hook:LINE"). Copied: need not outlive the call. */
   const char* fragment_hook;
+  /* >= TLOD_GPU_EVAL_NUM is TLOD_ERROR_INVALID_ARGUMENT. With OFF (or AUTO
+   * resolving to it), items whose fragments read a texture or (a hook)
+   * attributes, MASK items and hardware_tessellation still draw with GPU
+   * evaluation; the CPU mesh carries no level or strip per vertex (the
+   * levels and strips debug views show level 0, no strip). */
+  tlod_gpu_eval gpu_eval;
 } tlod_device_gl_desc;
 
 /* Options of the "vulkan" device (ignored by the others); tesslod/vulkan.h
@@ -167,6 +193,8 @@ typedef struct tlod_device_vk_desc {
   bool hardware_tessellation;   /* as tlod_device_gl_desc (needs the tessellationShader feature) */
   uint32_t surface_types;       /* as tlod_device_gl_desc */
   const char* fragment_hook;    /* as tlod_device_gl_desc: GLSL 450 defining vec4 tlod_shade(tlod_fragment f) */
+  tlod_gpu_eval gpu_eval;       /* as tlod_device_gl_desc; AUTO: OFF on a VK_PHYSICAL_DEVICE_TYPE_CPU device
+                                   (lavapipe); the CPU mesh goes through the frame's ring every draw */
 } tlod_device_vk_desc;
 
 typedef struct tlod_device_desc {
@@ -370,7 +398,8 @@ typedef struct tlod_device_gl_stats {
                                upload of a mesh without attributes */
   double create_ms;         /* device creation: programs linked, patterns uploaded */
   double surface_upload_ms; /* since creation: time in surface create + update */
-  uint32_t buffer_streams;  /* per-draw buffer uploads of the last draw (instances, strips, strip refs) */
+  uint32_t buffer_streams;  /* per-draw buffer uploads of the last draw (instances, strips, strip refs, strip
+                               indices); 0 when its draw lists were those of the draw before */
 } tlod_device_gl_stats;
 
 /* "vulkan" only (zero elsewhere). */
@@ -404,6 +433,13 @@ typedef struct tlod_device_stats {
   uint64_t draws, items_drawn, triangles_drawn;
   uint32_t textures_live;
   uint64_t textures_created, textures_destroyed, texture_bytes; /* bytes: width * height * 4 of those created */
+  /* "gl" and "vulkan": the CPU-mesh mode (tlod_gpu_eval), whether the
+   * device resolved to it, why, and the last draw's work in it. */
+  bool cpu_mesh;
+  char gpu_eval_reason[96];  /* e.g. "auto: GL_RENDERER llvmpipe (LLVM 15.0.6, 256 bits) is a software rasteriser" */
+  uint32_t mesh_evaluations; /* items of the last draw evaluated and uploaded again (others reused theirs) */
+  double mesh_eval_ms;       /* CPU time of those evaluations, last draw */
+  uint64_t mesh_bytes;       /* vertex + index bytes uploaded by the last draw */
   tlod_device_gl_stats gl;
   tlod_device_vk_stats vk;
 } tlod_device_stats;

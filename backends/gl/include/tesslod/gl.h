@@ -9,8 +9,24 @@
  *   each patch is drawn as an instance of its level's refinement pattern,
  *   every vertex evaluating the surface in the vertex shader through the
  *   canonical edge function; connection strips fill level changes; vertices
- *   first inserted at the drawn level geomorph. Timer and primitive queries
- *   are read a few draws late (never stalling).
+ *   first inserted at the drawn level geomorph. Strips are drawn indexed
+ *   (each strip point shaded once). A draw whose items' draw lists are
+ *   those of the previous draw (same list, generation and surface, and the
+ *   same instances, strips and levels byte for byte) uploads nothing
+ *   (stats.gl.buffer_streams 0). Timer and primitive queries are read a few
+ *   draws late (never stalling).
+ *   CPU-mesh mode (desc.gl.gpu_eval OFF, or AUTO on llvmpipe, softpipe or
+ *   SwiftShader by GL_RENDERER; stats.cpu_mesh and gpu_eval_reason say
+ *   which and why): each PLAIN item's draw list is evaluated on the CPU by
+ *   tlod_cpu_tessellate_into (welded, with normals) into its device
+ *   surface's mesh, uploaded and drawn with one glDrawElements (two with
+ *   wireframe) through mesh.vert; evaluated and uploaded again only when the
+ *   list, the surface generation or the mesh generation changed
+ *   (stats.mesh_evaluations, mesh_eval_ms, mesh_bytes). The image matches
+ *   the vertex-shader path within tests/gl/gl_parity_test.c's tolerances.
+ *   Not carried: level and strip flag per vertex (the levels and strips
+ *   debug views show level 0, no strip); textured, attribute-reading (with
+ *   a hook) and MASK items and hardware_tessellation evaluate on the GPU.
  *
  * DOES NOT
  *   - create or make current a context, or a framebuffer: the engine's (or
@@ -65,10 +81,14 @@
  *                  so the default look carries none of them;
  *     buffers      pattern vertices (binding TLOD_GL_BINDING_PATTERNS) and
  *                  pattern indices (GL_STATIC_DRAW, uploaded once);
- *                  instances, strips, strip references (GL_STREAM_DRAW,
- *                  refilled every draw);
+ *                  instances, strips, strip references, strip indices
+ *                  (GL_STREAM_DRAW, refilled by a draw whose lists changed);
  *     vertex arrays  one for patterns (element buffer: the pattern
- *                  indices), one for strips (attribute 0: strip references);
+ *                  indices), one for strips (attribute 0: strip references;
+ *                  element buffer: the strip indices);
+ *     CPU-mesh mode: one mesh program per linked surface type (PLAIN), and
+ *                  per device surface, at its first draw, a vertex array and
+ *                  two buffers (positions then normals; indices, GL_STREAM_DRAW);
  *     queries      4 GL_TIME_ELAPSED + 4 GL_PRIMITIVES_GENERATED (a ring).
  *   Per device surface: one buffer of patch records and one of attributes
  *   (tlod_mesh_patch_attributes(); 16 bytes for a mesh without any), both

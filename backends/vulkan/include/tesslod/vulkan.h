@@ -12,7 +12,11 @@
  *   SPIR-V disk cache; the same staging, draw order, variants, hardware
  *   batches, wireframe and debug views): each patch an instance of its
  *   level's refinement pattern, connection strips, geomorphs, attributes,
- *   textures, materials and blend modes. It records into the command buffer
+ *   textures, materials and blend modes, strips drawn indexed, and the
+ *   CPU-mesh mode (desc.vk.gpu_eval, as tesslod/gl.h; AUTO is OFF on a
+ *   VK_PHYSICAL_DEVICE_TYPE_CPU device or one named llvmpipe / lavapipe:
+ *   the mesh is evaluated again only when its list changed and copied into
+ *   the frame's ring every draw). It records into the command buffer
  *   the draw names, inside the engine's rendering (a render pass instance of
  *   desc.vk.render_pass / subpass, or dynamic rendering with the device's
  *   colour and depth formats). The image is GL's: the device multiplies
