@@ -149,7 +149,8 @@ typedef struct tlod_scheduler_desc {
    * every SIMD level and thread count). The default fast path fuses the
    * silhouette, metric, level and morph stages into SIMD passes over copies
    * of the mesh and surface it makes at the first update and again when
-   * their generations move (docs/design.md 3.13). */
+   * their generations move (docs/design.md 3.13): 32 + 4 (max_level + 1)
+   * bytes per patch and 28 per vertex, from the context's allocator. */
   bool reference_path;
   const char* label; /* default "scheduler" */
 } tlod_scheduler_desc;
