@@ -54,15 +54,26 @@ void _tlod_pn_build(const _tlod_corners* c, _tlod_pn_patch* out) {
   v3_store(out->n[2], mid_normal(p[2], n[2], p[0], n[0]));
 }
 
-void _tlod_pn_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm) {
+void _tlod_pn_edge_build(v3 pa, v3 na, v3 pb, v3 nb, _tlod_pn_edge_ctl* e) {
+  e->pa = pa, e->na = na, e->pb = pb, e->nb = nb;
+  e->bab = tangent_point(pa, na, pb);
+  e->bba = tangent_point(pb, nb, pa);
+  e->nab = mid_normal(pa, na, pb, nb);
+}
+
+void _tlod_pn_edge_at(const _tlod_pn_edge_ctl* e, float t, v3* pos, v3* nrm) {
   float s = 1.0f - t;
-  v3 bab = tangent_point(pa, na, pb), bba = tangent_point(pb, nb, pa);
   float k0 = s * s * s, k1 = 3.0f * s * s * t, k2 = 3.0f * s * t * t, k3 = t * t * t;
-  *pos = v3_add(v3_add(v3_add(v3_scale(pa, k0), v3_scale(bab, k1)), v3_scale(bba, k2)), v3_scale(pb, k3));
-  v3 nab = mid_normal(pa, na, pb, nb);
-  v3 n = v3_add(v3_add(v3_scale(na, s * s), v3_scale(nab, s * t)), v3_scale(nb, t * t));
+  *pos = v3_add(v3_add(v3_add(v3_scale(e->pa, k0), v3_scale(e->bab, k1)), v3_scale(e->bba, k2)), v3_scale(e->pb, k3));
+  v3 n = v3_add(v3_add(v3_scale(e->na, s * s), v3_scale(e->nab, s * t)), v3_scale(e->nb, t * t));
   v3 unit = v3_normalize(n);
-  *nrm = (unit.x == 0.0f && unit.y == 0.0f && unit.z == 0.0f) ? na : unit;
+  *nrm = (unit.x == 0.0f && unit.y == 0.0f && unit.z == 0.0f) ? e->na : unit;
+}
+
+void _tlod_pn_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm) {
+  _tlod_pn_edge_ctl e;
+  _tlod_pn_edge_build(pa, na, pb, nb, &e);
+  _tlod_pn_edge_at(&e, t, pos, nrm);
 }
 
 static v3 ld(const _tlod_pn_patch* p, int i) { return v3_load(p->b[i]); }

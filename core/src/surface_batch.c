@@ -137,3 +137,42 @@ tlod_result tlod_surface_eval_interior(const tlod_surface* s, uint32_t patch, tl
   }
   return TLOD_SUCCESS;
 }
+
+/* PN: the edge's control points once, then each point as _tlod_pn_edge. */
+static void pn_edge_points(const tlod_surface* s, uint32_t a, uint32_t b, bool forward, uint32_t count,
+                           const uint32_t* param, float nn, float* positions, float* normals) {
+  const tlod_mesh* m = s->mesh;
+  _tlod_pn_edge_ctl e;
+  _tlod_pn_edge_build(v3_load(m->positions[a]), v3_load(m->normals[a]), v3_load(m->positions[b]),
+                      v3_load(m->normals[b]), &e);
+  for (uint32_t k = 0; k < count; k++) {
+    float t_end = (float)param[k] / nn;
+    v3 p, n;
+    _tlod_pn_edge_at(&e, forward ? t_end : 1.0f - t_end, &p, &n);
+    v3_store(positions + 3 * (size_t)k, p);
+    if (normals) v3_store(normals + 3 * (size_t)k, n);
+  }
+}
+
+tlod_result tlod_surface_eval_edge(const tlod_surface* s, uint32_t patch, uint32_t edge, uint32_t grid_log2,
+                                   uint32_t count, const uint32_t* param, float* positions, float* normals) {
+  if (!s || patch >= s->patch_count || grid_log2 > TLOD_GRID_MAX_LOG2) return TLOD_ERROR_INVALID_ARGUMENT;
+  const tlod_mesh* m = s->mesh;
+  uint32_t n = m->face_corners[patch], nn = 1u << grid_log2;
+  if (edge >= n) return TLOD_ERROR_INVALID_ARGUMENT;
+  if (count == 0) return TLOD_SUCCESS;
+  if (!param || !positions) return TLOD_ERROR_INVALID_ARGUMENT;
+  for (uint32_t k = 0; k < count; k++)
+    if (param[k] == 0 || param[k] >= nn) return TLOD_ERROR_INVALID_ARGUMENT;
+  uint32_t a = m->faces[patch][edge], b = m->faces[patch][(edge + 1) % n];
+  bool forward = m->weld_id[a] < m->weld_id[b];
+  if (s->desc.type == TLOD_SURFACE_PN && !s->quad) {
+    pn_edge_points(s, forward ? a : b, forward ? b : a, forward, count, param, (float)nn, positions, normals);
+    return TLOD_SUCCESS;
+  }
+  float unused[3];
+  for (uint32_t k = 0; k < count; k++)
+    _tlod_patch_edge_point(s, patch, edge, (float)param[k] / (float)nn, positions + 3 * (size_t)k,
+                           normals ? normals + 3 * (size_t)k : unused);
+  return TLOD_SUCCESS;
+}

@@ -53,6 +53,13 @@ void _tlod_flat_eval(const _tlod_corners* c, float u, float v, tlod_surface_poin
 /* PN triangles (Vlachos et al. 2001), bound per Schwarz et al. 2006. */
 void _tlod_pn_build(const _tlod_corners* c, _tlod_pn_patch* out);
 void _tlod_pn_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm);
+/* _tlod_pn_edge in two steps: the edge's cubic control points and mid-edge
+ * normal once (an edge's many points), then a point at t; bitwise the same. */
+typedef struct _tlod_pn_edge_ctl {
+  v3 pa, na, pb, nb, bab, bba, nab;
+} _tlod_pn_edge_ctl;
+void _tlod_pn_edge_build(v3 pa, v3 na, v3 pb, v3 nb, _tlod_pn_edge_ctl* e);
+void _tlod_pn_edge_at(const _tlod_pn_edge_ctl* e, float t, v3* pos, v3* nrm);
 /* Normals blend the corner normals of c with the patch's mid-edge normals. */
 void _tlod_pn_eval(const _tlod_pn_patch* patch, const _tlod_corners* c, float u, float v, uint32_t flags,
                    tlod_surface_point* out);

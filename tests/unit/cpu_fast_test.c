@@ -232,11 +232,35 @@ TEST(test_attributes) {
   free(uv);
 }
 
+/* The batch evaluations refuse what tlod_surface_eval_grid() refuses, and
+ * an edge batch gives the grid evaluation's values bitwise. */
+TEST(test_batch_arguments) {
+  shape s = shape_icosphere(0);
+  scene sc;
+  CHECK(scene_make(&sc, &s, NULL, 0, (tlod_surface_desc){.type = TLOD_SURFACE_PN}));
+  float u = 0.25f, v = 0.25f, pos[9], nrm[9], ref_pos[9], ref_nrm[9];
+  uint32_t bad = 16, param[3] = {1, 7, 15};
+  uint16_t ij[3][2] = {{15, 1}, {9, 7}, {1, 15}}; /* edge 0 of a triangle: i + j = 16, weight of j */
+  CHECK(tlod_surface_eval_interior(NULL, 0, TLOD_SIMD_SCALAR, 1, &u, &v, pos, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_interior(sc.surf, 99, TLOD_SIMD_SCALAR, 1, &u, &v, pos, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_interior(sc.surf, 0, TLOD_SIMD_SCALAR, 1, NULL, &v, pos, NULL) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edge(sc.surf, 0, 3, 4, 1, param, pos, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edge(sc.surf, 0, 0, 4, 1, &bad, pos, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edge(sc.surf, 0, 0, 16, 1, param, pos, NULL) == TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edge(sc.surf, 0, 0, 4, 3, param, pos, nrm) == TLOD_SUCCESS);
+  CHECK(tlod_surface_eval_grid(sc.surf, 0, 4, &ij[0][0], sizeof(ij[0]), 3, ref_pos, ref_nrm) == TLOD_SUCCESS);
+  CHECK(memcmp(pos, ref_pos, sizeof pos) == 0 && memcmp(nrm, ref_nrm, sizeof nrm) == 0);
+  scene_free(&sc);
+  shape_free(&s);
+}
+
 int main(void) {
   RUN(test_flat);
   RUN(test_phong);
   RUN(test_pn);
   RUN(test_quadratic);
   RUN(test_attributes);
+  RUN(test_batch_arguments);
   TEST_END();
 }

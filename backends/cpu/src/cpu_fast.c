@@ -3,7 +3,8 @@
  * template; per patch the interior points in one vectorised call
  * (tlod_surface_eval_interior), written straight into the output (their
  * ids are consecutive), the patch's owned edges through the canonical edge
- * function, nothing else. Bitwise the reference (cpu_tessellate.c): the
+ * function (tlod_surface_eval_edge: PN control points once per edge),
+ * nothing else. Bitwise the reference (cpu_tessellate.c): the
  * same functions give every value, only who computes what and how often
  * changes. */
 #include <string.h>
@@ -17,10 +18,12 @@ static bool alloc_table(tess* t, level_table* lt, uint32_t idx_count) {
   lt->int_v = tlod_context_alloc(t->ctx, sizeof(float) * ni);
   lt->int_uv = tlod_context_alloc(t->ctx, sizeof(float[2]) * ni);
   lt->bnd_x = tlod_context_alloc(t->ctx, sizeof(uint32_t) * nb);
+  lt->bnd_param = tlod_context_alloc(t->ctx, sizeof(uint32_t) * nb);
   lt->bnd_ij = tlod_context_alloc(t->ctx, sizeof(uint16_t[2]) * nb);
   lt->tmpl = tlod_context_alloc(t->ctx, sizeof(uint32_t) * (idx_count + 1u));
   lt->slot_k = tlod_context_alloc(t->ctx, sizeof(uint32_t) * (idx_count + 1u));
-  return lt->int_x && lt->int_u && lt->int_v && lt->int_uv && lt->bnd_x && lt->bnd_ij && lt->tmpl && lt->slot_k;
+  return lt->int_x && lt->int_u && lt->int_v && lt->int_uv && lt->bnd_x && lt->bnd_param && lt->bnd_ij && lt->tmpl &&
+         lt->slot_k;
 }
 
 /* Boundary vertices by kind (a counting sort: corners 0..3, edges 0..3). */
@@ -36,6 +39,7 @@ static void sort_boundary(level_table* lt, const tlod_pattern_vertex* pv) {
     if (lt->kind[x] == KIND_INTERIOR) continue;
     uint32_t k = at[lt->kind[x]]++;
     lt->bnd_x[k] = x;
+    lt->bnd_param[k] = lt->param[x];
     lt->bnd_ij[k][0] = pv[x].i;
     lt->bnd_ij[k][1] = pv[x].j;
   }
@@ -69,7 +73,8 @@ tlod_result _tlod_cpu_fast_table(tess* t, tlod_pattern_shape shape, uint32_t lev
 }
 
 void _tlod_cpu_fast_free(tess* t, level_table* lt) {
-  void* arrays[] = {lt->int_x, lt->int_u, lt->int_v, lt->int_uv, lt->bnd_x, lt->bnd_ij, lt->tmpl, lt->slot_k};
+  void* arrays[] = {lt->int_x,     lt->int_u,  lt->int_v, lt->int_uv, lt->bnd_x,
+                    lt->bnd_param, lt->bnd_ij, lt->tmpl,  lt->slot_k};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(t->ctx, arrays[i]);
 }
@@ -93,7 +98,7 @@ static void eval_direct(tess* t, uint32_t f, const level_table* lt, scratch* w) 
   for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
     uint32_t slot = f * 4 + e, a = lt->edge_at[e], n = lt->edge_at[e + 1] - a;
     if (t->slot_owner[slot] != slot || n == 0) continue;
-    tlod_surface_eval_grid(t->s, f, t->lmax, lt->bnd_ij[a], sizeof(lt->bnd_ij[0]), n, &w->cpos[0][0],
+    tlod_surface_eval_edge(t->s, f, e, t->lmax, n, lt->bnd_param + a, &w->cpos[0][0],
                            o->normals ? &w->cnrm[0][0] : NULL);
     uint32_t base = t->slot_base[slot] - 1, shift = t->lmax - t->slot_level[slot];
     for (uint32_t k = 0; k < n; k++) {

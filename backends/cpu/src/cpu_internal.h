@@ -27,7 +27,7 @@ typedef struct level_table {
   float *int_u, *int_v;
   float (*int_uv)[2];
   uint32_t nb, edge_at[5];
-  uint32_t* bnd_x;
+  uint32_t *bnd_x, *bnd_param;
   uint16_t (*bnd_ij)[2];
   uint32_t *tmpl, *slot_k, nslot;
 } level_table;

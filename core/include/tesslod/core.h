@@ -779,6 +779,21 @@ TLOD_API tlod_result tlod_surface_eval_interior(const tlod_surface* surface, uin
                                                 uint32_t count, const float* u, const float* v, float* positions,
                                                 float* normals);
 
+/* The batch form of tlod_surface_eval_grid() for points on one edge of a
+ * patch: point k at param[k] / 2^grid_log2, the weight of the edge's end
+ * corner ((edge + 1) % n), as tlod_grid_point_kind() gives it. Bitwise the
+ * values tlod_surface_eval_grid() gives there (the canonical edge
+ * function); the edge's own data (PN: its cubic control points and
+ * mid-edge normal) is computed once for all points. positions and normals:
+ * 3 floats per point, normals may be NULL. Thread-safe.
+ * TLOD_ERROR_INVALID_ARGUMENT, nothing written: NULL surface, patch >= the
+ * patch count, edge >= the face's corner count, grid_log2 > 15, param or
+ * positions NULL with count > 0, a param 0 or >= 2^grid_log2 (a corner or
+ * off the edge). */
+TLOD_API tlod_result tlod_surface_eval_edge(const tlod_surface* surface, uint32_t patch, uint32_t edge,
+                                            uint32_t grid_log2, uint32_t count, const uint32_t* param, float* positions,
+                                            float* normals);
+
 /* Attributes at count grid points of one patch, with the grid and ij
  * arguments of tlod_surface_eval_grid(): corners are the vertex's values
  * exactly, edge points come from the canonical edge function (bitwise equal
