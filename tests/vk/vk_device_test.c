@@ -287,6 +287,9 @@ TEST(test_destroy_frees_everything) {
          (unsigned long long)st.gpu_draw);
   CHECK(covered_pixels(rgba, W, H) > W * H / 10 && coloured_pixels(rgba) > 20);
   CHECK(st.vk.descriptor_sets == 3 && st.vk.upload_bytes > 3 * 256 && st.vk.ring_bytes >= st.vk.upload_bytes);
+  /* The same scene in a slot that drew it before: its sets are kept, none written again. */
+  CHECK_MSG(st.vk.descriptor_writes == 0, "frame 4 wrote %u descriptor sets (the same scene as frame 2 in its slot)",
+            st.vk.descriptor_writes);
   CHECK(st.items == 3 && st.draw_calls > 3 && st.triangles > 0);
   /* Pattern buffers, the white texture, the checker, 2 rings and 2 x 2 x 2
    * surface buffers (11 objects) live in a few suballocated blocks. */

@@ -147,9 +147,12 @@ static inline _tlod_stage_key _tlod_stage_key_of(const _tlod_draw_ref* it) {
   return (_tlod_stage_key){dl, dl->generation, it->surface, dl->instance_count, dl->strip_count, dl->patch_count};
 }
 
+/* The generation is not compared: a list whose update left it as it was
+ * (today every update makes a new generation) is still the same list, and
+ * the bytes decide (_tlod_stage_unchanged). */
 static inline bool _tlod_stage_key_equal(const _tlod_stage_key* a, const _tlod_stage_key* b) {
-  return a->dl == b->dl && a->generation == b->generation && a->surface == b->surface &&
-         a->instance_count == b->instance_count && a->strip_count == b->strip_count && a->patch_count == b->patch_count;
+  return a->dl == b->dl && a->surface == b->surface && a->instance_count == b->instance_count &&
+         a->strip_count == b->strip_count && a->patch_count == b->patch_count;
 }
 
 /* Appends (copy) or compares (!copy) list dl's instances, strips and
@@ -214,9 +217,10 @@ static inline void _tlod_snapshot_take(const tlod_context* ctx, _tlod_list_snaps
 }
 
 /* True when the staged arrays are those of this draw's items: the same
- * lists at the same generations over the same surfaces, and (an address and
- * generation can come back after a scheduler is destroyed and another made)
- * the same instances, strips and levels byte for byte. */
+ * lists over the same surfaces with the same instances, strips and levels
+ * byte for byte. Not the generation alone: an address and a generation can
+ * come back after a scheduler is destroyed and another made; and a new
+ * generation may hold the same list (a still camera, all at one level). */
 static inline bool _tlod_stage_unchanged(_tlod_stage* s, const tlod_draw_desc* desc, const _tlod_draw_ref* items) {
   if (!s->valid || s->key_count != desc->item_count) return false;
   for (uint32_t k = 0; k < desc->item_count; k++) {

@@ -113,7 +113,6 @@ static void vk_destroy(void* state) {
   if (d->glslang) glslang_finalize_process();
   _tlod_stage_free(d->ctx, &d->st);
   tlod_context_free(d->ctx, d->uniforms);
-  tlod_context_free(d->ctx, d->sets);
   tlod_context_free(d->ctx, d->mesh_at);
   tlod_context_free(d->ctx, d->pipelines.hook);
   tlod_context_free(d->ctx, d->shader_cache);

@@ -2,7 +2,7 @@
  * fields, begins the frame slot, makes the pipelines the items need,
  * stages every item exactly as the gl device (device_stage.h), writes
  * instances, strips, strip references and indices and one uniform block per item into
- * the slot's ring, writes one descriptor set per item and records, per
+ * the slot's ring, writes the descriptor sets that changed and records, per
  * item in draw order (BLEND last, farthest first): its pattern draws
  * (indexed, instanced) or its tessellation batches, its strips, and with
  * wireframe its edges. Nothing is submitted or waited for. */
@@ -197,6 +197,20 @@ static tlod_result upload(vk_device* d, const tlod_draw_desc* fr, const _tlod_dr
   return TLOD_SUCCESS;
 }
 
+/* What item `it`'s set holds (vk_set_key). */
+static vk_set_key set_key(const vk_device* d, const _tlod_draw_ref* it, const ring_view* rv) {
+  uint32_t slot = d->frames.current;
+  const vk_surface* vs = it->surface_state;
+  vk_set_key k;
+  memset(&k, 0, sizeof(k));
+  k.surface = vs, k.texture = it->texture_state ? it->texture_state : d->white;
+  k.ring = rv->buffer, k.patches = vs->patches[slot].buffer, k.attrs = vs->attrs[slot].buffer;
+  k.instance_bytes = rv->instance_bytes, k.strip_bytes = rv->strip_bytes;
+  k.record_bytes = vs->record_bytes, k.attribute_bytes = vs->attribute_bytes;
+  k.retired = d->frames.retired_serial;
+  return k;
+}
+
 static void write_set(vk_device* d, VkDescriptorSet set, const _tlod_draw_ref* it, const ring_view* rv) {
   uint32_t slot = d->frames.current;
   const vk_surface* vs = it->surface_state;
@@ -225,22 +239,29 @@ static void write_set(vk_device* d, VkDescriptorSet set, const _tlod_draw_ref* i
   vkUpdateDescriptorSets(d->device, 7, w, 0, NULL);
 }
 
-/* The surfaces' copies of this slot, then one set per item. */
+/* The surfaces' copies of this slot, then one set per item from the
+ * slot's cache, written only when what it holds changed (a static scene
+ * writes none: the ring, sizes and surfaces stay). */
 static tlod_result descriptors(vk_device* d, const tlod_draw_desc* fr, const _tlod_draw_ref* items,
                                const ring_view* rv) {
   uint32_t n = fr->item_count;
   VkResult r = VK_SUCCESS;
   for (uint32_t k = 0; k < n && r == VK_SUCCESS; k++)
     r = _tlod_vkb_surface_sync(d, items[k].surface_state, d->frames.current);
-  if (r == VK_SUCCESS && !_tlod_device_grow(d->ctx, (void**)&d->sets, &d->set_cap, n, sizeof(VkDescriptorSet)))
-    r = VK_ERROR_OUT_OF_HOST_MEMORY;
-  if (r == VK_SUCCESS) r = _tlod_vkb_sets(&d->frames, n, d->sets);
+  vk_set_key* keys = NULL;
+  if (r == VK_SUCCESS) r = _tlod_vkb_sets(&d->frames, n, &d->sets, &keys);
   if (r != VK_SUCCESS)
     return tlod_context_fail(d->ctx, r == VK_ERROR_OUT_OF_HOST_MEMORY ? TLOD_ERROR_OUT_OF_MEMORY : TLOD_ERROR_BACKEND,
                              "tlod_device_draw: device '%s': surface copies / descriptor sets: %s", d->label,
                              _tlod_vkb_result_name(r));
-  for (uint32_t k = 0; k < n; k++)
+  d->stats->vk.descriptor_writes = 0;
+  for (uint32_t k = 0; k < n; k++) {
+    vk_set_key key = set_key(d, &items[k], rv);
+    if (!memcmp(&key, &keys[k], sizeof(key))) continue;
     write_set(d, d->sets[k], &items[k], rv);
+    keys[k] = key;
+    d->stats->vk.descriptor_writes++;
+  }
   d->stats->vk.descriptor_sets = n;
   return TLOD_SUCCESS;
 }

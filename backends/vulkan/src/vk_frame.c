@@ -52,6 +52,8 @@ void _tlod_vkb_frames_destroy(vk_frames* f) {
     for (uint32_t p = 0; p < s->pool_count; p++)
       vkDestroyDescriptorPool(f->device, s->pools[p], f->cb);
     tlod_context_free(f->ctx, s->pools);
+    tlod_context_free(f->ctx, s->sets);
+    tlod_context_free(f->ctx, s->set_keys);
     if (s->timestamps) vkDestroyQueryPool(f->device, s->timestamps, f->cb);
     if (s->statistics) vkDestroyQueryPool(f->device, s->statistics, f->cb);
   }
@@ -121,9 +123,7 @@ void _tlod_vkb_frames_begin(vk_frames* f, uint32_t index) {
   s->begun = ++f->serial;
   reset_queries(f, s);
   s->head = 0;
-  for (uint32_t p = 0; p < s->pool_count; p++)
-    vkResetDescriptorPool(f->device, s->pools[p], 0);
-  s->pool_current = 0;
+  s->set_used = 0; /* kept: written again only where their keys change */
   collect(f);
 }
 
@@ -138,11 +138,15 @@ static bool push_retired(vk_frames* f, vk_retired r) {
 bool _tlod_vkb_retire_buffer(vk_frames* f, vk_buffer* b) {
   if (!b->buffer) return true;
   bool ok = push_retired(f, (vk_retired){.buffer = *b});
+  f->retired_serial++;
   memset(b, 0, sizeof(*b));
   return ok;
 }
 
-bool _tlod_vkb_retire_texture(vk_frames* f, vk_texture* t) { return push_retired(f, (vk_retired){.texture = t}); }
+bool _tlod_vkb_retire_texture(vk_frames* f, vk_texture* t) {
+  f->retired_serial++;
+  return push_retired(f, (vk_retired){.texture = t});
+}
 
 VkResult _tlod_vkb_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize align, VkDeviceSize* offset,
                              tlod_device_stats* stats) {
@@ -187,23 +191,51 @@ static VkResult add_pool(vk_frames* f, vk_slot* s) {
   return r;
 }
 
-VkResult _tlod_vkb_sets(vk_frames* f, uint32_t count, VkDescriptorSet* out) {
-  vk_slot* s = &f->slots[f->current];
-  for (uint32_t i = 0; i < count; i++) {
-    VkResult r = VK_ERROR_OUT_OF_POOL_MEMORY;
-    while (r == VK_ERROR_OUT_OF_POOL_MEMORY || r == VK_ERROR_FRAGMENTED_POOL) {
-      if (s->pool_current == s->pool_count) {
-        VkResult a = add_pool(f, s);
-        if (a != VK_SUCCESS) return a;
-      }
-      VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-                                        .descriptorPool = s->pools[s->pool_current],
-                                        .descriptorSetCount = 1,
-                                        .pSetLayouts = &f->set_layout};
-      r = vkAllocateDescriptorSets(f->device, &ai, &out[i]);
-      if (r == VK_ERROR_OUT_OF_POOL_MEMORY || r == VK_ERROR_FRAGMENTED_POOL) s->pool_current++;
+/* One more set into s->sets[i]. */
+static VkResult allocate_set(vk_frames* f, vk_slot* s, VkDescriptorSet* out) {
+  VkResult r = VK_ERROR_OUT_OF_POOL_MEMORY;
+  while (r == VK_ERROR_OUT_OF_POOL_MEMORY || r == VK_ERROR_FRAGMENTED_POOL) {
+    if (s->pool_current == s->pool_count) {
+      VkResult a = add_pool(f, s);
+      if (a != VK_SUCCESS) return a;
     }
-    if (r != VK_SUCCESS) return r;
+    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                      .descriptorPool = s->pools[s->pool_current],
+                                      .descriptorSetCount = 1,
+                                      .pSetLayouts = &f->set_layout};
+    r = vkAllocateDescriptorSets(f->device, &ai, out);
+    if (r == VK_ERROR_OUT_OF_POOL_MEMORY || r == VK_ERROR_FRAGMENTED_POOL) s->pool_current++;
   }
+  return r;
+}
+
+VkResult _tlod_vkb_sets(vk_frames* f, uint32_t count, VkDescriptorSet** sets, vk_set_key** keys) {
+  vk_slot* s = &f->slots[f->current];
+  uint32_t need = s->set_used + count;
+  if (need > s->set_cap) {
+    uint32_t cap = s->set_cap ? s->set_cap : 16;
+    while (cap < need)
+      cap *= 2;
+    VkDescriptorSet* ns = tlod_context_alloc(f->ctx, sizeof(VkDescriptorSet) * cap);
+    vk_set_key* nk = tlod_context_alloc(f->ctx, sizeof(vk_set_key) * cap);
+    if (!ns || !nk) {
+      tlod_context_free(f->ctx, ns);
+      tlod_context_free(f->ctx, nk);
+      return VK_ERROR_OUT_OF_HOST_MEMORY;
+    }
+    if (s->set_count) memcpy(ns, s->sets, sizeof(VkDescriptorSet) * s->set_count);
+    if (s->set_count) memcpy(nk, s->set_keys, sizeof(vk_set_key) * s->set_count);
+    tlod_context_free(f->ctx, s->sets);
+    tlod_context_free(f->ctx, s->set_keys);
+    s->sets = ns, s->set_keys = nk, s->set_cap = cap;
+  }
+  for (; s->set_count < need; s->set_count++) {
+    VkResult r = allocate_set(f, s, &s->sets[s->set_count]);
+    if (r != VK_SUCCESS) return r;
+    memset(&s->set_keys[s->set_count], 0, sizeof(vk_set_key));
+  }
+  *sets = s->sets + s->set_used;
+  *keys = s->set_keys + s->set_used;
+  s->set_used = need;
   return VK_SUCCESS;
 }

@@ -155,11 +155,27 @@ typedef struct vk_retired {
 } vk_retired;
 
 /* One frame index: its upload ring, descriptor pools and queries. */
+/* What a descriptor set was last written with (vk_draw.c write_set): equal
+ * keys, equal descriptors. `retired` is vk_frames.retired_serial: a handle
+ * value may come back after its buffer or texture was retired. */
+typedef struct vk_set_key {
+  const void *surface, *texture;
+  VkBuffer ring, patches, attrs;
+  VkDeviceSize instance_bytes, strip_bytes, record_bytes, attribute_bytes;
+  uint64_t retired;
+} vk_set_key;
+
 typedef struct vk_slot {
   vk_buffer ring;
   VkDeviceSize head;
   VkDescriptorPool* pools;
   uint32_t pool_count, pool_cap, pool_current;
+  /* Descriptor sets kept across the slot's frames (its previous frame has
+   * finished when it begins again): the draws of a frame take them in
+   * order from set_used; one is written only when its key changed. */
+  VkDescriptorSet* sets;
+  vk_set_key* set_keys;
+  uint32_t set_count, set_cap, set_used;
   VkQueryPool timestamps, statistics;
   bool queried;        /* this frame's queries are recorded */
   bool read;           /* ... and their results taken into the stats */
@@ -179,6 +195,7 @@ typedef struct vk_frames {
   bool started;
   vk_retired* retired;
   uint32_t retired_count, retired_cap;
+  uint64_t retired_serial; /* grows with every retirement (vk_set_key.retired) */
   VkDescriptorSetLayout set_layout;
   bool queries;
   double timestamp_period; /* ns per tick */
@@ -200,7 +217,10 @@ void _tlod_vkb_frames_poll(vk_frames* f, tlod_device_stats* stats);
 VkResult _tlod_vkb_ring_take(vk_frames* f, VkDeviceSize bytes, VkDeviceSize align, VkDeviceSize* offset,
                              tlod_device_stats* stats);
 /* `count` descriptor sets of the set layout from the current slot's pools. */
-VkResult _tlod_vkb_sets(vk_frames* f, uint32_t count, VkDescriptorSet* out);
+/* count sets of the current slot for this draw, allocated only past the
+ * ones its earlier frames made: *sets and *keys point at them (their keys
+ * zero when new). */
+VkResult _tlod_vkb_sets(vk_frames* f, uint32_t count, VkDescriptorSet** sets, vk_set_key** keys);
 bool _tlod_vkb_retire_buffer(vk_frames* f, vk_buffer* b);
 bool _tlod_vkb_retire_texture(vk_frames* f, vk_texture* t);
 
@@ -231,8 +251,7 @@ typedef struct vk_device {
   _tlod_stage st;
   tlod_vk_uniforms* uniforms; /* staging of the items' uniform blocks */
   uint32_t uniform_cap;
-  VkDescriptorSet* sets;
-  uint32_t set_cap;
+  VkDescriptorSet* sets;      /* this draw's, in the slot's cache (_tlod_vkb_sets) */
   bool cpu_mesh;              /* tlod_gpu_eval resolved to OFF: PLAIN items draw their CPU mesh */
   VkDeviceSize (*mesh_at)[2]; /* per item of the draw: ring offsets of its mesh's vertices, indices */
   uint32_t mesh_at_cap;

@@ -409,12 +409,14 @@ typedef struct tlod_device_vk_stats {
   double shader_ms;           /* time in compiles + cache loads */
   uint32_t pipelines;         /* pipelines created since creation */
   double create_ms;
-  uint64_t primitives;      /* pipeline statistics clipping invocations of the draw gpu_draw names */
-  uint64_t upload_bytes;    /* bytes written into the frame's ring by the last draw */
-  uint64_t ring_bytes;      /* capacity of all rings */
-  uint32_t memory_blocks;   /* VkDeviceMemory allocations live */
-  uint64_t memory_bytes;    /* their bytes */
-  uint32_t descriptor_sets; /* allocated by the last draw */
+  uint64_t primitives;        /* pipeline statistics clipping invocations of the draw gpu_draw names */
+  uint64_t upload_bytes;      /* bytes written into the frame's ring by the last draw */
+  uint64_t ring_bytes;        /* capacity of all rings */
+  uint32_t memory_blocks;     /* VkDeviceMemory allocations live */
+  uint64_t memory_bytes;      /* their bytes */
+  uint32_t descriptor_sets;   /* used by the last draw (one per item; kept per frame slot, allocated once) */
+  uint32_t descriptor_writes; /* of those, written by the last draw: the ones whose surface, texture, ring or
+                                 section sizes changed since the slot last used them */
 } tlod_device_vk_stats;
 
 typedef struct tlod_device_stats {

@@ -11,8 +11,8 @@
  *   canonical edge function; connection strips fill level changes; vertices
  *   first inserted at the drawn level geomorph. Strips are drawn indexed
  *   (each strip point shaded once). A draw whose items' draw lists are
- *   those of the previous draw (same list, generation and surface, and the
- *   same instances, strips and levels byte for byte) uploads nothing
+ *   those of the previous draw (same list and surface, and the same
+ *   instances, strips and levels byte for byte) uploads nothing
  *   (stats.gl.buffer_streams 0). Timer and primitive queries are read a few
  *   draws late (never stalling).
  *   CPU-mesh mode (desc.gl.gpu_eval OFF, or AUTO on llvmpipe, softpipe or
