@@ -141,8 +141,8 @@ static crafted craft(const scene* sc, uint64_t seed) {
       tlod_edge_link l = m.links[f][e];
       if (l.face == UINT32_MAX || l.face < f || c.levels[l.face] < 0) continue;
       if (l.smooth && c.levels[l.face] == c.levels[f]) continue;
-      c.strips[ns++] =
-          (tlod_draw_strip){f, l.face, (uint8_t)e, l.edge, (uint8_t)c.levels[f], (uint8_t)c.levels[l.face], !l.smooth};
+      c.strips[ns++] = (tlod_draw_strip){
+          f, l.face, (uint8_t)e, l.edge, (uint8_t)c.levels[f], (uint8_t)c.levels[l.face], !l.smooth, false};
     }
   }
   c.dl = (tlod_draw_list){.patch_count = nf,

@@ -38,15 +38,8 @@ static int run_lod_suites(const bench_options* o, const bench_gpu* gpu, bench_re
   return rc;
 }
 
-static int run_peers(const bench_options* o, bench_report* rep, FILE* csv) {
-#if TLOD_HAS_OPENSUBDIV
-  return bench_peers(o, rep->json, csv);
-#else
-  (void)o, (void)rep, (void)csv;
-  return cli_error(CLI_FAILED, "--peers: this tlod was built without OpenSubdiv; install it (scripts/bootstrap "
-                               "--peers: Debian's libosd-dev) and configure again");
-#endif
-}
+/* bench_peers.h: without OpenSubdiv built in it says so and fails. */
+static int run_peers(const bench_options* o, bench_report* rep, FILE* csv) { return bench_peers(o, rep->json, csv); }
 
 /* "eval", "build" and "all" run on IN; "figures" runs eval at level 5 and
  * the scheduler suites; the others are the scheduler suites. */
@@ -126,8 +119,5 @@ int cmd_bench(int argc, char** argv) {
   char cache[4096];
   bench_gpu gpu;
   if ((rc = gpu_of(&o, cache, sizeof(cache), &gpu)) != CLI_OK) return rc;
-#if !TLOD_HAS_OPENSUBDIV
-  if (!strcmp(o.suite, "peers")) return run_peers(&o, NULL, NULL); /* fails at once, saying why */
-#endif
   return run_files(&o, &gpu);
 }

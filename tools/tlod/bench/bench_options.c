@@ -58,13 +58,20 @@ void bench_usage(FILE* f) {
           "                     scheduler_1m_ms, eval_bandwidth_fraction, strip_triangle_overhead)\n"
           "  --scheduler-mesh IN  figures: the scheduler mesh (default demo:torus-1000x1000)\n"
           "  --bandwidth-mib N  memory-rate buffers, MiB (default 640: past this machine's 300 MB cache)\n"
-          "  --peers            the peers suite (== --suite peers); --peer-faces N its mesh size\n"
           "  --frames N         frames per case: scheduler, objects (default 20), gl, draw (default 60)\n"
           "  --model IN         a table1 model (repeatable; default demo:cow)\n"
           "  --backend B        gl (default) | vulkan: the GPU backend of gl, objects and draw (this build\n"
           "                     has: %s)\n"
           "  --shader-cache D   vulkan: SPIR-V cache folder or off (default $XDG_CACHE_HOME/tesslod, else\n"
-          "                     $HOME/.cache/tesslod); vkstart uses folders of its own\n",
+          "                     $HOME/.cache/tesslod); vkstart uses folders of its own\n"
+          "  --peers            the peers suite: tesslod (Phong) side by side with OpenSubdiv 3.5 (Loop for\n"
+          "                     triangles, Catmull-Clark otherwise) on torus meshes of triangles, quads and both,\n"
+          "                     one thread each, alternating: preprocessing time and peak heap, output\n"
+          "                     vertices/s at levels 1-4 for positions (PrimvarRefiner) and positions + normals\n"
+          "                     (limit evaluation), static and deforming, input-vertex distance, volume change;\n"
+          "                     needs a tlod built with OpenSubdiv (scripts/bootstrap --peers)\n"
+          "                     (== --suite peers; with --json its figures go under the key \"peers\")\n"
+          "  --peer-faces N     --peers on meshes of about N faces (default: 100000 and 1000000)\n",
           tlod_backend_names());
 }
 
@@ -136,7 +143,7 @@ int bench_parse(int argc, char** argv, bench_options* o) {
     } else if (!strcmp(a, "--peers")) {
       o->suite = "peers";
     } else if (!strcmp(a, "--peer-faces")) {
-      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 1, 50000000, &o->peer_faces)) return CLI_USAGE;
+      if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 16, 4000000, &o->peer_faces)) return CLI_USAGE;
     } else if (!strcmp(a, "--csv")) {
       if (!(o->csv = cli_value(argc, argv, &i))) return CLI_USAGE;
     } else if (a[0] == '-' && a[1]) {

@@ -24,7 +24,7 @@ typedef struct bench_options {
   const char* json;           /* --json FILE: the figures as one JSON document, written atomically */
   const char* scheduler_mesh; /* --scheduler-mesh IN: the figures suite's scheduler mesh */
   uint32_t bandwidth_mib;     /* --bandwidth-mib N: memory-rate buffers */
-  uint32_t peer_faces;        /* --peer-faces N: the peers suite's mesh size; 0: its default sizes */
+  uint32_t peer_faces;        /* --peer-faces N: one mesh size; 0: 100k and 1M faces */
 } bench_options;
 
 /* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */

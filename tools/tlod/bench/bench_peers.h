@@ -1,7 +1,5 @@
-/* tlod bench --peers -- tesslod side by side with OpenSubdiv (the library
- * users would pick instead), both in one process on the same meshes
- * (peers_*.c/.cpp, only when the build has OpenSubdiv: TLOD_HAS_OPENSUBDIV).
- * Without it, tlod bench --peers says so and how to install it, and fails. */
+/* tlod bench --peers -- tesslod side by side with OpenSubdiv (peers_*.c,
+ * peers_osd.cpp): preprocessing, evaluation rates, accuracy, one process. */
 #ifndef TLOD_TOOLS_BENCH_PEERS_H
 #define TLOD_TOOLS_BENCH_PEERS_H
 
@@ -10,11 +8,10 @@
 #include "bench_options.h"
 #include "common/json_writer.h"
 
-/* Runs the peers suite on o (o->peer_faces: the face count of its meshes,
- * 0 for the default sizes), printing its figures; json (NULL without
- * --json) gets them as the value of the key "peers", written by this
- * function (json_object_begin(json, "peers") ... end); csv (may be NULL)
- * one row per case. CLI_OK, or an error code with the error printed. */
+/* Runs the peers suite on o->peer_faces (0: 100k and 1M faces), writes a
+ * "peers" object into json (NULL: none; the caller has an object open) and
+ * one row per case into csv (may be NULL). Without OpenSubdiv built in it
+ * says so, and how to get it, and answers CLI_FAILED. */
 int bench_peers(const bench_options* o, json_writer* json, FILE* csv);
 
 #endif

@@ -1,0 +1,289 @@
+/* tlod bench --peers -- tesslod and OpenSubdiv in one process, alternating
+ * round by round on the same meshes, one thread each (thread CPU time,
+ * min/median of --repeat after --warmup): preprocessing time and peak heap,
+ * output vertices/s per level for positions (OpenSubdiv: PrimvarRefiner) and
+ * positions + normals (its limit evaluation), static and deforming, and how
+ * far each surface is from the input vertices and volume. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_peers.h"
+#include "bench_stats.h"
+#include "cli.h"
+#include "peers.h"
+#include "peers_osd.h"
+
+/* Above this many output vertices a case is left out (both outputs and
+ * OpenSubdiv's levels would take several GB). */
+#define PEERS_MAX_OUTPUT 40000000.0
+
+typedef struct peers_run {
+  const bench_options* o;
+  json_writer* json;
+  FILE* csv;
+  float* control; /* the deformed positions of a frame */
+} peers_run;
+
+typedef struct peers_case {
+  const peers_mesh* m;
+  uint32_t level;
+  bool normals, deforming;
+} peers_case;
+
+typedef struct peers_pair {
+  peers_ours ours;
+  peers_osd* osd;
+} peers_pair;
+
+static const char* path_name(bool normals) { return normals ? "positions+normals" : "positions"; }
+
+static void put_side(json_writer* j, const char* who, const double ms[2], uint64_t vertices) {
+  char key[64];
+  snprintf(key, sizeof(key), "%s_ms_min", who);
+  json_number(j, key, ms[0]);
+  snprintf(key, sizeof(key), "%s_ms_median", who);
+  json_number(j, key, ms[1]);
+  snprintf(key, sizeof(key), "%s_vertices", who);
+  json_uint(j, key, vertices);
+  snprintf(key, sizeof(key), "%s_vertices_per_s", who);
+  json_number(j, key, vertices / (ms[0] * 1e-3));
+}
+
+static void report_case(peers_run* r, const peers_case* c, const double us[2], uint64_t uv, const double them[2],
+                        uint64_t tv) {
+  double ours_rate = uv / (us[0] * 1e-3), osd_rate = tv / (them[0] * 1e-3);
+  const char* motion = c->deforming ? "deforming" : "static";
+  printf("  L%u %-17s %-9s ours %8.2f Mvert/s (%9llu, %8.2f ms)  osd %8.2f Mvert/s (%9llu, %8.2f ms)  ours/osd %.2fx\n",
+         c->level, path_name(c->normals), motion, ours_rate * 1e-6, (unsigned long long)uv, us[0], osd_rate * 1e-6,
+         (unsigned long long)tv, them[0], ours_rate / osd_rate);
+  if (r->csv)
+    fprintf(r->csv, "evaluate,%s,%u,%u,%s,%s,%.4f,%.4f,%llu,%.4f,%.4f,%llu,%.4f\n", c->m->kind, c->m->face_count,
+            c->level, path_name(c->normals), motion, us[0], us[1], (unsigned long long)uv, them[0], them[1],
+            (unsigned long long)tv, ours_rate / osd_rate);
+  if (!r->json) return;
+  json_object_begin(r->json, motion);
+  put_side(r->json, "ours", us, uv);
+  put_side(r->json, "osd", them, tv);
+  json_number(r->json, "ours_over_osd_rate", ours_rate / osd_rate);
+  json_object_end(r->json);
+}
+
+/* One side's frame: ours (true) or OpenSubdiv's; false when ours failed. */
+static bool frame(peers_run* r, const peers_case* c, peers_pair* p, bool ours, const float* control, double* ms,
+                  uint64_t* vertices) {
+  double t0 = peers_thread_ms();
+  if (ours) {
+    *vertices = peers_ours_evaluate(&p->ours, control, c->level, c->normals);
+  } else {
+    peers_osd_evaluate(p->osd, control ? control : c->m->positions, c->deforming);
+    *vertices = peers_osd_output_count(p->osd);
+  }
+  *ms = peers_thread_ms() - t0;
+  (void)r;
+  return *vertices > 0;
+}
+
+/* Warm-up and repeats, who goes first alternating round by round. */
+static int run_case(peers_run* r, const peers_case* c, peers_pair* p) {
+  uint32_t n = r->o->warmup + r->o->repeat, k = 0;
+  double* t = malloc(sizeof(double) * 2 * r->o->repeat);
+  uint64_t v[2] = {0, 0};
+  for (uint32_t i = 0; i < n && t; i++) {
+    const float* control = NULL;
+    if (c->deforming) {
+      peers_mesh_deform(c->m, i, r->control);
+      control = r->control;
+    }
+    double ms[2];
+    for (uint32_t s = 0; s < 2; s++) {
+      bool ours = (s + i) % 2 == 0;
+      if (!frame(r, c, p, ours, control, &ms[ours ? 0 : 1], &v[ours ? 0 : 1])) {
+        free(t);
+        return cli_error(CLI_FAILED, "bench --peers: %s", tlod_context_last_error(p->ours.ctx));
+      }
+    }
+    if (i >= r->o->warmup) t[k] = ms[0], t[r->o->repeat + k++] = ms[1];
+  }
+  if (!t) return cli_error(CLI_FAILED, "bench --peers: out of memory");
+  double us[2], them[2];
+  bench_min_median(t, r->o->repeat, 1.0, us);
+  bench_min_median(t + r->o->repeat, r->o->repeat, 1.0, them);
+  free(t);
+  report_case(r, c, us, v[0], them, v[1]);
+  return CLI_OK;
+}
+
+static void report_preprocess(peers_run* r, const peers_case* c, const double us[2], uint64_t up, const double them[2],
+                              uint64_t tp) {
+  printf("  L%u %-17s preprocess ours %8.2f ms %8.2f MB  osd %8.2f ms %8.2f MB  osd/ours time %.1fx memory %.1fx\n",
+         c->level, path_name(c->normals), us[0], up * 1e-6, them[0], tp * 1e-6, them[0] / us[0], (double)tp / up);
+  if (r->csv)
+    fprintf(r->csv, "preprocess,%s,%u,%u,%s,-,%.4f,%.4f,%llu,%.4f,%.4f,%llu,%.4f\n", c->m->kind, c->m->face_count,
+            c->level, path_name(c->normals), us[0], us[1], (unsigned long long)up, them[0], them[1],
+            (unsigned long long)tp, them[0] / us[0]);
+  if (!r->json) return;
+  json_object_begin(r->json, "preprocess");
+  json_number(r->json, "ours_ms_min", us[0]);
+  json_number(r->json, "ours_ms_median", us[1]);
+  json_uint(r->json, "ours_peak_bytes", up);
+  json_number(r->json, "osd_ms_min", them[0]);
+  json_number(r->json, "osd_ms_median", them[1]);
+  json_uint(r->json, "osd_peak_bytes", tp);
+  json_object_end(r->json);
+}
+
+static peers_osd* osd_create(const peers_case* c, double* ms, uint64_t* peak) {
+  peers_osd_desc d = {c->m->positions,  c->m->vertex_count, c->m->indices, c->m->face_sizes,
+                      c->m->face_count, c->level,           c->normals};
+  char err[256];
+  peers_osd_heap_reset_peak();
+  uint64_t before = peers_osd_heap_now();
+  double t0 = peers_thread_ms();
+  peers_osd* o = peers_osd_create(&d, err, sizeof(err));
+  *ms = peers_thread_ms() - t0;
+  *peak = peers_osd_heap_peak() - before;
+  if (!o) cli_error(CLI_FAILED, "bench --peers: %s", err);
+  return o;
+}
+
+/* Both created --repeat times, alternating; the last pair is kept. */
+static int preprocess(peers_run* r, const peers_case* c, peers_pair* p) {
+  uint32_t n = r->o->repeat;
+  double* t = malloc(sizeof(double) * 2 * n);
+  uint64_t peak[2] = {0, 0};
+  int rc = t ? CLI_OK : cli_error(CLI_FAILED, "bench --peers: out of memory");
+  for (uint32_t i = 0; i < n && rc == CLI_OK; i++) {
+    if (i) peers_ours_destroy(&p->ours), peers_osd_destroy(p->osd), p->osd = NULL;
+    if (!peers_ours_create(&p->ours, c->m, c->level, TLOD_ERROR_TABLES_MEASURED, &t[i], &peak[0]))
+      rc = cli_error(CLI_FAILED, "bench --peers: %s", tlod_context_last_error(p->ours.ctx));
+    if (rc == CLI_OK && !(p->osd = osd_create(c, &t[n + i], &peak[1]))) rc = CLI_FAILED;
+  }
+  if (rc == CLI_OK) {
+    double us[2], them[2];
+    bench_min_median(t, n, 1.0, us);
+    bench_min_median(t + n, n, 1.0, them);
+    report_preprocess(r, c, us, peak[0], them, peak[1]);
+  }
+  free(t);
+  return rc;
+}
+
+typedef struct peers_accuracy {
+  double ours_distance, osd_limit_distance, osd_refined_distance, ours_volume, osd_volume;
+} peers_accuracy;
+
+static void measure(const peers_case* c, peers_pair* p, peers_accuracy* a) {
+  if (c->normals) {
+    a->ours_distance = peers_ours_vertex_distance(&p->ours);
+    const tlod_cpu_mesh* out = p->ours.out;
+    a->ours_volume = peers_triangle_volume(out->positions, out->indices, out->triangle_count);
+    a->osd_limit_distance = peers_osd_vertex_distance(p->osd, c->m->positions);
+  } else {
+    a->osd_refined_distance = peers_osd_vertex_distance(p->osd, c->m->positions);
+    a->osd_volume = peers_osd_volume(p->osd);
+  }
+}
+
+/* Deforming meshes are refreshed every frame: closed-form tables, as the
+ * core's manual advises for them. */
+static bool closed_form(peers_ours* s) {
+  tlod_surface_destroy(s->surface);
+  s->surface = NULL;
+  tlod_surface_desc d = {.type = TLOD_SURFACE_PHONG, .error_tables = TLOD_ERROR_TABLES_CLOSED_FORM};
+  return tlod_surface_create(s->ctx, s->mesh, &d, &s->surface) == TLOD_SUCCESS;
+}
+
+static int run_path(peers_run* r, const peers_mesh* m, uint32_t level, bool normals, peers_accuracy* a) {
+  peers_case c = {m, level, normals, false};
+  peers_pair p = {0};
+  if (r->json) json_object_begin(r->json, path_name(normals));
+  int rc = preprocess(r, &c, &p);
+  if (rc == CLI_OK) rc = run_case(r, &c, &p);
+  if (rc == CLI_OK) measure(&c, &p, a);
+  if (rc == CLI_OK && !closed_form(&p.ours))
+    rc = cli_error(CLI_FAILED, "bench --peers: %s", tlod_context_last_error(p.ours.ctx));
+  c.deforming = true;
+  if (rc == CLI_OK) rc = run_case(r, &c, &p);
+  if (r->json) json_object_end(r->json);
+  if (p.ours.ctx) peers_ours_destroy(&p.ours);
+  if (p.osd) peers_osd_destroy(p.osd);
+  return rc;
+}
+
+static void report_accuracy(peers_run* r, const peers_mesh* m, uint32_t level, const peers_accuracy* a) {
+  double ours_dv = a->ours_volume / m->volume - 1.0, osd_dv = a->osd_volume / m->volume - 1.0;
+  printf("  L%u input vertex to surface: ours %.3g, osd limit %.3g, osd level %u %.3g; volume change ours %+.4f%% "
+         "osd level %u %+.4f%%\n",
+         level, a->ours_distance, a->osd_limit_distance, level, a->osd_refined_distance, 100.0 * ours_dv, level,
+         100.0 * osd_dv);
+  if (!r->json) return;
+  json_object_begin(r->json, "accuracy");
+  json_number(r->json, "ours_vertex_distance", a->ours_distance);
+  json_number(r->json, "osd_limit_vertex_distance", a->osd_limit_distance);
+  json_number(r->json, "osd_refined_vertex_distance", a->osd_refined_distance);
+  json_number(r->json, "ours_volume_change", ours_dv);
+  json_number(r->json, "osd_volume_change", osd_dv);
+  json_object_end(r->json);
+}
+
+static int run_level(peers_run* r, const peers_mesh* m, uint32_t level) {
+  double out = (double)m->face_count * (double)(1u << (2 * level)) * (strcmp(m->kind, "triangle") ? 1.0 : 0.5);
+  if (out > PEERS_MAX_OUTPUT) {
+    printf("  L%u left out: about %.0fM output vertices (above %.0fM: several GB per side)\n", level, out * 1e-6,
+           PEERS_MAX_OUTPUT * 1e-6);
+    return CLI_OK;
+  }
+  peers_accuracy a = {0};
+  if (r->json) {
+    json_object_begin(r->json, NULL);
+    json_string(r->json, "mesh", m->kind);
+    json_uint(r->json, "faces", m->face_count);
+    json_uint(r->json, "level", level);
+  }
+  int rc = run_path(r, m, level, false, &a);
+  if (rc == CLI_OK) rc = run_path(r, m, level, true, &a);
+  if (rc == CLI_OK) report_accuracy(r, m, level, &a);
+  if (r->json) json_object_end(r->json);
+  return rc;
+}
+
+static int run_mesh(peers_run* r, const char* kind, uint32_t faces) {
+  peers_mesh m;
+  if (!peers_mesh_make(kind, faces, &m)) return cli_error(CLI_FAILED, "bench --peers: out of memory");
+  int rc = (r->control = malloc(sizeof(float) * 3 * (size_t)m.vertex_count)) ? CLI_OK : CLI_FAILED;
+  printf("%s torus: %u faces, %u vertices (OpenSubdiv: %s)\n", kind, m.face_count, m.vertex_count,
+         strcmp(kind, "triangle") ? "catmull-clark" : "loop");
+  for (uint32_t level = 1; level <= 4 && rc == CLI_OK; level++)
+    rc = run_level(r, &m, level);
+  free(r->control);
+  peers_mesh_free(&m);
+  return rc;
+}
+
+int bench_peers(const bench_options* o, json_writer* json, FILE* csv) {
+  static const char* const kinds[] = {"triangle", "quad", "mixed"};
+  uint32_t sizes[2] = {100000, 1000000}, size_count = o->peer_faces ? 1 : 2;
+  if (o->peer_faces) sizes[0] = o->peer_faces;
+  printf("tlod bench --peers: tesslod %d.%d.%d (Phong) against OpenSubdiv %s, one thread each, thread CPU time, "
+         "min/median of %u after %u warm-up\n",
+         TLOD_VERSION / 1000, TLOD_VERSION / 100 % 10, TLOD_VERSION % 100, peers_osd_version(), o->repeat, o->warmup);
+  if (csv)
+    fprintf(csv, "stage,mesh,faces,level,output,motion,ours_ms_min,ours_ms_median,ours_count,osd_ms_min,"
+                 "osd_ms_median,osd_count,ratio\n");
+  peers_run r = {o, json, csv, NULL};
+  if (json) {
+    json_object_begin(json, "peers");
+    json_string(json, "opensubdiv", peers_osd_version());
+    json_uint(json, "tesslod", TLOD_VERSION);
+    json_string(json, "timing", "thread CPU ms, one thread per library, min/median of repeats");
+    json_array_begin(json, "cases");
+  }
+  int rc = CLI_OK;
+  for (uint32_t s = 0; s < size_count && rc == CLI_OK; s++) {
+    for (uint32_t k = 0; k < 3 && rc == CLI_OK; k++)
+      rc = run_mesh(&r, kinds[k], sizes[s]);
+  }
+  if (json) json_array_end(json), json_object_end(json);
+  return rc;
+}
