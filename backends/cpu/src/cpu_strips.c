@@ -117,16 +117,16 @@ static tlod_result polylines(tess* t, uint32_t f, uint32_t e, uint32_t g, uint32
   return t->na ? take_side_a(t, f, e, g, eg, local, nb, attr_ids + na + 1) : TLOD_SUCCESS;
 }
 
-/* exact: the strip's tlod_draw_strip.exact (the pattern without the
- * triangles degenerate where the sides share points). */
-static tlod_result stitch_edge(tess* t, uint32_t f, uint32_t e, uint32_t g, uint32_t eg, bool exact) {
+/* st: the draw list's strip (its connection, exact or not, as the GPU draws
+ * it), or NULL: the full connection of the two levels. */
+static tlod_result stitch_edge(tess* t, uint32_t f, uint32_t e, uint32_t g, uint32_t eg, const tlod_draw_strip* st) {
   uint32_t ids[2 * ((1u << TLOD_MAX_LEVEL) + 1)], attr_ids[2 * ((1u << TLOD_MAX_LEVEL) + 1)], na;
   tlod_result r = polylines(t, f, e, g, eg, ids, attr_ids, &na);
   if (r != TLOD_SUCCESS) return r;
   uint32_t count;
-  uint32_t la = (uint32_t)level_of(t, f), lb = (uint32_t)level_of(t, g);
   const uint32_t* tris =
-      exact ? tlod_patterns_connection_exact(t->pat, la, lb, &count) : tlod_patterns_connection(t->pat, la, lb, &count);
+      st ? tlod_draw_strip_connection(t->pat, st, &count)
+         : tlod_patterns_connection(t->pat, (uint32_t)level_of(t, f), (uint32_t)level_of(t, g), &count);
   t->out->strips++;
   for (uint32_t k = 0; k < count; k++) {
     const uint32_t* c = tris + 3 * k;
@@ -149,7 +149,7 @@ tlod_result _tlod_cpu_stitch(tess* t) {
   if (dl) {
     for (uint32_t k = 0; k < dl->strip_count; k++) {
       const tlod_draw_strip* st = &dl->strips[k];
-      tlod_result r = stitch_edge(t, st->patch_a, st->edge_a, st->patch_b, st->edge_b, st->exact);
+      tlod_result r = stitch_edge(t, st->patch_a, st->edge_a, st->patch_b, st->edge_b, st);
       if (r != TLOD_SUCCESS) return r;
     }
     return TLOD_SUCCESS;
@@ -162,7 +162,7 @@ tlod_result _tlod_cpu_stitch(tess* t) {
       /* Equal levels on one curve with one blend: the polylines coincide
        * (on a seam too: there each side keeps its own vertices). */
       if (level_of(t, f) == level_of(t, link.face) && _tlod_cpu_edge_coincides(t, f, e, &link)) continue;
-      tlod_result r = stitch_edge(t, f, e, link.face, link.edge, false);
+      tlod_result r = stitch_edge(t, f, e, link.face, link.edge, NULL);
       if (r != TLOD_SUCCESS) return r;
     }
   }
