@@ -116,6 +116,14 @@ static void report_cpu(bench_state* b, tlod_surface_type type, uint32_t level, u
   json_object_end(w);
 }
 
+/* Every byte the evaluation writes: per vertex position, normal, patch and
+ * (u, v); per triangle 3 indices and its patch (NULL arrays count nothing). */
+static double output_bytes(const tlod_cpu_mesh* m) {
+  double per_vertex = 12.0 + (m->normals ? 12.0 : 0.0) + (m->vertex_patch ? 4.0 : 0.0) + (m->vertex_uv ? 8.0 : 0.0);
+  double per_triangle = 12.0 + (m->triangle_patch ? 4.0 : 0.0);
+  return (double)m->vertex_count * per_vertex + (double)m->triangle_count * per_triangle;
+}
+
 static int bench_evaluate(bench_state* b, tlod_context* ctx, tlod_surface* s, const tlod_patterns* pat, uint32_t level,
                           tlod_surface_type type) {
   const bench_options* o = b->o;
@@ -140,7 +148,7 @@ static int bench_evaluate(bench_state* b, tlod_context* ctx, tlod_surface* s, co
       return cli_error(CLI_FAILED, "%s", tlod_context_last_error(ctx));
     }
     vertices = out->vertex_count;
-    bytes = (double)out->vertex_count * 24.0 + (double)out->triangle_count * 16.0;
+    bytes = output_bytes(out);
     if (r >= o->warmup) add_sample(&tm, dt, r - o->warmup), cpu[r - o->warmup] = dc;
   }
   tlod_cpu_mesh_destroy(ctx, out);
@@ -188,8 +196,8 @@ int bench_eval(const bench_options* o, bench_report* rep, FILE* csv) {
   if (rc != CLI_OK) return rc;
   if (b.csv)
     fprintf(b.csv, "stage,surface,level,threads,best_ms,mean_ms,worst_ms,items,unit,rate_per_s,out_bytes_per_s\n");
-  printf("tlod bench: %s, %u triangles, %u vertices; output bytes: 24 per vertex (position + normal) + 16 per "
-         "triangle (3 indices + patch id)\n",
+  printf("tlod bench: %s, %u triangles, %u vertices; output bytes: 36 per vertex (position, normal, patch id, "
+         "u v) + 16 per triangle (3 indices + patch id)\n",
          o->in, b.in.face_count, b.in.vertex_count);
   if (rep->json) json_array_begin(rep->json, "eval");
   for (uint32_t i = 0; i < o->thread_count && rc == CLI_OK; i++)
