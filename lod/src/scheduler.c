@@ -182,6 +182,12 @@ static void copy_main_levels(_tlod_frame* fr) {
   fr->eps = fr->main->list.effective_epsilon;
 }
 
+static bool has_locked_view(const tlod_frame_desc* frame) {
+  for (uint32_t v = 1; v < frame->view_count; v++)
+    if (frame->views[v].lock_to_main) return true;
+  return false;
+}
+
 /* Silhouette depth and metric of view v: the stages before the levels
  * (on the fast path outside a group, the levels and morph too). */
 static void begin_view(tlod_scheduler* s, uint32_t v, const tlod_frame_desc* frame, const tlod_mesh_view* mesh,
@@ -197,7 +203,8 @@ static void begin_view(tlod_scheduler* s, uint32_t v, const tlod_frame_desc* fra
                       .level_cap = INFINITY,
                       .step = frame->dt_ms / s->desc.morph_ms,
                       .main = locked ? &s->views[0] : NULL,
-                      .budget = s->desc.triangle_budget};
+                      .budget = s->desc.triangle_budget,
+                      .cull_skip = !has_locked_view(frame)};
   fr->t[0] = tlod_now_ms();
   _tlod_camera_from_view(vd->view, vd->proj, &fr->vs->cam);
   if (s->fast_path) {

@@ -6,7 +6,8 @@
 
 #include "scheduler_frame.h"
 
-/* The untimed path of _tlod_morph_task puts a patch at its goal: the
+/* A culled patch (cont _TLOD_NO_HISTORY) is settled: the same inputs cull
+ * it again. The untimed path of _tlod_morph_task puts a patch at its goal: the
  * target (CONTINUOUS) or its ceil; its clamps (at least the target, at most
  * the ceil) never move that goal. A ceil is checked without calling ceilf:
  * c == ceil(t) exactly when c is integral and c - 1 < t <= c (levels are
@@ -16,12 +17,12 @@ bool _tlod_morphs_settled(const _tlod_frame* fr, uint32_t begin, uint32_t end) {
   bool settled = true;
   if (fr->s->desc.morph == TLOD_MORPH_CONTINUOUS) {
     for (uint32_t f = begin; f < end; f++)
-      settled &= cont[f] == target[f];
+      settled &= cont[f] == target[f] || cont[f] == _TLOD_NO_HISTORY;
     return settled;
   }
   for (uint32_t f = begin; f < end; f++) {
     float c = cont[f], t = target[f];
-    settled &= c == (float)(int32_t)c && c - 1.0f < t && t <= c;
+    settled &= (c == (float)(int32_t)c && c - 1.0f < t && t <= c) || c == _TLOD_NO_HISTORY;
   }
   return settled;
 }

@@ -70,6 +70,17 @@ static void count_strips(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t f
   fr->vs->strip_edges[f] = mask;
 }
 
+/* Patches [f, f + FAST_BLOCK) when f starts a block (chunks are whole
+ * blocks) and all of them are culled, else 0: one scan of the visible
+ * bytes instead of a level per patch. */
+static uint32_t culled_run(const uint8_t* visible, uint32_t f, uint32_t end) {
+  if (f % FAST_BLOCK || end - f < FAST_BLOCK) return 0;
+  uint8_t any = 0;
+  for (uint32_t i = f; i < f + FAST_BLOCK; i++)
+    any |= visible[i];
+  return any ? 0 : FAST_BLOCK;
+}
+
 /* Pass 1 over chunks [begin, end): drawn levels (-1 when culled), bucket
  * and strip counts, statistics, and whether the morphs have settled. */
 static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
@@ -83,6 +94,13 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
     chunk_range(fr, c, &f0, &f1);
     ch->settled = _tlod_morphs_settled(fr, f0, f1);
     for (uint32_t f = f0; f < f1; f++) {
+      uint32_t run = culled_run(vs->visible, f, f1);
+      if (run) { /* a culled block: no level to read */
+        memset(vs->levels + f, -1, run);
+        ch->culled += run;
+        f += run - 1;
+        continue;
+      }
       uint32_t l = _tlod_drawn_level(vs->cont[f]);
       vs->levels[f] = vs->visible[f] ? (int8_t)l : -1;
       if (!vs->visible[f]) {
@@ -105,6 +123,7 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
     _tlod_list_chunk* ch = &vs->chunks[c];
     uint32_t f0, f1, st = ch->strip_first;
     chunk_range(fr, c, &f0, &f1);
+    if (ch->culled == f1 - f0) continue;
     for (uint32_t f = f0; f < f1; f++) {
       if (!vs->visible[f]) continue;
       uint32_t l = (uint32_t)vs->levels[f];

@@ -17,6 +17,9 @@
 
 #define FAST_BLOCK 256 /* patches per block of the fused patch pass */
 
+/* cont of a culled patch: no morph history, it appears at its goal. */
+#define _TLOD_NO_HISTORY (-1.0f)
+
 /* Inputs the passes read, copied at the first update and again whenever
  * the mesh or surface generation moved. */
 typedef struct _tlod_soa {
@@ -46,6 +49,7 @@ typedef struct _tlod_fast_frame {
   uint32_t max_level;
   bool fuse; /* targets and morph too (no budget, not locked) */
   bool fractional, timed, bounded;
+  bool cull_skip; /* _tlod_frame.cull_skip */
   float step;
   /* outputs, one view's arrays */
   float *depth, *scale, *e_max, *contour, *target, *cont;

@@ -59,6 +59,7 @@ static void rule_constants(const _tlod_frame* fr, _tlod_fast_frame* k) {
   k->timed = d->morph == TLOD_MORPH_TIME && fr->vs->has_history;
   k->bounded = d->policy == TLOD_POLICY_ERROR || d->policy == TLOD_POLICY_HYBRID;
   k->step = fr->step;
+  k->cull_skip = fr->cull_skip && k->cull;
 }
 
 static void view_arrays(_tlod_view_state* vs, _tlod_fast_frame* k) {

@@ -92,6 +92,10 @@ typedef struct _tlod_frame {
   uint32_t budget;              /* triangles: the scheduler's own or its group's; 0 == none */
   double t[TLOD_STAGE_NUM + 1]; /* stage boundaries, ms */
   bool fused;                   /* fast path: levels and morph done with the metric */
+  /* Culled patches get e_max 0, target 0 and cont _TLOD_NO_HISTORY
+   * (docs/design.md 3.13); false when the frame has a locked view, which
+   * copies view 0's targets and levels for patches view 0 may cull. */
+  bool cull_skip;
 } _tlod_frame;
 
 struct tlod_scheduler {

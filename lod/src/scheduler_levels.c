@@ -15,9 +15,12 @@ static void target_task(void* data, uint32_t begin, uint32_t end, uint32_t worke
   (void)worker;
   _tlod_frame* fr = data;
   _tlod_view_state* vs = fr->vs;
-  for (uint32_t f = begin; f < end; f++)
-    vs->target[f] =
-        _tlod_level_rule(&fr->s->desc, &fr->surface.patches[f], vs->scale[f], vs->contour[f], fr->eps, fr->level_cap);
+  for (uint32_t f = begin; f < end; f++) {
+    bool skip = fr->cull_skip && !vs->visible[f]; /* culled: target 0 (docs/design.md 3.13) */
+    vs->target[f] = skip ? 0.0f
+                         : _tlod_level_rule(&fr->s->desc, &fr->surface.patches[f], vs->scale[f], vs->contour[f],
+                                            fr->eps, fr->level_cap);
+  }
 }
 
 static tlod_pattern_shape shape_of(const tlod_mesh_view* m, uint32_t f) {

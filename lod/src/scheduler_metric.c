@@ -171,6 +171,7 @@ void _tlod_metric_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
      * pattern point (a convex combination of surface points). */
     vs->scale[f] = tlod_patch_projection_scale(fr->view, info->center, info->radius);
     vs->e_max[f] = tlod_patch_error_bound(info, 0) * vs->scale[f];
+    if (fr->cull_skip && !vs->visible[f]) vs->e_max[f] = 0.0f; /* culled (docs/design.md 3.13) */
     vs->contour[f] = patch_contour(fr, f);
   }
 }

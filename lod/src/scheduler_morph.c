@@ -32,11 +32,13 @@ void _tlod_morph_task(void* data, uint32_t begin, uint32_t end, uint32_t worker)
   bool fractional = d->morph == TLOD_MORPH_CONTINUOUS;
   for (uint32_t f = begin; f < end; f++) {
     float t = vs->target[f], goal = fractional ? t : ceilf(t);
-    float c = timed && vs->visible[f] ? approach(vs->cont[f], goal, fr->step) : goal;
+    /* A culled patch keeps no history: back in view it starts at its goal. */
+    bool history = timed && vs->visible[f] && vs->cont[f] != _TLOD_NO_HISTORY;
+    float c = history ? approach(vs->cont[f], goal, fr->step) : goal;
     if (bounded && c < t) c = t;
     /* A budget is a hard cap: never draw above the budget's level. */
     if (fr->budget && c > ceilf(t)) c = ceilf(t);
-    vs->cont[f] = c;
+    vs->cont[f] = fr->cull_skip && !vs->visible[f] ? _TLOD_NO_HISTORY : c;
   }
 }
 

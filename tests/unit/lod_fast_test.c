@@ -296,11 +296,103 @@ TEST(test_group_budget) {
   CHECK_MSG(ok, "%s", why);
 }
 
+/* Camera of test_culled_blocks' frame k: above one side of the torus
+ * with a narrow view (whole blocks of patches culled), or far (all in view). */
+static tlod_view_desc culling_view(int k) {
+  bool close = k % 3 == 0;
+  camera c = {.eye = {close ? 1.0 : 0, 0, close ? 2.0 : 6},
+              .target = {close ? 1.0 : 0, 0, 0},
+              .up = {0, 1, 0},
+              .fovy = close ? 0.5 : 1.0,
+              .aspect = 4.0 / 3.0,
+              .znear = 0.02,
+              .zfar = 50,
+              .width = 640,
+              .height = 480};
+  return make_view(&c);
+}
+
+/* Blocks of 256 consecutive patches (the fast pass's) all culled. */
+static uint32_t culled_blocks(const tlod_draw_list* dl) {
+  uint32_t blocks = 0;
+  for (uint32_t b = 0; b + 256 <= dl->patch_count; b += 256) {
+    bool all = true;
+    for (uint32_t f = b; f < b + 256; f++)
+      all = all && dl->levels[f] < 0;
+    blocks += all;
+  }
+  return blocks;
+}
+
+static bool culled_e_max_zero(const tlod_draw_list* dl) {
+  bool ok = true;
+  for (uint32_t f = 0; f < dl->patch_count; f++)
+    ok = ok && (dl->levels[f] >= 0 || dl->e_max[f] == 0.0f);
+  return ok;
+}
+
+/* Whether every patch culled before (levels) and visible in after is at the
+ * level of a scheduler without history (fresh). */
+static bool entered_at_goal(const int8_t* before, const tlod_draw_list* after, const tlod_draw_list* fresh,
+                            uint32_t* entered) {
+  bool ok = true;
+  for (uint32_t f = 0; f < after->patch_count; f++) {
+    if (before[f] >= 0 || after->levels[f] < 0) continue;
+    ++*entered;
+    ok = ok && after->levels[f] == fresh->levels[f];
+  }
+  return ok;
+}
+
+/* Whole blocks culled, then in view: fast equals reference at every SIMD
+ * level and thread count; culled patches have e_max 0 and no morph
+ * history (back in view they appear at their goal, as on a first frame). */
+TEST(test_culled_blocks) {
+  world w[WORLDS];
+  int worlds = 0;
+  bool ok = world_make(&w[worlds++], TLOD_SIMD_SCALAR, 1);
+  tlod_simd best = best_simd();
+  for (tlod_simd simd = TLOD_SIMD_SCALAR; ok && simd <= best; simd++)
+    for (uint32_t threads = 1; ok && threads <= 3; ++threads)
+      ok = world_make(&w[worlds++], simd, threads);
+  tlod_scheduler* s[WORLDS] = {0};
+  tlod_scheduler_desc d = case_desc(8, true); /* ERROR, TIME */
+  for (int i = 0; ok && i < worlds; ++i, d.reference_path = false)
+    ok = (s[i] = scheduler_create(w[i].ctx, w[i].surf[0], w[i].pat, d)) != NULL;
+  uint32_t vertices = tlod_mesh_vertex_count(tlod_surface_mesh(w[0].surf[0])), blocks = 0, entered = 0;
+  char why[96] = "create or update failed";
+  int8_t* before = malloc(tlod_mesh_face_count(tlod_surface_mesh(w[0].surf[0])));
+  for (int k = 0; ok && k < 5; ++k) {
+    tlod_view_desc v = culling_view(k);
+    tlod_frame_desc f = {.views = &v, .view_count = 1, .dt_ms = 16.0f};
+    for (int i = 0; ok && i < worlds; ++i)
+      ok = tlod_scheduler_update(s[i], &f) == TLOD_SUCCESS;
+    const tlod_draw_list* ref = tlod_scheduler_draw_list(s[0], 0);
+    for (int i = 1; ok && i < worlds; ++i)
+      ok = draw_lists_equal(ref, tlod_scheduler_draw_list(s[i], 0), vertices, why, sizeof why);
+    if (ok && k % 3 == 0) blocks += culled_blocks(ref);
+    tlod_scheduler* fresh = ok && k % 3 == 1 ? scheduler_create(w[0].ctx, w[0].surf[0], w[0].pat, d) : NULL;
+    const tlod_draw_list* fl = fresh ? scheduler_plan(w[0].ctx, fresh, &f) : NULL;
+    if (ok) CHECK_MSG(culled_e_max_zero(ref), "frame %d: a culled patch has e_max > 0", k);
+    if (fl) CHECK_MSG(entered_at_goal(before, ref, fl, &entered), "frame %d: a patch entered off its goal", k);
+    tlod_scheduler_destroy(fresh);
+    memcpy(before, ref->levels, ref->patch_count);
+  }
+  free(before);
+  for (int i = 0; i < worlds; ++i) {
+    tlod_scheduler_destroy(s[i]);
+    world_free(&w[i]);
+  }
+  CHECK_MSG(ok, "%s", why);
+  CHECK_MSG(blocks > 0 && entered > 0, "%u whole blocks culled, %u patches entered the view", blocks, entered);
+}
+
 int main(void) {
   sources_make();
   RUN(test_cases_refine);
   RUN(test_fast_equals_reference);
   RUN(test_group_budget);
+  RUN(test_culled_blocks);
   sources_free();
   TEST_END();
 }

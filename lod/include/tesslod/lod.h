@@ -93,8 +93,8 @@ typedef enum tlod_lod_policy {
   TLOD_POLICY_UNIFORM,
   /* Every visible patch at level 0 (the input faces on the curved corners),
    * no refinement, no strips, whatever epsilon, budget or max_level say:
-   * the untessellated baseline. Culling, e_max and d_i are still computed
-   * for the statistics. */
+   * the untessellated baseline. Culling, e_max (of visible patches) and
+   * d_i are still computed for the statistics. */
   TLOD_POLICY_FLAT,
   TLOD_POLICY_NUM,
   _TLOD_POLICY_FORCE_U32 = 0x7FFFFFFF
@@ -221,7 +221,9 @@ typedef struct tlod_draw_list {
   uint32_t patch_count;
   const int8_t* levels; /* per patch: drawn level, -1 when culled */
   /* per patch: projected error bound at level 0, pixels:
-   * tlod_patch_error_bound(info, 0) * tlod_patch_projection_scale() */
+   * tlod_patch_error_bound(info, 0) * tlod_patch_projection_scale();
+   * 0 for a culled patch, unless the frame has a view with lock_to_main
+   * (then computed for every patch: the locked views use view 0's levels) */
   const float* e_max;
   const float* vertex_depth;           /* per mesh vertex: d_i */
   const tlod_draw_instance* instances; /* visible patches, bucket by bucket */
