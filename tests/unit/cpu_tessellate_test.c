@@ -18,6 +18,7 @@
 #include "tesslod/lod.h"
 #include "test.h"
 #include "test_context.h"
+#include "test_fixture.h"
 #include "test_lod.h"
 
 #define MAX_LEVEL 6
@@ -25,36 +26,6 @@
 /* ------------------------------------------------------------------------ */
 /* Fixtures                                                                 */
 /* ------------------------------------------------------------------------ */
-
-typedef struct fixture {
-  tlod_context* ctx;
-  tlod_mesh* mesh;
-  tlod_surface* surf;
-  tlod_patterns* pat;
-} fixture;
-
-static void fixture_free(fixture* fx) {
-  tlod_surface_destroy(fx->surf);
-  tlod_mesh_destroy(fx->mesh);
-  tlod_patterns_destroy(fx->pat);
-  fx->surf = NULL, fx->mesh = NULL, fx->pat = NULL;
-}
-
-/* Mesh, surface and patterns (max level 6) of a shape in ctx. */
-static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type) {
-  memset(fx, 0, sizeof *fx);
-  fx->ctx = ctx;
-  tlod_mesh_desc md = shape_mesh_desc(s);
-  tlod_result r = tlod_mesh_create(ctx, &md, &fx->mesh);
-  if (r == TLOD_SUCCESS) r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type}, &fx->surf);
-  if (r == TLOD_SUCCESS) r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = MAX_LEVEL}, &fx->pat);
-  if (r != TLOD_SUCCESS) {
-    fprintf(stderr, "fixture %s: %s: %s\n", s->name, tlod_result_string(r), tlod_context_last_error(ctx));
-    fixture_free(fx);
-    return false;
-  }
-  return true;
-}
 
 static tlod_cpu_mesh* tessellate(const fixture* fx, uint32_t level, const int8_t* levels, bool no_weld,
                                  bool no_stitch) {

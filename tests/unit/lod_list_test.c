@@ -24,6 +24,7 @@
 #include "test.h"
 #include "test_camera.h"
 #include "test_context.h"
+#include "test_fixture.h"
 #include "test_lod.h"
 
 /* An engine job system of uneven chunks (1, 2, 3, ... items, growing)
@@ -44,30 +45,6 @@ static tlod_context* uneven_context(void) {
   tlod_context_desc desc = {.parallel_for = {.func = uneven_parallel_for, .worker_count = 5}};
   tlod_context* ctx = NULL;
   return tlod_context_create(&desc, &ctx) == TLOD_SUCCESS ? ctx : NULL;
-}
-
-typedef struct fixture {
-  tlod_context* ctx;
-  tlod_mesh* mesh;
-  tlod_surface* surf;
-  tlod_patterns* pat;
-} fixture;
-
-static bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, tlod_surface_type type) {
-  memset(fx, 0, sizeof *fx);
-  fx->ctx = ctx;
-  tlod_mesh_desc md = shape_mesh_desc(s);
-  tlod_result r = tlod_mesh_create(ctx, &md, &fx->mesh);
-  if (r == TLOD_SUCCESS) r = tlod_surface_create(ctx, fx->mesh, &(tlod_surface_desc){.type = type}, &fx->surf);
-  if (r == TLOD_SUCCESS) r = tlod_patterns_create(ctx, &(tlod_patterns_desc){.max_level = 6}, &fx->pat);
-  if (r != TLOD_SUCCESS) fprintf(stderr, "fixture %s: %s\n", s->name, tlod_context_last_error(ctx));
-  return r == TLOD_SUCCESS;
-}
-
-static void fixture_free(fixture* fx) {
-  tlod_surface_destroy(fx->surf);
-  tlod_mesh_destroy(fx->mesh);
-  tlod_patterns_destroy(fx->pat);
 }
 
 static const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* v, uint32_t count,
