@@ -64,6 +64,35 @@ static int cmp_corner(const void* pa, const void* pb) {
   return c ? c : (a->vertex < b->vertex ? -1 : (a->vertex > b->vertex));
 }
 
+/* The order qsort(cmp_corner) gives, cheaper: key[0] is a weld id (a
+ * vertex index), so a counting sort by it does most of the work and only
+ * groups sharing a weld id (seams, creases) are sorted by the rest. */
+static bool sort_corners(tess* t, corner_key* keys) {
+  uint32_t nv = t->m.vertex_count;
+  uint32_t* at = tlod_context_calloc(t->ctx, (size_t)nv + 1, sizeof(uint32_t));
+  corner_key* sorted = tlod_context_alloc(t->ctx, sizeof(corner_key) * (nv ? nv : 1));
+  if (!at || !sorted) {
+    tlod_context_free(t->ctx, at);
+    tlod_context_free(t->ctx, sorted);
+    return false;
+  }
+  for (uint32_t v = 0; v < nv; v++)
+    at[keys[v].key[0] + 1]++;
+  for (uint32_t w = 0; w < nv; w++)
+    at[w + 1] += at[w];
+  for (uint32_t v = 0; v < nv; v++)
+    sorted[at[keys[v].key[0]]++] = keys[v];
+  memcpy(keys, sorted, sizeof(corner_key) * nv);
+  for (uint32_t b = 0, e; b < nv; b = e) {
+    for (e = b + 1; e < nv && keys[e].key[0] == keys[b].key[0];)
+      e++;
+    if (e - b > 1) qsort(keys + b, e - b, sizeof(corner_key), cmp_corner);
+  }
+  tlod_context_free(t->ctx, at);
+  tlod_context_free(t->ctx, sorted);
+  return true;
+}
+
 static tlod_result number_corners(tess* t) {
   const tlod_mesh_view* m = &t->m;
   corner_key* keys = tlod_context_alloc(t->ctx, sizeof(corner_key) * (m->vertex_count ? m->vertex_count : 1));
@@ -81,7 +110,10 @@ static tlod_result number_corners(tess* t) {
     keys[v].attr = t->na ? m->attributes + (size_t)v * t->na : NULL;
     keys[v].na = t->na;
   }
-  qsort(keys, m->vertex_count, sizeof(corner_key), cmp_corner);
+  if (!sort_corners(t, keys)) {
+    tlod_context_free(t->ctx, keys);
+    return TLOD_ERROR_OUT_OF_MEMORY;
+  }
   uint32_t id = 0;
   for (uint32_t x = 0; x < m->vertex_count; x++) {
     if (x == 0 || cmp_key(&keys[x], &keys[x - 1]) != 0) t->corner_src[id++] = keys[x].vertex;
