@@ -12,10 +12,13 @@
  * the ceil) never move that goal. A ceil is checked without calling ceilf:
  * c == ceil(t) exactly when c is integral and c - 1 < t <= c (levels are
  * small integers, so every step is exact). */
-bool _tlod_morphs_settled(const _tlod_frame* fr, uint32_t begin, uint32_t end) {
-  const float *target = fr->vs->target, *cont = fr->vs->cont;
+/* Sub-blocks of the settled scan: long enough to vectorise, short enough
+ * that a moving chunk stops after its first unsettled one. */
+#define SETTLED_RUN 512u
+
+static bool run_settled(const float* target, const float* cont, bool continuous, uint32_t begin, uint32_t end) {
   bool settled = true;
-  if (fr->s->desc.morph == TLOD_MORPH_CONTINUOUS) {
+  if (continuous) {
     for (uint32_t f = begin; f < end; f++)
       settled &= cont[f] == target[f] || cont[f] == _TLOD_NO_HISTORY;
     return settled;
@@ -25,6 +28,16 @@ bool _tlod_morphs_settled(const _tlod_frame* fr, uint32_t begin, uint32_t end) {
     settled &= (c == (float)(int32_t)c && c - 1.0f < t && t <= c) || c == _TLOD_NO_HISTORY;
   }
   return settled;
+}
+
+bool _tlod_morphs_settled(const _tlod_frame* fr, uint32_t begin, uint32_t end) {
+  const float *target = fr->vs->target, *cont = fr->vs->cont;
+  bool continuous = fr->s->desc.morph == TLOD_MORPH_CONTINUOUS;
+  for (uint32_t f = begin; f < end; f += SETTLED_RUN) {
+    uint32_t stop = end - f > SETTLED_RUN ? f + SETTLED_RUN : end;
+    if (!run_settled(target, cont, continuous, f, stop)) return false;
+  }
+  return true;
 }
 
 static _tlod_view_key key_of(const tlod_scheduler* s, const tlod_view_desc* v, const tlod_mesh_view* mesh,

@@ -148,8 +148,22 @@ void _tlod_control_frame_time(tlod_scheduler* s, float measured_ms);
 
 /* scheduler_morph.c */
 void _tlod_morph_task(void* frame, uint32_t begin, uint32_t end, uint32_t worker);
-uint32_t _tlod_drawn_level(float cont);
-float _tlod_morph_of(float cont, uint32_t level);
+/* The level a patch at continuous level cont draws: ceil(cont), 0 when
+ * cont is not positive (no history, NaN). Inline, per patch and edge in
+ * the draw list; ceil without a libm call: truncation is exact below 2^32,
+ * where (uint32_t) is defined at all. */
+static inline uint32_t _tlod_drawn_level(float cont) {
+  if (!(cont > 0.0f)) return 0u;
+  uint32_t i = (uint32_t)cont;
+  return i + ((float)i < cont);
+}
+/* Blend of the vertices new at `level`: 0 at their parents' midpoint, 1 on
+ * the surface; level 0 has no new vertices and is always exact. */
+static inline float _tlod_morph_of(float cont, uint32_t level) {
+  if (level == 0) return 1.0f;
+  float m = cont - (float)(level - 1);
+  return m < 0.0f ? 0.0f : (m > 1.0f ? 1.0f : m);
+}
 /* Whether edge e of visible patch f gets a strip when patches sit at
  * continuous levels cont[]: counted once, from the lower patch index, and
  * only towards a visible neighbour. */
