@@ -126,8 +126,7 @@ static void count_patches(const _tlod_frame* fr, _tlod_list_chunk* ch, chunk_tal
   }
 }
 
-/* Pass 1 over chunks [begin, end): count_patches, and whether the morphs
- * have settled. */
+/* Pass 1 over chunks [begin, end): count_patches. */
 static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   _tlod_frame* fr = data;
@@ -137,7 +136,6 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
     chunk_tally t = {.e_min = INFINITY};
     uint32_t f0, f1;
     chunk_range(fr, c, &f0, &f1);
-    ch->settled = _tlod_morphs_settled(fr, f0, f1);
     count_patches(fr, ch, &t, f0, f1);
     ch->e_max_min = t.e_min, ch->e_max_max = t.e_max;
     ch->strips = t.strips, ch->culled = t.culled;
@@ -205,7 +203,6 @@ static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
   dl->culled = dl->strip_count = 0;
   dl->e_max_min = INFINITY;
   dl->e_max_max = 0.0f;
-  vs->settled = true;
   for (uint32_t c = 0; c < chunks; c++) {
     _tlod_list_chunk* ch = &vs->chunks[c];
     ch->strip_first = dl->strip_count;
@@ -214,7 +211,6 @@ static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
     dl->culled += ch->culled;
     dl->e_max_min = ch->e_max_min < dl->e_max_min ? ch->e_max_min : dl->e_max_min;
     dl->e_max_max = ch->e_max_max > dl->e_max_max ? ch->e_max_max : dl->e_max_max;
-    vs->settled = vs->settled && ch->settled;
   }
   if (dl->culled == fr->s->patch_count) dl->e_max_min = 0.0f;
 }
@@ -258,7 +254,7 @@ tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   vs->list.generation++;
   vs->list.instances = vs->instances;
   vs->list.buckets = vs->buckets;
-  vs->key_valid = false;
+  vs->key_valid = vs->settled_known = false;
   tlod_context_parallel_for(fr->s->ctx, count_task, fr, chunks);
   vs->list.pattern_triangles = 0;
   memset(vs->list.level_histogram, 0, sizeof(vs->list.level_histogram));

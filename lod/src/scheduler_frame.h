@@ -40,7 +40,6 @@ typedef struct _tlod_list_chunk {
   uint64_t strip_triangles;
   uint32_t culled;
   float e_max_min, e_max_max;
-  bool settled; /* every morph of the chunk at rest (_tlod_morphs_settled) */
 } _tlod_list_chunk;
 
 /* What the draw list of one view was made from (scheduler_coherence.c). */
@@ -72,7 +71,9 @@ typedef struct _tlod_view_state {
   uint8_t* strip_edges;     /* per patch: bit e when edge e has a strip (this frame) */
   _tlod_view_key key;       /* valid while key_valid */
   bool key_valid;
-  bool settled; /* the last draw list's morphs were all at rest */
+  /* The last draw list's morphs were all at rest: checked only when a
+   * frame's key matches (a moving view never needs it), then kept. */
+  bool settled, settled_known;
   bool has_history;
 } _tlod_view_state;
 
@@ -183,10 +184,6 @@ tlod_result _tlod_list_alloc(tlod_scheduler* s, _tlod_view_state* vs);
 tlod_result _tlod_fill_draw_list(_tlod_frame* fr);
 
 /* scheduler_coherence.c */
-/* Whether patches [begin, end) have their continuous levels where an
- * update without history puts them for their current targets: then the
- * same inputs give the same levels, whatever dt_ms. */
-bool _tlod_morphs_settled(const _tlod_frame* fr, uint32_t begin, uint32_t end);
 /* Whether frame would rebuild exactly the draw lists s holds: every view's
  * inputs bitwise as last time, the mesh and surface generations unchanged,
  * every morph at rest. */
