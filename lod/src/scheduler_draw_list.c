@@ -92,15 +92,22 @@ static void count_visible(const _tlod_frame* fr, _tlod_list_chunk* ch, chunk_tal
   count_strips(fr, t, f, l);
 }
 
-/* Patches [f, f + FAST_BLOCK) when f starts a block (chunks are whole
- * blocks) and all of them are culled, else 0: one scan of the visible
- * bytes instead of a level per patch. */
-static uint32_t culled_run(const uint8_t* visible, uint32_t f, uint32_t end) {
-  if (f % FAST_BLOCK || end - f < FAST_BLOCK) return 0;
+/* Whether the n visible bytes from f are all 0 (culled). */
+static bool all_culled(const uint8_t* visible, uint32_t f, uint32_t n) {
   uint8_t any = 0;
-  for (uint32_t i = f; i < f + FAST_BLOCK; i++)
+  for (uint32_t i = f; i < f + n; i++)
     any |= visible[i];
-  return any ? 0 : FAST_BLOCK;
+  return !any;
+}
+
+/* The culled patches from f skipped at once, else 0: a whole block when f
+ * starts one (chunks are whole blocks), else 8 when f is a multiple of 8
+ * (a visible border patch's block is mostly culled too). One scan of the
+ * visible bytes instead of a test per patch. */
+static uint32_t culled_run(const uint8_t* visible, uint32_t f, uint32_t end) {
+  if (f % FAST_BLOCK == 0 && end - f >= FAST_BLOCK && all_culled(visible, f, FAST_BLOCK)) return FAST_BLOCK;
+  if (f % 8 == 0 && end - f >= 8 && all_culled(visible, f, 8)) return 8;
+  return 0;
 }
 
 /* Patches [f0, f1) of a chunk: drawn levels (-1 when culled; a culled
@@ -109,7 +116,7 @@ static void count_patches(const _tlod_frame* fr, _tlod_list_chunk* ch, chunk_tal
   _tlod_view_state* vs = fr->vs;
   for (uint32_t f = f0; f < f1; f++) {
     uint32_t run = culled_run(vs->visible, f, f1);
-    if (run) { /* a culled block: no level to read */
+    if (run) { /* culled: no level to read */
       memset(vs->levels + f, -1, run);
       t->culled += run;
       f += run - 1;
@@ -156,7 +163,7 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
     if (ch->culled == f1 - f0) continue;
     for (uint32_t f = f0; f < f1; f++) {
       uint32_t run = culled_run(vs->visible, f, f1);
-      if (run) f += run - 1; /* a culled block: nothing to write */
+      if (run) f += run - 1; /* culled: nothing to write */
       if (run || !vs->visible[f]) continue;
       uint32_t l = (uint32_t)vs->levels[f];
       /* Edges blend with their patch (see _tlod_strip_needed). */
