@@ -35,14 +35,6 @@ static void chunk_range(const _tlod_frame* fr, uint32_t c, uint32_t* begin, uint
   *end = *begin + _TLOD_LIST_CHUNK < fr->s->patch_count ? *begin + _TLOD_LIST_CHUNK : fr->s->patch_count;
 }
 
-/* Statistics of visible patch f at level l into its chunk. */
-static void count_visible(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t f, uint32_t l) {
-  float e = fr->vs->e_max[f];
-  ch->counts[bucket_of(fr, f, l)]++;
-  ch->e_max_min = e < ch->e_max_min ? e : ch->e_max_min;
-  ch->e_max_max = e > ch->e_max_max ? e : ch->e_max_max;
-}
-
 /* The strip across edge e of visible patch f at level l (a strip is needed). */
 static tlod_draw_strip strip_of(const _tlod_frame* fr, uint32_t f, uint32_t e, uint32_t l) {
   tlod_edge_link link = fr->mesh.links[f][e];
@@ -54,62 +46,107 @@ static tlod_draw_strip strip_of(const _tlod_frame* fr, uint32_t f, uint32_t e, u
   return (tlod_draw_strip){f, link.face, (uint8_t)e, link.edge, (uint8_t)l, (uint8_t)lg, !link.smooth, exact};
 }
 
-/* Strips of visible patch f at level l into its chunk; the edges that
+/* Running statistics of a chunk's count pass, kept in locals rather
+ * than in the chunk (whose counts[] stores would otherwise alias them). */
+typedef struct chunk_tally {
+  float e_min, e_max;
+  uint32_t strips, culled;
+  uint64_t strip_triangles;
+} chunk_tally;
+
+/* Whether edge e of visible patch f (drawn level l, blend m) needs a strip:
+ * _tlod_strip_needed with f's level and blend computed once per patch. */
+static bool strip_needed_at(const _tlod_frame* fr, uint32_t f, uint32_t e, uint32_t l, float m) {
+  tlod_edge_link link = fr->mesh.links[f][e];
+  uint32_t g = link.face;
+  if (g == _TLOD_NO_FACE || g < f || !fr->vs->visible[g]) return false;
+  float cg = fr->vs->cont[g];
+  uint32_t lg = _tlod_drawn_level(cg);
+  return !link.smooth || l != lg || m != _tlod_morph_of(cg, lg);
+}
+
+/* Strips of visible patch f at level l into the tally; the edges that
  * have one into strip_edges[f] (bit e), for the second pass. */
-static void count_strips(const _tlod_frame* fr, _tlod_list_chunk* ch, uint32_t f, uint32_t l) {
+static void count_strips(const _tlod_frame* fr, chunk_tally* t, uint32_t f, uint32_t l) {
   uint8_t mask = 0;
-  for (uint32_t e = 0; e < fr->mesh.face_corners[f]; e++) {
-    if (!_tlod_strip_needed(fr, fr->vs->cont, f, e)) continue;
+  float m = _tlod_morph_of(fr->vs->cont[f], l);
+  bool flat = fr->s->desc.policy == TLOD_POLICY_FLAT; /* FLAT draws no strip */
+  for (uint32_t e = 0; !flat && e < fr->mesh.face_corners[f]; e++) {
+    if (!strip_needed_at(fr, f, e, l, m)) continue;
     mask |= (uint8_t)(1u << e);
     tlod_draw_strip st = strip_of(fr, f, e, l);
     uint32_t n = 0;
     tlod_draw_strip_connection(fr->s->patterns, &st, &n);
-    ch->strips++;
-    ch->strip_triangles += n;
+    t->strips++;
+    t->strip_triangles += n;
   }
   fr->vs->strip_edges[f] = mask;
 }
 
-/* Patches [f, f + FAST_BLOCK) when f starts a block (chunks are whole
- * blocks) and all of them are culled, else 0: one scan of the visible
- * bytes instead of a level per patch. */
-static uint32_t culled_run(const uint8_t* visible, uint32_t f, uint32_t end) {
-  if (f % FAST_BLOCK || end - f < FAST_BLOCK) return 0;
-  uint8_t any = 0;
-  for (uint32_t i = f; i < f + FAST_BLOCK; i++)
-    any |= visible[i];
-  return any ? 0 : FAST_BLOCK;
+/* Visible patch f at level l: its bucket count, statistics and strips. */
+static void count_visible(const _tlod_frame* fr, _tlod_list_chunk* ch, chunk_tally* t, uint32_t f, uint32_t l) {
+  float e = fr->vs->e_max[f];
+  ch->counts[bucket_of(fr, f, l)]++;
+  t->e_min = e < t->e_min ? e : t->e_min;
+  t->e_max = e > t->e_max ? e : t->e_max;
+  count_strips(fr, t, f, l);
 }
 
-/* Pass 1 over chunks [begin, end): drawn levels (-1 when culled), bucket
- * and strip counts, statistics, and whether the morphs have settled. */
+/* Whether the n visible bytes from f are all 0 (culled). */
+static bool all_culled(const uint8_t* visible, uint32_t f, uint32_t n) {
+  uint8_t any = 0;
+  for (uint32_t i = f; i < f + n; i++)
+    any |= visible[i];
+  return !any;
+}
+
+/* The culled patches from f skipped at once, else 0: a whole block when f
+ * starts one (chunks are whole blocks), else 8 when f is a multiple of 8
+ * (a visible border patch's block is mostly culled too). One scan of the
+ * visible bytes instead of a test per patch. */
+static uint32_t culled_run(const uint8_t* visible, uint32_t f, uint32_t end) {
+  if (f % FAST_BLOCK == 0 && end - f >= FAST_BLOCK && all_culled(visible, f, FAST_BLOCK)) return FAST_BLOCK;
+  if (f % 8 == 0 && end - f >= 8 && all_culled(visible, f, 8)) return 8;
+  return 0;
+}
+
+/* Patches [f0, f1) of a chunk: drawn levels (-1 when culled; a culled
+ * patch needs no level), bucket and strip counts, statistics. */
+static void count_patches(const _tlod_frame* fr, _tlod_list_chunk* ch, chunk_tally* t, uint32_t f0, uint32_t f1) {
+  _tlod_view_state* vs = fr->vs;
+  for (uint32_t f = f0; f < f1; f++) {
+    uint32_t run = culled_run(vs->visible, f, f1);
+    if (run) { /* culled: no level to read */
+      memset(vs->levels + f, -1, run);
+      t->culled += run;
+      f += run - 1;
+      continue;
+    }
+    if (!vs->visible[f]) {
+      vs->levels[f] = -1;
+      t->culled++;
+      continue;
+    }
+    uint32_t l = _tlod_drawn_level(vs->cont[f]);
+    vs->levels[f] = (int8_t)l;
+    count_visible(fr, ch, t, f, l);
+  }
+}
+
+/* Pass 1 over chunks [begin, end): count_patches. */
 static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   _tlod_frame* fr = data;
-  _tlod_view_state* vs = fr->vs;
   for (uint32_t c = begin; c < end; c++) {
-    _tlod_list_chunk* ch = &vs->chunks[c];
-    *ch = (_tlod_list_chunk){.e_max_min = INFINITY};
+    _tlod_list_chunk* ch = &fr->vs->chunks[c];
+    *ch = (_tlod_list_chunk){0};
+    chunk_tally t = {.e_min = INFINITY};
     uint32_t f0, f1;
     chunk_range(fr, c, &f0, &f1);
-    ch->settled = _tlod_morphs_settled(fr, f0, f1);
-    for (uint32_t f = f0; f < f1; f++) {
-      uint32_t run = culled_run(vs->visible, f, f1);
-      if (run) { /* a culled block: no level to read */
-        memset(vs->levels + f, -1, run);
-        ch->culled += run;
-        f += run - 1;
-        continue;
-      }
-      uint32_t l = _tlod_drawn_level(vs->cont[f]);
-      vs->levels[f] = vs->visible[f] ? (int8_t)l : -1;
-      if (!vs->visible[f]) {
-        ch->culled++;
-        continue;
-      }
-      count_visible(fr, ch, f, l);
-      count_strips(fr, ch, f, l);
-    }
+    count_patches(fr, ch, &t, f0, f1);
+    ch->e_max_min = t.e_min, ch->e_max_max = t.e_max;
+    ch->strips = t.strips, ch->culled = t.culled;
+    ch->strip_triangles = t.strip_triangles;
   }
 }
 
@@ -125,7 +162,9 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
     chunk_range(fr, c, &f0, &f1);
     if (ch->culled == f1 - f0) continue;
     for (uint32_t f = f0; f < f1; f++) {
-      if (!vs->visible[f]) continue;
+      uint32_t run = culled_run(vs->visible, f, f1);
+      if (run) f += run - 1; /* culled: nothing to write */
+      if (run || !vs->visible[f]) continue;
       uint32_t l = (uint32_t)vs->levels[f];
       /* Edges blend with their patch (see _tlod_strip_needed). */
       vs->instances[ch->counts[bucket_of(fr, f, l)]++] =
@@ -171,7 +210,6 @@ static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
   dl->culled = dl->strip_count = 0;
   dl->e_max_min = INFINITY;
   dl->e_max_max = 0.0f;
-  vs->settled = true;
   for (uint32_t c = 0; c < chunks; c++) {
     _tlod_list_chunk* ch = &vs->chunks[c];
     ch->strip_first = dl->strip_count;
@@ -180,7 +218,6 @@ static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
     dl->culled += ch->culled;
     dl->e_max_min = ch->e_max_min < dl->e_max_min ? ch->e_max_min : dl->e_max_min;
     dl->e_max_max = ch->e_max_max > dl->e_max_max ? ch->e_max_max : dl->e_max_max;
-    vs->settled = vs->settled && ch->settled;
   }
   if (dl->culled == fr->s->patch_count) dl->e_max_min = 0.0f;
 }
@@ -224,7 +261,7 @@ tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   vs->list.generation++;
   vs->list.instances = vs->instances;
   vs->list.buckets = vs->buckets;
-  vs->key_valid = false;
+  vs->key_valid = vs->settled_known = false;
   tlod_context_parallel_for(fr->s->ctx, count_task, fr, chunks);
   vs->list.pattern_triangles = 0;
   memset(vs->list.level_histogram, 0, sizeof(vs->list.level_histogram));

@@ -40,7 +40,6 @@ typedef struct _tlod_list_chunk {
   uint64_t strip_triangles;
   uint32_t culled;
   float e_max_min, e_max_max;
-  bool settled; /* every morph of the chunk at rest (_tlod_morphs_settled) */
 } _tlod_list_chunk;
 
 /* What the draw list of one view was made from (scheduler_coherence.c). */
@@ -72,7 +71,9 @@ typedef struct _tlod_view_state {
   uint8_t* strip_edges;     /* per patch: bit e when edge e has a strip (this frame) */
   _tlod_view_key key;       /* valid while key_valid */
   bool key_valid;
-  bool settled; /* the last draw list's morphs were all at rest */
+  /* The last draw list's morphs were all at rest: checked only when a
+   * frame's key matches (a moving view never needs it), then kept. */
+  bool settled, settled_known;
   bool has_history;
 } _tlod_view_state;
 
@@ -148,8 +149,22 @@ void _tlod_control_frame_time(tlod_scheduler* s, float measured_ms);
 
 /* scheduler_morph.c */
 void _tlod_morph_task(void* frame, uint32_t begin, uint32_t end, uint32_t worker);
-uint32_t _tlod_drawn_level(float cont);
-float _tlod_morph_of(float cont, uint32_t level);
+/* The level a patch at continuous level cont draws: ceil(cont), 0 when
+ * cont is not positive (no history, NaN). Inline, per patch and edge in
+ * the draw list; ceil without a libm call: truncation is exact below 2^32,
+ * where (uint32_t) is defined at all. */
+static inline uint32_t _tlod_drawn_level(float cont) {
+  if (!(cont > 0.0f)) return 0u;
+  uint32_t i = (uint32_t)cont;
+  return i + ((float)i < cont);
+}
+/* Blend of the vertices new at `level`: 0 at their parents' midpoint, 1 on
+ * the surface; level 0 has no new vertices and is always exact. */
+static inline float _tlod_morph_of(float cont, uint32_t level) {
+  if (level == 0) return 1.0f;
+  float m = cont - (float)(level - 1);
+  return m < 0.0f ? 0.0f : (m > 1.0f ? 1.0f : m);
+}
 /* Whether edge e of visible patch f gets a strip when patches sit at
  * continuous levels cont[]: counted once, from the lower patch index, and
  * only towards a visible neighbour. */
@@ -169,10 +184,6 @@ tlod_result _tlod_list_alloc(tlod_scheduler* s, _tlod_view_state* vs);
 tlod_result _tlod_fill_draw_list(_tlod_frame* fr);
 
 /* scheduler_coherence.c */
-/* Whether patches [begin, end) have their continuous levels where an
- * update without history puts them for their current targets: then the
- * same inputs give the same levels, whatever dt_ms. */
-bool _tlod_morphs_settled(const _tlod_frame* fr, uint32_t begin, uint32_t end);
 /* Whether frame would rebuild exactly the draw lists s holds: every view's
  * inputs bitwise as last time, the mesh and surface generations unchanged,
  * every morph at rest. */

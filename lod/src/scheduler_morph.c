@@ -42,16 +42,6 @@ void _tlod_morph_task(void* data, uint32_t begin, uint32_t end, uint32_t worker)
   }
 }
 
-uint32_t _tlod_drawn_level(float cont) { return cont > 0.0f ? (uint32_t)ceilf(cont) : 0u; }
-
-/* Blend of the vertices new at `level`: 0 at their parents' midpoint, 1 on
- * the surface; level 0 has no new vertices and is always exact. */
-float _tlod_morph_of(float cont, uint32_t level) {
-  if (level == 0) return 1.0f;
-  float m = cont - (float)(level - 1);
-  return m < 0.0f ? 0.0f : (m > 1.0f ? 1.0f : m);
-}
-
 /* An edge's new vertices blend with their patch: a blend shared with an
  * equal-level neighbour (the smaller of the two) cannot stay continuous, as
  * the shared value jumps whenever either side changes level (its coarser
