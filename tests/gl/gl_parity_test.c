@@ -112,15 +112,15 @@ static void compare_cpu_mesh(gl_env* env, tlod_device* dev, const fixture* fx, c
             t.cpu_mesh, t.gpu_eval_reason);
   /* Equal to the last list (another camera, every patch at one level): the mesh is kept. */
   size_t ib = sizeof(tlod_draw_instance) * dl->instance_count, sb = sizeof(tlod_draw_strip) * dl->strip_count;
-  bool same = env->prev && env->prev_bytes == ib + sb && !memcmp(env->prev, dl->instances, ib) &&
-              !memcmp(env->prev + ib, dl->strips, sb);
+  bool same = env->prev && env->prev_bytes == ib + sb && (ib == 0 || !memcmp(env->prev, dl->instances, ib)) &&
+              (sb == 0 || !memcmp(env->prev + ib, dl->strips, sb));
   CHECK_MSG(t.mesh_evaluations == (same ? 0u : 1u) && (same || t.mesh_bytes > 0),
             "%s: %u evaluations, %llu bytes (expected %u)", label, t.mesh_evaluations, (unsigned long long)t.mesh_bytes,
             same ? 0u : 1u);
   free(env->prev);
   env->prev = malloc(ib + sb + 1u);
   CHECK(env->prev);
-  memcpy(env->prev, dl->instances, ib);
+  if (ib) memcpy(env->prev, dl->instances, ib);
   if (sb) memcpy(env->prev + ib, dl->strips, sb);
   env->prev_bytes = ib + sb;
   CHECK_MSG(t.triangles == dl->pattern_triangles + dl->strip_triangles, "%s: %llu triangles, the list has %llu", label,

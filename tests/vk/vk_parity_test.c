@@ -135,11 +135,11 @@ static void check_cpu_mesh(parity_env* env, const tlod_draw_desc* desc, tlod_dra
   const tlod_draw_list* dl = vi.draw_list;
   size_t ib = sizeof(tlod_draw_instance) * dl->instance_count, sb = sizeof(tlod_draw_strip) * dl->strip_count;
   /* Equal to the last list (another camera, every patch at one level): the mesh is kept. */
-  bool same = env->prev && env->prev_bytes == ib + sb && !memcmp(env->prev, dl->instances, ib) &&
-              !memcmp(env->prev + ib, dl->strips, sb);
+  bool same = env->prev && env->prev_bytes == ib + sb && (ib == 0 || !memcmp(env->prev, dl->instances, ib)) &&
+              (sb == 0 || !memcmp(env->prev + ib, dl->strips, sb));
   free(env->prev);
   CHECK(env->prev = malloc(ib + sb + 1u));
-  memcpy(env->prev, dl->instances, ib);
+  if (ib) memcpy(env->prev, dl->instances, ib);
   if (sb) memcpy(env->prev + ib, dl->strips, sb);
   env->prev_bytes = ib + sb;
   tlod_draw_desc vd = *desc;
