@@ -71,7 +71,9 @@ void bench_usage(FILE* f) {
           "                     (limit evaluation), static and deforming, input-vertex distance, volume change;\n"
           "                     needs a tlod built with OpenSubdiv (scripts/bootstrap --peers)\n"
           "                     (== --suite peers; with --json its figures go under the key \"peers\")\n"
-          "  --peer-faces N     --peers on meshes of about N faces (default: 100000 and 1000000)\n",
+          "  --peer-faces N     --peers on meshes of about N faces (default: 100000 and 1000000)\n"
+          "  --peer-mesh KIND   --peers on one mesh: triangle | quad | mixed (default: all three)\n"
+          "  --peer-levels L,L  --peers at these levels, 1-4 (default: 1,2,3,4)\n",
           tlod_backend_names());
 }
 
@@ -144,6 +146,13 @@ int bench_parse(int argc, char** argv, bench_options* o) {
       o->suite = "peers";
     } else if (!strcmp(a, "--peer-faces")) {
       if (!(v = cli_value(argc, argv, &i)) || !cli_parse_uint(a, v, 16, 4000000, &o->peer_faces)) return CLI_USAGE;
+    } else if (!strcmp(a, "--peer-mesh")) {
+      if (!(o->peer_mesh = cli_value(argc, argv, &i))) return CLI_USAGE;
+      if (strcmp(o->peer_mesh, "triangle") && strcmp(o->peer_mesh, "quad") && strcmp(o->peer_mesh, "mixed"))
+        return cli_error(CLI_USAGE, "bench: --peer-mesh '%s': triangle, quad or mixed", o->peer_mesh);
+    } else if (!strcmp(a, "--peer-levels")) {
+      if (!(v = cli_value(argc, argv, &i)) || !parse_list(a, v, 1, 4, o->peer_levels, &o->peer_level_count))
+        return CLI_USAGE;
     } else if (!strcmp(a, "--csv")) {
       if (!(o->csv = cli_value(argc, argv, &i))) return CLI_USAGE;
     } else if (a[0] == '-' && a[1]) {

@@ -19,12 +19,14 @@ typedef struct bench_options {
   const char* suite;
   const char* table1[16];
   uint32_t table1_count;
-  const char* backend;        /* the suites that draw: "gl" (default) or "vulkan" */
-  const char* shader_cache;   /* vulkan: --shader-cache DIR or "off"; NULL: the default folder */
-  const char* json;           /* --json FILE: the figures as one JSON document, written atomically */
-  const char* scheduler_mesh; /* --scheduler-mesh IN: the figures suite's scheduler mesh */
-  uint32_t bandwidth_mib;     /* --bandwidth-mib N: memory-rate buffers */
-  uint32_t peer_faces;        /* --peer-faces N: one mesh size; 0: 100k and 1M faces */
+  const char* backend;                       /* the suites that draw: "gl" (default) or "vulkan" */
+  const char* shader_cache;                  /* vulkan: --shader-cache DIR or "off"; NULL: the default folder */
+  const char* json;                          /* --json FILE: the figures as one JSON document, written atomically */
+  const char* scheduler_mesh;                /* --scheduler-mesh IN: the figures suite's scheduler mesh */
+  uint32_t bandwidth_mib;                    /* --bandwidth-mib N: memory-rate buffers */
+  uint32_t peer_faces;                       /* --peer-faces N: one mesh size; 0: 100k and 1M faces */
+  const char* peer_mesh;                     /* --peer-mesh KIND: triangle, quad or mixed; NULL: all three */
+  uint32_t peer_levels[8], peer_level_count; /* --peer-levels L,L: levels 1-4; count 0: all four */
 } bench_options;
 
 /* CLI_OK, or CLI_USAGE with the error printed; --help prints and exits. */

@@ -254,8 +254,10 @@ static int run_mesh(peers_run* r, const char* kind, uint32_t faces) {
   int rc = (r->control = malloc(sizeof(float) * 3 * (size_t)m.vertex_count)) ? CLI_OK : CLI_FAILED;
   printf("%s torus: %u faces, %u vertices (OpenSubdiv: %s)\n", kind, m.face_count, m.vertex_count,
          strcmp(kind, "triangle") ? "catmull-clark" : "loop");
-  for (uint32_t level = 1; level <= 4 && rc == CLI_OK; level++)
-    rc = run_level(r, &m, level);
+  const bench_options* o = r->o;
+  uint32_t count = o->peer_level_count ? o->peer_level_count : 4;
+  for (uint32_t i = 0; i < count && rc == CLI_OK; i++)
+    rc = run_level(r, &m, o->peer_level_count ? o->peer_levels[i] : i + 1);
   free(r->control);
   peers_mesh_free(&m);
   return rc;
@@ -281,8 +283,9 @@ int bench_peers(const bench_options* o, json_writer* json, FILE* csv) {
   }
   int rc = CLI_OK;
   for (uint32_t s = 0; s < size_count && rc == CLI_OK; s++) {
-    for (uint32_t k = 0; k < 3 && rc == CLI_OK; k++)
-      rc = run_mesh(&r, kinds[k], sizes[s]);
+    for (uint32_t k = 0; k < 3 && rc == CLI_OK; k++) {
+      if (!o->peer_mesh || !strcmp(o->peer_mesh, kinds[k])) rc = run_mesh(&r, kinds[k], sizes[s]);
+    }
   }
   if (json) json_array_end(json), json_object_end(json);
   return rc;
