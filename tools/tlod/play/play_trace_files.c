@@ -46,11 +46,13 @@ bool play_trace_files_open(play_trace* t, const char* dir, char* error, size_t e
   return true;
 }
 
-/* A write error shows now (not at the end): the run stops at the first. */
+/* A write error shows now (not at the end): the run stops at the first.
+ * errno is not cleared here: a write that failed while the frames were
+ * formatted (the stream flushing its full buffer) left its errno (EFBIG,
+ * ENOSPC), and fflush of a stream already in error may fail without one. */
 static bool flushed(play_trace* t, char* error, size_t error_size) {
   for (int k = 0; k < FILE_NUM; k++) {
     FILE* f = t->files->files[k].file;
-    errno = 0;
     if (fflush(f) != 0 || ferror(f)) {
       snprintf(error, error_size, "cannot write '%s': %s", t->files->paths[k], strerror(errno ? errno : EIO));
       return discard_all(t);
@@ -62,6 +64,7 @@ static bool flushed(play_trace* t, char* error, size_t error_size) {
 bool play_trace_files_flush(play_trace* t, char* error, size_t error_size) {
   if (!t->files) return true;
   play_trace_files* tf = t->files;
+  errno = 0;
   trace_json_frames(&tf->json, t);
   trace_csv_frames(tf->files[FILE_CSV].file, t);
   chrome_trace_frames(tf->files[FILE_CHROME].file, t, &tf->chrome_first);
