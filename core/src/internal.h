@@ -81,6 +81,11 @@ struct tlod_mesh {
   uint8_t* node_given;
   uint8_t* node_only;
 
+  /* Smooth normals' per-position sums (mesh_normals.c), made by the first
+   * tlod_mesh_update that recomputes normals and kept: no allocation per
+   * update. NULL before, and with creases. */
+  double (*normal_sum)[4];
+
   tlod_mesh_info info;
   tlod_finding findings[TLOD_MAX_FINDINGS];
 };
@@ -95,6 +100,9 @@ void _tlod_mesh_refresh_smooth(tlod_mesh* mesh);
 /* mesh_normals.c: normals with crease splits; appended vertices' sources go
  * to *split_source. */
 tlod_result _tlod_mesh_compute_normals_split(tlod_mesh* mesh, uint32_t** split_source);
+/* Makes mesh->normal_sum (no creases): _tlod_mesh_compute_normals then
+ * cannot fail. */
+tlod_result _tlod_mesh_normals_prepare(tlod_mesh* mesh);
 /* mesh_adjacency.c: fills weld_id, links and the edge counts of info. */
 tlod_result _tlod_mesh_build_adjacency(tlod_mesh* mesh);
 /* mesh_normals.c: computes normals of the vertices marked in normal_computed
@@ -147,6 +155,7 @@ struct tlod_surface {
   _tlod_quad_patch* quad; /* QUADRATIC only */
   float* alpha;           /* per mesh vertex: the shape factor used */
   float (*snapshot)[6];   /* vertex positions and normals the patches were built from */
+  uint8_t* changed;       /* tlod_surface_refresh's flags, per vertex then per patch; made at the first */
   char label[64];
   uint64_t generation; /* tlod_surface_view.generation */
 };

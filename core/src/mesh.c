@@ -510,6 +510,7 @@ void tlod_mesh_destroy(tlod_mesh* mesh) {
   _tlod_free(ctx, mesh->face_nodes);
   _tlod_free(ctx, mesh->node_given);
   _tlod_free(ctx, mesh->node_only);
+  _tlod_free(ctx, mesh->normal_sum);
   _tlod_free(ctx, mesh);
 }
 
@@ -628,19 +629,26 @@ static void write_normals(tlod_mesh* m, const float* normals, uint32_t ns) {
   copy_split(m, m->normals);
 }
 
-/* Positions without normals: computed normals follow the new positions. If
- * that runs out of memory, the old positions come back, so a failed update
- * leaves the mesh as it was. */
+/* Positions without normals: computed normals follow the new positions. A
+ * failed update leaves the mesh as it was: smooth normals allocate their
+ * scratch once, before anything is written (then nothing can fail); with
+ * creases, if computing runs out of memory the old positions come back. */
 static tlod_result update_positions_only(tlod_mesh* m, const float* positions, uint32_t ps) {
   if (!any_computed(m)) {
     write_positions(m, positions, ps);
     return TLOD_SUCCESS;
   }
+  tlod_result r = _tlod_mesh_normals_prepare(m);
+  if (r != TLOD_SUCCESS) return r;
+  if (m->normal_sum) {
+    write_positions(m, positions, ps);
+    return _tlod_mesh_compute_normals(m);
+  }
   float(*saved)[3] = _tlod_calloc(m->ctx, m->vertex_count, sizeof(*saved));
   if (!saved) return fail_oom(m, "update");
   memcpy(saved, m->positions, (size_t)m->vertex_count * sizeof(*saved));
   write_positions(m, positions, ps);
-  tlod_result r = _tlod_mesh_compute_normals(m);
+  r = _tlod_mesh_compute_normals(m);
   if (r != TLOD_SUCCESS) memcpy(m->positions, saved, (size_t)m->vertex_count * sizeof(*saved));
   _tlod_free(m->ctx, saved);
   return r;

@@ -35,27 +35,24 @@
 
 #define PI_D 3.14159265358979323846
 
-/* Everything a computation needs, allocated up front so that a computation
+/* Everything a computation with creases needs, allocated up front so that a computation
  * that fails has not written a normal yet. */
 typedef struct normal_job {
   tlod_mesh* m;
   bool area;             /* face area weights, else corner angles */
-  bool creases;          /* crease_angle_deg > 0 */
   double cos_crease;     /* corners with dot(n_f, n_g) >= this are on the same side */
   double (*corner_n)[3]; /* per corner slot: unit normal, zero when there is none */
   double* weight;        /* per corner slot face * 4 + corner */
   uint32_t* w_first;     /* corner slots of welded position w: w_slots[w_first[w] .. w_first[w+1]) */
   uint32_t* w_slots;     /* in face order */
-  double (*w_sum)[4];    /* no creases: weighted sum and total weight per welded position */
-  uint8_t* state;        /* creases: 0 no corner seen, 1 corners agree, 2 they differ */
-  double (*mean)[3];     /* creases: sum of the unit corner normals of a vertex */
+  uint8_t* state;        /* 0 no corner seen, 1 corners agree, 2 they differ */
+  double (*mean)[3];     /* sum of the unit corner normals of a vertex */
 } normal_job;
 
 /* Node-only vertices (no corner of any face) never get a computed normal. */
-static bool wants_normal(const normal_job* j, uint32_t v) {
-  if (_tlod_mesh_is_node_only(j->m, v)) return false;
-  return j->m->normal_computed[v] || j->m->desc.normal_mode == TLOD_NORMALS_ANGLE ||
-         j->m->desc.normal_mode == TLOD_NORMALS_AREA;
+static bool wants_normal(const tlod_mesh* m, uint32_t v) {
+  if (_tlod_mesh_is_node_only(m, v)) return false;
+  return m->normal_computed[v] || m->desc.normal_mode == TLOD_NORMALS_ANGLE || m->desc.normal_mode == TLOD_NORMALS_AREA;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -104,11 +101,37 @@ static void corner_tangents(const tlod_mesh* m, uint32_t f, uint32_t i, double a
   edge_tangent(m, f, i, prev, prev, b);
 }
 
-/* Interior angle between the tangents; atan2 stays accurate near 0 and pi. */
-static double corner_angle(const double a[3], const double b[3]) {
-  double x[3];
-  cross3(a, b, x);
-  return atan2(length3(x), dot3(a, b));
+/* atan(r) for r in [0, 1] without libm (whose atan2 differs between
+ * libraries, so normals would, and is a call per corner): s = (r - t_k) /
+ * (1 + r t_k) with t_k = tan(k pi/16) the nearest (|s| <= tan(pi/32)), and
+ * atan(r) = k pi/16 + atan(s), atan(s) by its Taylor series to s^15 (the
+ * next term is below 2^-57 |s|). Branch-free: plain IEEE double operations,
+ * so the same bits everywhere (-ffp-contract=off). */
+static inline double atan01(double r) {
+  static const double mid[4] = {0.09849140335716425, 0.3033466836073424, 0.5345111359507916, 0.8206787908286602};
+  static const double t[5] = {0.0, 0.198912367379658, 0.41421356237309503, 0.6681786379192989, 1.0};
+  static const double at[5] = {0.0, 0.19634954084936207, 0.39269908169872414, 0.5890486225480862, 0.7853981633974483};
+  int k = (r > mid[0]) + (r > mid[1]) + (r > mid[2]) + (r > mid[3]);
+  double x = (r - t[k]) / (1.0 + r * t[k]), z = x * x;
+  double p =
+      ((((((-1.0 / 15.0 * z + 1.0 / 13.0) * z - 1.0 / 11.0) * z + 1.0 / 9.0) * z - 1.0 / 7.0) * z + 1.0 / 5.0) * z -
+       1.0 / 3.0) *
+      z;
+  return at[k] + (x + x * p);
+}
+
+/* atan2(y, x) for y >= 0: the angle in [0, pi] between vectors with |a x b|
+ * = y and a . b = x, by octants (accurate near 0 and pi, where acos is not).
+ * The octant folds are table lookups, not branches, which near right angles
+ * would be mispredicted half the time (b + 1 * a is exactly a when b is 0). */
+static inline double angle_of(double y, double x) {
+  static const double flip[2] = {1.0, -1.0}, right[2] = {0.0, 0.5 * PI_D}, straight[2] = {0.0, PI_D};
+  double ax = fabs(x), lo = y < ax ? y : ax, hi = y < ax ? ax : y;
+  if (!(hi > 0.0)) return 0.0; /* a zero tangent: a degenerate corner */
+  double a = atan01(lo / hi);
+  int up = y > ax, neg = x < 0.0;
+  a = right[up] + flip[up] * a;
+  return straight[neg] + flip[neg] * a;
 }
 
 /* A face with a given node on some edge has curved corners. */
@@ -148,15 +171,17 @@ static void unit3(const double x[3], double out[3]) {
     out[i] = len > 0.0 ? x[i] / len : 0.0;
 }
 
-/* Corner i of face f: its weight, and on a curved face its own normal
- * (the face normal n stands otherwise). */
-static void corner_geometry(normal_job* j, uint32_t f, uint32_t i, double area2, bool curved) {
+/* Corner i of face f (unit normal n, twice its area area2): its weight,
+ * and its unit normal in out (n, or on a curved face the tangents' own). */
+static double corner_weight(const tlod_mesh* m, bool area, uint32_t f, uint32_t i, double area2, bool curved,
+                            const double n[3], double out[3]) {
+  memcpy(out, n, 3 * sizeof(double));
+  if (area && !curved) return 0.5 * area2;
   double a[3], b[3], x[3];
-  corner_tangents(j->m, f, i, a, b);
-  j->weight[f * 4 + i] = j->area ? 0.5 * area2 : corner_angle(a, b);
-  if (!curved) return;
+  corner_tangents(m, f, i, a, b);
   cross3(a, b, x);
-  unit3(x, j->corner_n[f * 4 + i]);
+  if (curved) unit3(x, out);
+  return area ? 0.5 * area2 : angle_of(length3(x), dot3(a, b));
 }
 
 /* Corner normals and weights of face f. Area weights stay the flat area. */
@@ -171,7 +196,7 @@ static void face_geometry(normal_job* j, uint32_t f) {
     j->weight[f * 4 + i] = 0.0;
   }
   for (uint32_t i = 0; i < k; i++)
-    corner_geometry(j, f, i, length3(x), curved_face(m, f));
+    j->weight[f * 4 + i] = corner_weight(m, j->area, f, i, length3(x), curved_face(m, f), n, j->corner_n[f * 4 + i]);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -184,7 +209,6 @@ static void job_free(normal_job* j) {
   _tlod_free(ctx, j->weight);
   _tlod_free(ctx, j->w_first);
   _tlod_free(ctx, j->w_slots);
-  _tlod_free(ctx, j->w_sum);
   _tlod_free(ctx, j->state);
   _tlod_free(ctx, j->mean);
 }
@@ -197,16 +221,9 @@ static tlod_result job_alloc(normal_job* j) {
   j->weight = _tlod_calloc(ctx, nf * 4, sizeof(double));
   j->w_first = _tlod_calloc(ctx, nv + 1, sizeof(uint32_t));
   j->w_slots = _tlod_calloc(ctx, nf * 4, sizeof(uint32_t));
-  bool ok = j->corner_n && j->weight && j->w_first && j->w_slots;
-  if (ok && !j->creases) {
-    j->w_sum = _tlod_calloc(ctx, nv, sizeof(*j->w_sum));
-    ok = j->w_sum != NULL;
-  } else if (ok) {
-    j->state = _tlod_calloc(ctx, nv, 1);
-    j->mean = _tlod_calloc(ctx, nv, sizeof(*j->mean));
-    ok = j->state && j->mean;
-  }
-  if (ok) return TLOD_SUCCESS;
+  j->state = _tlod_calloc(ctx, nv, 1);
+  j->mean = _tlod_calloc(ctx, nv, sizeof(*j->mean));
+  if (j->corner_n && j->weight && j->w_first && j->w_slots && j->state && j->mean) return TLOD_SUCCESS;
   job_free(j);
   /* The constant, not _tlod_fail's return value: static analysis cannot
    * see that it returns its argument, and callers rely on the failure. */
@@ -232,22 +249,10 @@ static void group_corners(normal_job* j) {
       j->w_slots[--j->w_first[m->weld_id[m->faces[f][i]]]] = f * 4 + i;
 }
 
-static void sum_positions(normal_job* j) {
-  for (uint32_t w = 0; w < j->m->vertex_count; w++)
-    for (uint32_t s = j->w_first[w]; s < j->w_first[w + 1]; s++) {
-      uint32_t slot = j->w_slots[s];
-      double wt = j->weight[slot];
-      for (int i = 0; i < 3; i++)
-        j->w_sum[w][i] += wt * j->corner_n[slot][i];
-      j->w_sum[w][3] += wt;
-    }
-}
-
 static tlod_result job_start(normal_job* j, tlod_mesh* m) {
   memset(j, 0, sizeof(*j));
   j->m = m;
   j->area = m->desc.normal_mode == TLOD_NORMALS_AREA;
-  j->creases = m->desc.crease_angle_deg > 0.0f;
   /* A hair of slack so that faces exactly at the crease angle count as
    * the same side whatever the rounding of their normals. */
   j->cos_crease = cos((double)m->desc.crease_angle_deg * (PI_D / 180.0)) - 1e-9;
@@ -256,7 +261,6 @@ static tlod_result job_start(normal_job* j, tlod_mesh* m) {
   for (uint32_t f = 0; f < m->face_count; f++)
     face_geometry(j, f);
   group_corners(j);
-  if (!j->creases) sum_positions(j);
   return TLOD_SUCCESS;
 }
 
@@ -321,15 +325,6 @@ static void unused_normal(const normal_job* j, uint32_t v, float out[3]) {
 
 static bool same_normal(const float* a, const float* b) { return memcmp(a, b, 3 * sizeof(float)) == 0; }
 
-/* Without creases every corner at a position has the same normal. */
-static void assign_smooth(normal_job* j) {
-  tlod_mesh* m = j->m;
-  for (uint32_t v = 0; v < m->vertex_count; v++) {
-    uint32_t w = m->weld_id[v];
-    if (wants_normal(j, v)) unit_from_sum(j, j->w_sum[w], w, _TLOD_NONE, m->normals[v]);
-  }
-}
-
 /* Creases, topology kept: a vertex takes its corners' normal when they
  * agree (so an unchanged mesh reproduces its normals bitwise), else their
  * mean. */
@@ -338,7 +333,7 @@ static void assign_creased(normal_job* j) {
   for (uint32_t f = 0; f < m->face_count; f++)
     for (uint32_t i = 0; i < m->face_corners[f]; i++) {
       uint32_t v = m->faces[f][i];
-      if (!wants_normal(j, v)) continue;
+      if (!wants_normal(j->m, v)) continue;
       float n[3];
       corner_normal(j, f * 4 + i, m->weld_id[v], n);
       if (j->state[v] == 0) {
@@ -351,11 +346,120 @@ static void assign_creased(normal_job* j) {
         j->mean[v][c] += n[c];
     }
   for (uint32_t v = 0; v < m->vertex_count; v++) {
-    if (!wants_normal(j, v)) continue;
+    if (!wants_normal(j->m, v)) continue;
     if (j->state[v] == 0) unused_normal(j, v, m->normals[v]);
     double sum[4] = {j->mean[v][0], j->mean[v][1], j->mean[v][2], 1.0};
     if (j->state[v] == 2) unit_from_sum(j, sum, m->weld_id[v], _TLOD_NONE, m->normals[v]);
   }
+}
+
+/* ------------------------------------------------------------------------ */
+/* Smooth normals (no creases)                                              */
+/* ------------------------------------------------------------------------ */
+
+/* sum[w][3] markers (weights are >= 0): the faces at w cancel out and no
+ * corner normal was found yet; or sum[w][0..2] is the first one found. */
+#define SUM_PENDING (-1.0)
+#define SUM_FOUND (-2.0)
+
+/* Each corner adds weight * normal to its welded position's sum, faces in
+ * order: the order the grouped sums of the creased path use, with no
+ * per-corner arrays. sum[w][3] is the total weight. */
+static void add_corner(const tlod_mesh* m, uint32_t v, double wt, const double n[3], double (*sum)[4]) {
+  double* s = sum[m->weld_id[v]];
+  for (int d = 0; d < 3; d++)
+    s[d] += wt * n[d];
+  s[3] += wt;
+}
+
+/* The corner angles of a flat face from its edge vectors e_i = p_{i+1} -
+ * p_i: at corner i the tangents are e_i and -e_{i-1} (the same doubles
+ * corner_tangents gives, without its per-corner loads and divisions); the
+ * corners are independent, so their angles overlap in the pipeline. */
+static void flat_angles(const tlod_mesh* m, uint32_t f, uint32_t k, double w[4]) {
+  static const uint8_t next[5][4] = {[3] = {1, 2, 0, 0}, [4] = {1, 2, 3, 0}};
+  static const uint8_t prev[5][4] = {[3] = {2, 0, 1, 0}, [4] = {3, 0, 1, 2}};
+  double e[4][3], y[4], x[4];
+  for (uint32_t i = 0; i < k; i++)
+    sub3(m->positions[m->faces[f][next[k][i]]], m->positions[m->faces[f][i]], e[i]);
+  for (uint32_t i = 0; i < k; i++) {
+    double b[3] = {-e[prev[k][i]][0], -e[prev[k][i]][1], -e[prev[k][i]][2]}, c[3];
+    cross3(e[i], b, c);
+    y[i] = length3(c);
+    x[i] = dot3(e[i], b);
+  }
+  for (uint32_t i = 0; i < k; i++)
+    w[i] = angle_of(y[i], x[i]);
+}
+
+static void add_face(const tlod_mesh* m, bool area, uint32_t f, double (*sum)[4]) {
+  uint32_t k = m->face_corners[f];
+  double x[3], n[3];
+  face_cross(m->positions, m->faces[f], k, x);
+  unit3(x, n);
+  double area2 = length3(x);
+  bool curved = curved_face(m, f);
+  if (!curved) {
+    double w[4] = {0.5 * area2, 0.5 * area2, 0.5 * area2, 0.5 * area2};
+    if (!area) flat_angles(m, f, k, w);
+    for (uint32_t i = 0; i < k; i++)
+      add_corner(m, m->faces[f][i], w[i], n, sum);
+    return;
+  }
+  for (uint32_t i = 0; i < k; i++) {
+    double c[3], wt = corner_weight(m, area, f, i, area2, curved, n, c);
+    add_corner(m, m->faces[f][i], wt, c, sum);
+  }
+}
+
+/* The normal of v from its position's sum, as unit_from_sum; false (w
+ * marked pending) where the faces cancel out. */
+static bool from_sum(tlod_mesh* m, double (*sum)[4], uint32_t v) {
+  double* s = sum[m->weld_id[v]];
+  if (s[3] < 0.0) return false;
+  double len = length3(s);
+  if (!(len > 1e-9 * s[3]) || !(len > 0.0)) {
+    s[3] = SUM_PENDING;
+    return false;
+  }
+  for (int i = 0; i < 3; i++)
+    m->normals[v][i] = (float)(s[i] / len);
+  return true;
+}
+
+/* Pending positions take the first corner normal there in face order (as
+ * fallback_normal), else +z: one pass over the faces, rare. */
+static void resolve_pending(tlod_mesh* m, bool area, double (*sum)[4]) {
+  for (uint32_t f = 0; f < m->face_count; f++) {
+    uint32_t k = m->face_corners[f];
+    double x[3], n[3];
+    face_cross(m->positions, m->faces[f], k, x);
+    unit3(x, n);
+    for (uint32_t i = 0; i < k; i++) {
+      double *s = sum[m->weld_id[m->faces[f][i]]], c[3];
+      if (s[3] != SUM_PENDING) continue;
+      corner_weight(m, area, f, i, length3(x), curved_face(m, f), n, c);
+      if (nonzero(c)) memcpy(s, c, sizeof(c)), s[3] = SUM_FOUND;
+    }
+  }
+  for (uint32_t v = 0; v < m->vertex_count; v++) {
+    const double* s = sum[m->weld_id[v]];
+    if (!wants_normal(m, v) || s[3] >= 0.0) continue;
+    bool found = s[3] == SUM_FOUND;
+    m->normals[v][0] = found ? (float)s[0] : 0.0f;
+    m->normals[v][1] = found ? (float)s[1] : 0.0f;
+    m->normals[v][2] = found ? (float)s[2] : 1.0f;
+  }
+}
+
+static void smooth_normals(tlod_mesh* m, double (*sum)[4]) {
+  bool area = m->desc.normal_mode == TLOD_NORMALS_AREA, pending = false;
+  memset(sum, 0, (size_t)m->vertex_count * sizeof(*sum));
+  for (uint32_t f = 0; f < m->face_count; f++)
+    add_face(m, area, f, sum);
+  for (uint32_t v = 0; v < m->vertex_count; v++)
+    if (wants_normal(m, v) && !from_sum(m, sum, v)) pending = true;
+  if (pending) resolve_pending(m, area, sum);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -436,7 +540,7 @@ static tlod_result split_corners(normal_job* j, split_list* s) {
   for (uint32_t f = 0; f < m->face_count; f++)
     for (uint32_t i = 0; i < m->face_corners[f]; i++) {
       uint32_t v = m->faces[f][i];
-      if (!wants_normal(j, v)) continue;
+      if (!wants_normal(j->m, v)) continue;
       float c[3];
       /* v < n here: a corner is rewritten only after its own normal. */
       corner_normal(j, f * 4 + i, m->weld_id[v], c);
@@ -451,7 +555,7 @@ static tlod_result split_corners(normal_job* j, split_list* s) {
       }
     }
   for (uint32_t v = 0; v < n; v++)
-    if (wants_normal(j, v) && j->state[v] == 0) unused_normal(j, v, m->normals[v]);
+    if (wants_normal(j->m, v) && j->state[v] == 0) unused_normal(j, v, m->normals[v]);
   return TLOD_SUCCESS;
 }
 
@@ -543,25 +647,43 @@ static tlod_result split_creases(normal_job* j, uint32_t** split_source) {
 /* Entry points                                                             */
 /* ------------------------------------------------------------------------ */
 
-static bool any_wanted(const normal_job* j) {
-  for (uint32_t v = 0; v < j->m->vertex_count; v++)
-    if (wants_normal(j, v)) return true;
+static bool any_wanted(const tlod_mesh* m) {
+  for (uint32_t v = 0; v < m->vertex_count; v++)
+    if (wants_normal(m, v)) return true;
   return false;
 }
 
-static tlod_result compute(tlod_mesh* m, uint32_t** split_source) {
-  normal_job j = {.m = m};
-  if (!any_wanted(&j)) return TLOD_SUCCESS; /* every normal given and valid */
+static bool has_creases(const tlod_mesh* m) { return m->desc.crease_angle_deg > 0.0f; }
+
+static tlod_result compute_creased(tlod_mesh* m, uint32_t** split_source) {
+  normal_job j;
   tlod_result r = job_start(&j, m);
   if (r != TLOD_SUCCESS) return r;
-  if (!j.creases)
-    assign_smooth(&j);
-  else if (split_source)
+  if (split_source)
     r = split_creases(&j, split_source);
   else
     assign_creased(&j);
   job_free(&j);
   return r;
+}
+
+/* Smooth normals need only the per-position sums: the mesh's scratch when
+ * tlod_mesh_update made it, else a temporary one. */
+static tlod_result compute(tlod_mesh* m, uint32_t** split_source) {
+  if (!any_wanted(m)) return TLOD_SUCCESS; /* every normal given and valid */
+  if (has_creases(m)) return compute_creased(m, split_source);
+  double(*sum)[4] = m->normal_sum ? m->normal_sum : _tlod_calloc(m->ctx, m->vertex_count + 1, sizeof(*sum));
+  if (!sum) return _tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (normals)", m->label);
+  smooth_normals(m, sum);
+  if (sum != m->normal_sum) _tlod_free(m->ctx, sum);
+  return TLOD_SUCCESS;
+}
+
+tlod_result _tlod_mesh_normals_prepare(tlod_mesh* m) {
+  if (has_creases(m) || m->normal_sum) return TLOD_SUCCESS;
+  m->normal_sum = _tlod_calloc(m->ctx, m->vertex_count + 1, sizeof(*m->normal_sum));
+  return m->normal_sum ? TLOD_SUCCESS
+                       : _tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (normals)", m->label);
 }
 
 tlod_result _tlod_mesh_compute_normals(tlod_mesh* mesh) { return compute(mesh, NULL); }
