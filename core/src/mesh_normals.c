@@ -101,34 +101,30 @@ static void corner_tangents(const tlod_mesh* m, uint32_t f, uint32_t i, double a
   edge_tangent(m, f, i, prev, prev, b);
 }
 
-/* atan(r) for r in [0, 1] without libm (whose atan2 differs between
- * libraries, so normals would, and is a call per corner): s = (r - t_k) /
- * (1 + r t_k) with t_k = tan(k pi/16) the nearest (|s| <= tan(pi/32)), and
- * atan(r) = k pi/16 + atan(s), atan(s) by its Taylor series to s^15 (the
- * next term is below 2^-57 |s|). Branch-free: plain IEEE double operations,
- * so the same bits everywhere (-ffp-contract=off). */
-static inline double atan01(double r) {
+/* atan2(y, x) for y >= 0, the angle in [0, pi] between vectors with |a x b|
+ * = y and a . b = x, without libm (whose atan2 differs between libraries,
+ * so normals would, and is a call per corner). Octants first (accurate near
+ * 0 and pi, where acos is not): lo = min(y, |x|), hi = max, r = lo / hi in
+ * [0, 1]. Then atan(r) = k pi/16 + atan(s), s = (r - t) / (1 + r t) = (lo -
+ * t hi) / (hi + t lo) with t = tan(k pi/16) the nearest (|s| <= tan(pi/32),
+ * one division), and atan(s) by its Taylor series to s^15 (the next term is
+ * below 2^-57 |s|). The folds are table lookups, not branches, which near
+ * right angles would be mispredicted half the time (b + 1 * a is exactly a
+ * when b is 0). Plain IEEE double operations: the same bits everywhere. */
+static inline double angle_of(double y, double x) {
   static const double mid[4] = {0.09849140335716425, 0.3033466836073424, 0.5345111359507916, 0.8206787908286602};
   static const double t[5] = {0.0, 0.198912367379658, 0.41421356237309503, 0.6681786379192989, 1.0};
   static const double at[5] = {0.0, 0.19634954084936207, 0.39269908169872414, 0.5890486225480862, 0.7853981633974483};
-  int k = (r > mid[0]) + (r > mid[1]) + (r > mid[2]) + (r > mid[3]);
-  double x = (r - t[k]) / (1.0 + r * t[k]), z = x * x;
+  static const double flip[2] = {1.0, -1.0}, right[2] = {0.0, 0.5 * PI_D}, straight[2] = {0.0, PI_D};
+  double ax = fabs(x), lo = y < ax ? y : ax, hi = y < ax ? ax : y;
+  if (!(hi > 0.0)) return 0.0; /* a zero tangent: a degenerate corner */
+  int k = (lo > mid[0] * hi) + (lo > mid[1] * hi) + (lo > mid[2] * hi) + (lo > mid[3] * hi);
+  double s = (lo - t[k] * hi) / (hi + t[k] * lo), z = s * s;
   double p =
       ((((((-1.0 / 15.0 * z + 1.0 / 13.0) * z - 1.0 / 11.0) * z + 1.0 / 9.0) * z - 1.0 / 7.0) * z + 1.0 / 5.0) * z -
        1.0 / 3.0) *
       z;
-  return at[k] + (x + x * p);
-}
-
-/* atan2(y, x) for y >= 0: the angle in [0, pi] between vectors with |a x b|
- * = y and a . b = x, by octants (accurate near 0 and pi, where acos is not).
- * The octant folds are table lookups, not branches, which near right angles
- * would be mispredicted half the time (b + 1 * a is exactly a when b is 0). */
-static inline double angle_of(double y, double x) {
-  static const double flip[2] = {1.0, -1.0}, right[2] = {0.0, 0.5 * PI_D}, straight[2] = {0.0, PI_D};
-  double ax = fabs(x), lo = y < ax ? y : ax, hi = y < ax ? ax : y;
-  if (!(hi > 0.0)) return 0.0; /* a zero tangent: a degenerate corner */
-  double a = atan01(lo / hi);
+  double a = at[k] + (s + s * p);
   int up = y > ax, neg = x < 0.0;
   a = right[up] + flip[up] * a;
   return straight[neg] + flip[neg] * a;
@@ -164,11 +160,11 @@ static void face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[
   cross3(a, b, out);
 }
 
-/* x / |x|, zero when x is. */
+/* x / |x| (one division), zero when x is. */
 static void unit3(const double x[3], double out[3]) {
-  double len = length3(x);
+  double len = length3(x), inv = len > 0.0 ? 1.0 / len : 0.0;
   for (int i = 0; i < 3; i++)
-    out[i] = len > 0.0 ? x[i] / len : 0.0;
+    out[i] = x[i] * inv;
 }
 
 /* Corner i of face f (unit normal n, twice its area area2): its weight,
@@ -422,8 +418,9 @@ static bool from_sum(tlod_mesh* m, double (*sum)[4], uint32_t v) {
     s[3] = SUM_PENDING;
     return false;
   }
+  double inv = 1.0 / len;
   for (int i = 0; i < 3; i++)
-    m->normals[v][i] = (float)(s[i] / len);
+    m->normals[v][i] = (float)(s[i] * inv);
   return true;
 }
 

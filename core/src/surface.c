@@ -33,15 +33,18 @@ void _tlod_sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n, 
   for (uint32_t i = 1; i < c->n; i++)
     center = v3_add(center, c->p[i]);
   center = v3_scale(center, 1.0f / (float)c->n);
-  float r = 0.0f;
+  /* Squared distances, one square root: sqrtf is correctly rounded and
+   * monotone, so this is bitwise the largest distance. */
+  float r2 = 0.0f;
   for (uint32_t i = 0; i < c->n; i++) {
-    float d = v3_length(v3_sub(c->p[i], center));
-    r = d > r ? d : r;
+    v3 d = v3_sub(c->p[i], center);
+    r2 = v3_dot(d, d) > r2 ? v3_dot(d, d) : r2;
   }
   for (uint32_t i = 0; i < extra_n; i++) {
-    float d = v3_length(v3_sub(extra[i], center));
-    r = d > r ? d : r;
+    v3 d = v3_sub(extra[i], center);
+    r2 = v3_dot(d, d) > r2 ? v3_dot(d, d) : r2;
   }
+  float r = sqrtf(r2);
   v3_store(info->center, center);
   /* Relative slack covers the rounding of the evaluation itself. */
   info->radius = (r + grow) * (1.0f + 1e-5f);
@@ -89,16 +92,20 @@ static void no_tables(tlod_patch_info* info) {
  * of n_x (|n_x| within 2^-23 of 1) and of the evaluation is inside the
  * sphere's relative slack (_tlod_sphere_of) and _tlod_bound_slack. */
 static float phong_grow(const _tlod_corners* c) {
-  double d = 0.0, a = 0.0;
+  double d = 0.0, a = 0.0, extent2 = 0.0;
   for (uint32_t x = 0; x < c->n; x++) {
     a = c->alpha[x] > a ? c->alpha[x] : a;
+    double q[3] = {(double)c->p[x].x - c->p[0].x, (double)c->p[x].y - c->p[0].y, (double)c->p[x].z - c->p[0].z};
+    double e2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+    extent2 = e2 > extent2 ? e2 : extent2;
     for (uint32_t y = 0; y < c->n; y++) {
       double e = ((double)c->p[y].x - c->p[x].x) * c->nrm[x].x + ((double)c->p[y].y - c->p[x].y) * c->nrm[x].y +
                  ((double)c->p[y].z - c->p[x].z) * c->nrm[x].z;
       d = fabs(e) > d ? fabs(e) : d;
     }
   }
-  return (float)(a * d * (double)(c->n - 1) / (double)c->n * (1.0 + 0x1p-20) + _tlod_bound_slack(c));
+  /* 1e-6 of the extent, as _tlod_bound_slack (without its libm fmax calls). */
+  return (float)(a * d * (double)(c->n - 1) / (double)c->n * (1.0 + 0x1p-20) + 1e-6 * sqrt(extent2));
 }
 
 /* Phong without tables: the sphere alone, no error bound. */
