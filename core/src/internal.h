@@ -100,6 +100,9 @@ void _tlod_mesh_refresh_smooth(tlod_mesh* mesh);
 /* mesh_normals.c: normals with crease splits; appended vertices' sources go
  * to *split_source. */
 tlod_result _tlod_mesh_compute_normals_split(tlod_mesh* mesh, uint32_t** split_source);
+/* mesh_angles.c: w[i] = the angle atan2(sqrt(y2[i]), x[i]) in [0, pi] (0
+ * when both are 0), bitwise the same at every simd level. */
+void _tlod_corner_angles(tlod_simd simd, const double* y2, const double* x, double* w, uint32_t n);
 /* Makes mesh->normal_sum (no creases): _tlod_mesh_compute_normals then
  * cannot fail. */
 tlod_result _tlod_mesh_normals_prepare(tlod_mesh* mesh);

@@ -101,50 +101,22 @@ static void corner_tangents(const tlod_mesh* m, uint32_t f, uint32_t i, double a
   edge_tangent(m, f, i, prev, prev, b);
 }
 
-/* atan2(y, x) for y >= 0, the angle in [0, pi] between vectors with |a x b|
- * = y and a . b = x, without libm (whose atan2 differs between libraries,
- * so normals would, and is a call per corner). Octants first (accurate near
- * 0 and pi, where acos is not): lo = min(y, |x|), hi = max, r = lo / hi in
- * [0, 1]. Then atan(r) = k pi/16 + atan(s), s = (r - t) / (1 + r t) = (lo -
- * t hi) / (hi + t lo) with t = tan(k pi/16) the nearest (|s| <= tan(pi/32),
- * one division), and atan(s) by its Taylor series to s^15 (the next term is
- * below 2^-57 |s|). The folds are table lookups, not branches, which near
- * right angles would be mispredicted half the time (b + 1 * a is exactly a
- * when b is 0). Plain IEEE double operations: the same bits everywhere. */
-static inline double angle_of(double y, double x) {
-  static const double mid[4] = {0.09849140335716425, 0.3033466836073424, 0.5345111359507916, 0.8206787908286602};
-  static const double t[5] = {0.0, 0.198912367379658, 0.41421356237309503, 0.6681786379192989, 1.0};
-  static const double at[5] = {0.0, 0.19634954084936207, 0.39269908169872414, 0.5890486225480862, 0.7853981633974483};
-  static const double flip[2] = {1.0, -1.0}, right[2] = {0.0, 0.5 * PI_D}, straight[2] = {0.0, PI_D};
-  double ax = fabs(x), lo = y < ax ? y : ax, hi = y < ax ? ax : y;
-  if (!(hi > 0.0)) return 0.0; /* a zero tangent: a degenerate corner */
-  int k = (lo > mid[0] * hi) + (lo > mid[1] * hi) + (lo > mid[2] * hi) + (lo > mid[3] * hi);
-  double s = (lo - t[k] * hi) / (hi + t[k] * lo), z = s * s;
-  double p =
-      ((((((-1.0 / 15.0 * z + 1.0 / 13.0) * z - 1.0 / 11.0) * z + 1.0 / 9.0) * z - 1.0 / 7.0) * z + 1.0 / 5.0) * z -
-       1.0 / 3.0) *
-      z;
-  double a = at[k] + (s + s * p);
-  int up = y > ax, neg = x < 0.0;
-  a = right[up] + flip[up] * a;
-  return straight[neg] + flip[neg] * a;
-}
-
 /* A face with a given node on some edge has curved corners. */
 static bool curved_face(const tlod_mesh* m, uint32_t f) {
   return m->node_given && (m->node_given[f] & ((1u << m->face_corners[f]) - 1u)) != 0;
 }
 
-/* Twice the area vector. Quads: the cross product of the diagonals (exact
+/* Twice the area vector, and its length. Quads: the cross product of the diagonals (exact
  * for planar quads); when the diagonals are parallel (a folded quad) the
  * two triangles' sum stands in. */
-static void face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[3]) {
+static double face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[3]) {
   double a[3], b[3];
   if (k == 4) {
     sub3(p[c[2]], p[c[0]], a);
     sub3(p[c[3]], p[c[1]], b);
     cross3(a, b, out);
-    if (length3(out) > 1e-12 * (dot3(a, a) + dot3(b, b))) return;
+    double len = length3(out);
+    if (len > 1e-12 * (dot3(a, a) + dot3(b, b))) return len;
     double t[3];
     sub3(p[c[1]], p[c[0]], a);
     sub3(p[c[2]], p[c[0]], b);
@@ -153,46 +125,65 @@ static void face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[
     cross3(b, a, t);
     for (int i = 0; i < 3; i++)
       out[i] += t[i];
-    return;
+    return length3(out);
   }
   sub3(p[c[1]], p[c[0]], a);
   sub3(p[c[2]], p[c[0]], b);
   cross3(a, b, out);
+  return length3(out);
 }
 
-/* x / |x| (one division), zero when x is. */
-static void unit3(const double x[3], double out[3]) {
-  double len = length3(x), inv = len > 0.0 ? 1.0 / len : 0.0;
+/* x / len (one division), len = |x|; zero when x is. */
+static void unit3_len(const double x[3], double len, double out[3]) {
+  double inv = len > 0.0 ? 1.0 / len : 0.0;
   for (int i = 0; i < 3; i++)
     out[i] = x[i] * inv;
+}
+
+static void unit3(const double x[3], double out[3]) { unit3_len(x, length3(x), out); }
+
+/* The unit normal of face f (zero when degenerate); returns twice its area. */
+static double face_normal(const tlod_mesh* m, uint32_t f, double n[3]) {
+  double x[3], len = face_cross(m->positions, m->faces[f], m->face_corners[f], x);
+  unit3_len(x, len, n);
+  return len;
+}
+
+/* Corner i of face f from its tangents: what its angle needs (|a x b|^2
+ * and a . b) and, for a curved face, its own unit normal (a x b / |a x b|). */
+static void corner_data(const tlod_mesh* m, uint32_t f, uint32_t i, double* y2, double* x, double own[3]) {
+  double a[3], b[3], c[3];
+  corner_tangents(m, f, i, a, b);
+  cross3(a, b, c);
+  unit3(c, own);
+  *y2 = dot3(c, c);
+  *x = dot3(a, b);
 }
 
 /* Corner i of face f (unit normal n, twice its area area2): its weight,
  * and its unit normal in out (n, or on a curved face the tangents' own). */
 static double corner_weight(const tlod_mesh* m, bool area, uint32_t f, uint32_t i, double area2, bool curved,
                             const double n[3], double out[3]) {
+  double y2, x, own[3], w = 0.5 * area2;
   memcpy(out, n, 3 * sizeof(double));
-  if (area && !curved) return 0.5 * area2;
-  double a[3], b[3], x[3];
-  corner_tangents(m, f, i, a, b);
-  cross3(a, b, x);
-  if (curved) unit3(x, out);
-  return area ? 0.5 * area2 : angle_of(length3(x), dot3(a, b));
+  if (area && !curved) return w;
+  corner_data(m, f, i, &y2, &x, own);
+  if (curved) memcpy(out, own, sizeof(own));
+  if (!area) _tlod_corner_angles(TLOD_SIMD_SCALAR, &y2, &x, &w, 1);
+  return w;
 }
 
 /* Corner normals and weights of face f. Area weights stay the flat area. */
 static void face_geometry(normal_job* j, uint32_t f) {
   const tlod_mesh* m = j->m;
   uint32_t k = m->face_corners[f];
-  double x[3], n[3];
-  face_cross(m->positions, m->faces[f], k, x);
-  unit3(x, n);
+  double n[3], area2 = face_normal(m, f, n);
   for (uint32_t i = 0; i < 4; i++) {
     memcpy(j->corner_n[f * 4 + i], n, sizeof(n));
     j->weight[f * 4 + i] = 0.0;
   }
   for (uint32_t i = 0; i < k; i++)
-    j->weight[f * 4 + i] = corner_weight(m, j->area, f, i, length3(x), curved_face(m, f), n, j->corner_n[f * 4 + i]);
+    j->weight[f * 4 + i] = corner_weight(m, j->area, f, i, area2, curved_face(m, f), n, j->corner_n[f * 4 + i]);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -361,50 +352,76 @@ static void assign_creased(normal_job* j) {
 /* Each corner adds weight * normal to its welded position's sum, faces in
  * order: the order the grouped sums of the creased path use, with no
  * per-corner arrays. sum[w][3] is the total weight. */
-static void add_corner(const tlod_mesh* m, uint32_t v, double wt, const double n[3], double (*sum)[4]) {
-  double* s = sum[m->weld_id[v]];
-  for (int d = 0; d < 3; d++)
-    s[d] += wt * n[d];
-  s[3] += wt;
-}
+/* Corners of up to BATCH_FACES faces, gathered so that their angles are
+ * computed in lanes (mesh_angles.c), then summed in face order. */
+enum { BATCH_FACES = 64, BATCH_CORNERS = 4 * BATCH_FACES };
+typedef struct corner_batch {
+  double y2[BATCH_CORNERS]; /* |a x b|^2 of the corner's tangents */
+  double x[BATCH_CORNERS];  /* a . b */
+  double w[BATCH_CORNERS];  /* the weight */
+  double n[BATCH_CORNERS][3];
+  uint32_t v[BATCH_CORNERS];
+  uint32_t count;
+} corner_batch;
 
-/* The corner angles of a flat face from its edge vectors e_i = p_{i+1} -
- * p_i: at corner i the tangents are e_i and -e_{i-1} (the same doubles
- * corner_tangents gives, without its per-corner loads and divisions); the
- * corners are independent, so their angles overlap in the pipeline. */
-static void flat_angles(const tlod_mesh* m, uint32_t f, uint32_t k, double w[4]) {
+/* A flat face's corners from its edge vectors e_i = p_{i+1} - p_i: at
+ * corner i the tangents are e_i and -e_{i-1} (the doubles corner_tangents
+ * gives, without its per-corner loads and divisions). */
+static void flat_corners(const tlod_mesh* m, uint32_t f, uint32_t k, corner_batch* b) {
   static const uint8_t next[5][4] = {[3] = {1, 2, 0, 0}, [4] = {1, 2, 3, 0}};
   static const uint8_t prev[5][4] = {[3] = {2, 0, 1, 0}, [4] = {3, 0, 1, 2}};
-  double e[4][3], y[4], x[4];
+  double e[4][3];
   for (uint32_t i = 0; i < k; i++)
     sub3(m->positions[m->faces[f][next[k][i]]], m->positions[m->faces[f][i]], e[i]);
   for (uint32_t i = 0; i < k; i++) {
-    double b[3] = {-e[prev[k][i]][0], -e[prev[k][i]][1], -e[prev[k][i]][2]}, c[3];
-    cross3(e[i], b, c);
-    y[i] = length3(c);
-    x[i] = dot3(e[i], b);
+    const double* q = e[prev[k][i]];
+    double t[3] = {-q[0], -q[1], -q[2]}, c[3];
+    cross3(e[i], t, c);
+    b->y2[b->count + i] = dot3(c, c);
+    b->x[b->count + i] = dot3(e[i], t);
   }
-  for (uint32_t i = 0; i < k; i++)
-    w[i] = angle_of(y[i], x[i]);
 }
 
-static void add_face(const tlod_mesh* m, bool area, uint32_t f, double (*sum)[4]) {
-  uint32_t k = m->face_corners[f];
-  double x[3], n[3];
-  face_cross(m->positions, m->faces[f], k, x);
-  unit3(x, n);
-  double area2 = length3(x);
+/* Face f's corners into the batch: vertex, normal, and the weight (area) or
+ * what its angle needs. */
+static void batch_face(const tlod_mesh* m, bool area, uint32_t f, corner_batch* b) {
+  uint32_t k = m->face_corners[f], at = b->count;
+  double n[3], area2 = face_normal(m, f, n);
   bool curved = curved_face(m, f);
-  if (!curved) {
-    double w[4] = {0.5 * area2, 0.5 * area2, 0.5 * area2, 0.5 * area2};
-    if (!area) flat_angles(m, f, k, w);
-    for (uint32_t i = 0; i < k; i++)
-      add_corner(m, m->faces[f][i], w[i], n, sum);
-    return;
-  }
   for (uint32_t i = 0; i < k; i++) {
-    double c[3], wt = corner_weight(m, area, f, i, area2, curved, n, c);
-    add_corner(m, m->faces[f][i], wt, c, sum);
+    b->v[at + i] = m->faces[f][i];
+    memcpy(b->n[at + i], n, sizeof(n));
+    b->w[at + i] = 0.5 * area2;
+  }
+  if (!curved && !area) flat_corners(m, f, k, b);
+  for (uint32_t i = 0; curved && i < k; i++)
+    corner_data(m, f, i, &b->y2[at + i], &b->x[at + i], b->n[at + i]);
+  b->count += k;
+}
+
+static void batch_sum(const corner_batch* b, const tlod_mesh* m, double (*sum)[4]) {
+  for (uint32_t i = 0; i < b->count; i++) {
+    double* s = sum[m->weld_id[b->v[i]]];
+    for (int d = 0; d < 3; d++)
+      s[d] += b->w[i] * b->n[i][d];
+    s[3] += b->w[i];
+  }
+}
+
+/* Each corner adds weight * normal to its welded position's sum, faces in
+ * order: the order the grouped sums of the creased path use, with no
+ * per-corner arrays. sum[w][3] is the total weight. */
+static void sum_faces(const tlod_mesh* m, bool area, double (*sum)[4]) {
+  tlod_simd simd = tlod_context_simd(m->ctx);
+  corner_batch b;
+  for (uint32_t f0 = 0; f0 < m->face_count; f0 += BATCH_FACES) {
+    uint32_t f1 = m->face_count - f0 < BATCH_FACES ? m->face_count : f0 + BATCH_FACES;
+    /* Curved faces' corners take their own normal, flat ones the face's. */
+    b.count = 0;
+    for (uint32_t f = f0; f < f1; f++)
+      batch_face(m, area, f, &b);
+    if (!area) _tlod_corner_angles(simd, b.y2, b.x, b.w, b.count);
+    batch_sum(&b, m, sum);
   }
 }
 
@@ -428,14 +445,11 @@ static bool from_sum(tlod_mesh* m, double (*sum)[4], uint32_t v) {
  * fallback_normal), else +z: one pass over the faces, rare. */
 static void resolve_pending(tlod_mesh* m, bool area, double (*sum)[4]) {
   for (uint32_t f = 0; f < m->face_count; f++) {
-    uint32_t k = m->face_corners[f];
-    double x[3], n[3];
-    face_cross(m->positions, m->faces[f], k, x);
-    unit3(x, n);
-    for (uint32_t i = 0; i < k; i++) {
+    double n[3], area2 = face_normal(m, f, n);
+    for (uint32_t i = 0; i < m->face_corners[f]; i++) {
       double *s = sum[m->weld_id[m->faces[f][i]]], c[3];
       if (s[3] != SUM_PENDING) continue;
-      corner_weight(m, area, f, i, length3(x), curved_face(m, f), n, c);
+      corner_weight(m, area, f, i, area2, curved_face(m, f), n, c);
       if (nonzero(c)) memcpy(s, c, sizeof(c)), s[3] = SUM_FOUND;
     }
   }
@@ -452,8 +466,7 @@ static void resolve_pending(tlod_mesh* m, bool area, double (*sum)[4]) {
 static void smooth_normals(tlod_mesh* m, double (*sum)[4]) {
   bool area = m->desc.normal_mode == TLOD_NORMALS_AREA, pending = false;
   memset(sum, 0, (size_t)m->vertex_count * sizeof(*sum));
-  for (uint32_t f = 0; f < m->face_count; f++)
-    add_face(m, area, f, sum);
+  sum_faces(m, area, sum);
   for (uint32_t v = 0; v < m->vertex_count; v++)
     if (wants_normal(m, v) && !from_sum(m, sum, v)) pending = true;
   if (pending) resolve_pending(m, area, sum);

@@ -92,7 +92,8 @@ static void no_tables(tlod_patch_info* info) {
  * of n_x (|n_x| within 2^-23 of 1) and of the evaluation is inside the
  * sphere's relative slack (_tlod_sphere_of) and _tlod_bound_slack. */
 static float phong_grow(const _tlod_corners* c) {
-  double d = 0.0, a = 0.0, extent2 = 0.0;
+  /* Maxima per y, independent chains across x (not one chain of n^2). */
+  double d[4] = {0.0, 0.0, 0.0, 0.0}, a = 0.0, extent2 = 0.0;
   for (uint32_t x = 0; x < c->n; x++) {
     a = c->alpha[x] > a ? c->alpha[x] : a;
     double q[3] = {(double)c->p[x].x - c->p[0].x, (double)c->p[x].y - c->p[0].y, (double)c->p[x].z - c->p[0].z};
@@ -101,11 +102,13 @@ static float phong_grow(const _tlod_corners* c) {
     for (uint32_t y = 0; y < c->n; y++) {
       double e = ((double)c->p[y].x - c->p[x].x) * c->nrm[x].x + ((double)c->p[y].y - c->p[x].y) * c->nrm[x].y +
                  ((double)c->p[y].z - c->p[x].z) * c->nrm[x].z;
-      d = fabs(e) > d ? fabs(e) : d;
+      d[y] = fabs(e) > d[y] ? fabs(e) : d[y];
     }
   }
+  double dm = d[0] > d[1] ? d[0] : d[1], dn = d[2] > d[3] ? d[2] : d[3];
+  dm = dm > dn ? dm : dn;
   /* 1e-6 of the extent, as _tlod_bound_slack (without its libm fmax calls). */
-  return (float)(a * d * (double)(c->n - 1) / (double)c->n * (1.0 + 0x1p-20) + 1e-6 * sqrt(extent2));
+  return (float)(a * dm * (double)(c->n - 1) / (double)c->n * (1.0 + 0x1p-20) + 1e-6 * sqrt(extent2));
 }
 
 /* Phong without tables: the sphere alone, no error bound. */

@@ -190,6 +190,31 @@ TEST(sliver_angles_match_double_oracle) {
   tlod_context_destroy(ctx);
 }
 
+/* The corner angles run in lanes per instruction set: every level the
+ * processor has gives bitwise the scalar normals, created and updated. */
+TEST(normals_bitwise_at_every_simd_level) {
+  grid g;
+  grid_make(&g);
+  float ref[NV][3], got[NV][3];
+  for (int level = TLOD_SIMD_SCALAR; level < TLOD_SIMD_NUM; level++) {
+    tlod_context* ctx = NULL;
+    tlod_context_desc cd = {.thread_count = 1, .simd = (tlod_simd)level};
+    CHECK(tlod_context_create(&cd, &ctx) == TLOD_SUCCESS);
+    grid_shape(&g, 0.0f);
+    tlod_mesh_desc d = grid_desc(&g, TLOD_NORMALS_ANGLE);
+    tlod_mesh* m = NULL;
+    CHECK(tlod_mesh_create(ctx, &d, &m) == TLOD_SUCCESS);
+    grid_shape(&g, 1.3f);
+    CHECK(tlod_mesh_update(m, &g.pos[0][0], 0, NULL, 0) == TLOD_SUCCESS);
+    for (uint32_t v = 0; v < NV; v++)
+      tlod_mesh_vertex(m, v, NULL, level == TLOD_SIMD_SCALAR ? ref[v] : got[v]);
+    if (level != TLOD_SIMD_SCALAR)
+      CHECK_MSG(memcmp(ref, got, sizeof(ref)) == 0, "%s", tlod_simd_name(tlod_context_simd(ctx)));
+    tlod_mesh_destroy(m);
+    tlod_context_destroy(ctx);
+  }
+}
+
 /* ---- No allocation per frame ---- */
 
 TEST(updates_and_refreshes_allocate_once) {
@@ -377,6 +402,7 @@ int main(void) {
   RUN(angle_normals_match_double_oracle);
   RUN(area_normals_match_double_oracle);
   RUN(sliver_angles_match_double_oracle);
+  RUN(normals_bitwise_at_every_simd_level);
   RUN(updates_and_refreshes_allocate_once);
   RUN(first_update_out_of_memory_leaves_mesh);
   RUN(none_tables_unknown_bounds_valid_sphere);
