@@ -1,5 +1,5 @@
-/* tesslod::core -- the corner angles of the angle-weighted normals
- * (mesh_normals.c), in lanes, per instruction set.
+/* tesslod::core -- the face normals and corner angles of the computed
+ * vertex normals (mesh_normals.c), in lanes, per instruction set.
  *
  * atan2(y, x) for y >= 0, the angle in [0, pi] between vectors with
  * |a x b| = y (given squared) and a . b = x, without libm (whose atan2
@@ -31,6 +31,7 @@
 #define AT4 0.7853981633974483
 
 typedef void (*angle_kernel)(const double* y2, const double* x, double* w, uint32_t n);
+typedef void (*face_kernel)(_tlod_face_lanes* lanes, uint32_t n);
 
 #if defined(__GNUC__) && !defined(__clang__)
 #define KERNEL_TARGET __attribute__((optimize("no-tree-vectorize")))
@@ -71,4 +72,17 @@ void _tlod_corner_angles(tlod_simd simd, const double* y2, const double* x, doub
     k = angles_sse2;
 #endif
   k(y2, x, w, n);
+}
+
+void _tlod_face_normals(tlod_simd simd, _tlod_face_lanes* lanes, uint32_t n) {
+  face_kernel k = faces_scalar;
+#if defined(__x86_64__)
+  if (simd == TLOD_SIMD_AVX512)
+    k = faces_avx512;
+  else if (simd == TLOD_SIMD_AVX2)
+    k = faces_avx2;
+  else if (simd == TLOD_SIMD_SSE2)
+    k = faces_sse2;
+#endif
+  k(lanes, n);
 }

@@ -354,7 +354,7 @@ static void assign_creased(normal_job* j) {
  * per-corner arrays. sum[w][3] is the total weight. */
 /* Corners of up to BATCH_FACES faces, gathered so that their angles are
  * computed in lanes (mesh_angles.c), then summed in face order. */
-enum { BATCH_FACES = 64, BATCH_CORNERS = 4 * BATCH_FACES };
+enum { BATCH_FACES = _TLOD_FACE_LANES, BATCH_CORNERS = 4 * BATCH_FACES };
 typedef struct corner_batch {
   double y2[BATCH_CORNERS]; /* |a x b|^2 of the corner's tangents */
   double x[BATCH_CORNERS];  /* a . b */
@@ -382,15 +382,33 @@ static void flat_corners(const tlod_mesh* m, uint32_t f, uint32_t k, corner_batc
   }
 }
 
+/* Face f as lane l of the face kernel. */
+static void face_lane(const tlod_mesh* m, uint32_t f, uint32_t l, _tlod_face_lanes* lanes) {
+  uint32_t k = m->face_corners[f];
+  for (uint32_t c = 0; c < 4; c++) {
+    const float* p = m->positions[m->faces[f][c < k ? c : 0]];
+    for (uint32_t d = 0; d < 3; d++)
+      lanes->p[3 * c + d][l] = (double)p[d];
+  }
+  lanes->quad[l] = k == 4 ? 1.0 : 0.0;
+}
+
+/* The normal of face f from lane l (face_normal where the lane defers). */
+static double lane_normal(const tlod_mesh* m, uint32_t f, uint32_t l, const _tlod_face_lanes* lanes, double n[3]) {
+  if (lanes->redo[l] != 0.0) return face_normal(m, f, n);
+  for (int d = 0; d < 3; d++)
+    n[d] = lanes->n[d][l];
+  return lanes->len[l];
+}
+
 /* Face f's corners into the batch: vertex, normal, and the weight (area) or
  * what its angle needs. */
-static void batch_face(const tlod_mesh* m, bool area, uint32_t f, corner_batch* b) {
+static void batch_face(const tlod_mesh* m, bool area, uint32_t f, const double n[3], double area2, corner_batch* b) {
   uint32_t k = m->face_corners[f], at = b->count;
-  double n[3], area2 = face_normal(m, f, n);
   bool curved = curved_face(m, f);
   for (uint32_t i = 0; i < k; i++) {
     b->v[at + i] = m->faces[f][i];
-    memcpy(b->n[at + i], n, sizeof(n));
+    memcpy(b->n[at + i], n, 3 * sizeof(double));
     b->w[at + i] = 0.5 * area2;
   }
   if (!curved && !area) flat_corners(m, f, k, b);
@@ -414,12 +432,18 @@ static void batch_sum(const corner_batch* b, const tlod_mesh* m, double (*sum)[4
 static void sum_faces(const tlod_mesh* m, bool area, double (*sum)[4]) {
   tlod_simd simd = tlod_context_simd(m->ctx);
   corner_batch b;
+  _tlod_face_lanes lanes;
   for (uint32_t f0 = 0; f0 < m->face_count; f0 += BATCH_FACES) {
     uint32_t f1 = m->face_count - f0 < BATCH_FACES ? m->face_count : f0 + BATCH_FACES;
     /* Curved faces' corners take their own normal, flat ones the face's. */
-    b.count = 0;
     for (uint32_t f = f0; f < f1; f++)
-      batch_face(m, area, f, &b);
+      face_lane(m, f, f - f0, &lanes);
+    _tlod_face_normals(simd, &lanes, f1 - f0);
+    b.count = 0;
+    for (uint32_t f = f0; f < f1; f++) {
+      double n[3], area2 = lane_normal(m, f, f - f0, &lanes, n);
+      batch_face(m, area, f, n, area2, &b);
+    }
     if (!area) _tlod_corner_angles(simd, b.y2, b.x, b.w, b.count);
     batch_sum(&b, m, sum);
   }
