@@ -81,6 +81,11 @@ struct tlod_mesh {
   uint8_t* node_given;
   uint8_t* node_only;
 
+  /* Smooth normals' per-position sums (mesh_normals.c), made by the first
+   * tlod_mesh_update that recomputes normals and kept: no allocation per
+   * update. NULL before, and with creases. */
+  double (*normal_sum)[4];
+
   tlod_mesh_info info;
   tlod_finding findings[TLOD_MAX_FINDINGS];
 };
@@ -95,6 +100,24 @@ void _tlod_mesh_refresh_smooth(tlod_mesh* mesh);
 /* mesh_normals.c: normals with crease splits; appended vertices' sources go
  * to *split_source. */
 tlod_result _tlod_mesh_compute_normals_split(tlod_mesh* mesh, uint32_t** split_source);
+/* mesh_angles.c: w[i] = the angle atan2(sqrt(y2[i]), x[i]) in [0, pi] (0
+ * when both are 0), bitwise the same at every simd level. */
+void _tlod_corner_angles(tlod_simd simd, const double* y2, const double* x, double* w, uint32_t n);
+/* mesh_angles.c: the unit normals (and lengths of the area vectors) of up
+ * to _TLOD_FACE_LANES faces in lanes, as mesh_normals.c face_cross: quads
+ * the diagonals' cross product, triangles (corner 0 repeated as corner 3)
+ * the edges'; redo = 1 where a quad's diagonals are near parallel (the
+ * scalar code's two-triangle case). Bitwise the same at every level. */
+enum { _TLOD_FACE_LANES = 64 };
+typedef struct _tlod_face_lanes {
+  double p[12][_TLOD_FACE_LANES]; /* corner c's x, y, z at rows 3c .. 3c + 2 */
+  double quad[_TLOD_FACE_LANES];  /* 1 for a quad, 0 for a triangle */
+  double n[3][_TLOD_FACE_LANES], len[_TLOD_FACE_LANES], redo[_TLOD_FACE_LANES];
+} _tlod_face_lanes;
+void _tlod_face_normals(tlod_simd simd, _tlod_face_lanes* lanes, uint32_t n);
+/* Makes mesh->normal_sum (no creases): _tlod_mesh_compute_normals then
+ * cannot fail. */
+tlod_result _tlod_mesh_normals_prepare(tlod_mesh* mesh);
 /* mesh_adjacency.c: fills weld_id, links and the edge counts of info. */
 tlod_result _tlod_mesh_build_adjacency(tlod_mesh* mesh);
 /* mesh_normals.c: computes normals of the vertices marked in normal_computed
@@ -147,6 +170,7 @@ struct tlod_surface {
   _tlod_quad_patch* quad; /* QUADRATIC only */
   float* alpha;           /* per mesh vertex: the shape factor used */
   float (*snapshot)[6];   /* vertex positions and normals the patches were built from */
+  uint8_t* changed;       /* tlod_surface_refresh's flags, per vertex then per patch; made at the first */
   char label[64];
   uint64_t generation; /* tlod_surface_view.generation */
 };

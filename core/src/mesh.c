@@ -510,6 +510,7 @@ void tlod_mesh_destroy(tlod_mesh* mesh) {
   _tlod_free(ctx, mesh->face_nodes);
   _tlod_free(ctx, mesh->node_given);
   _tlod_free(ctx, mesh->node_only);
+  _tlod_free(ctx, mesh->normal_sum);
   _tlod_free(ctx, mesh);
 }
 
@@ -575,12 +576,26 @@ void _tlod_mesh_add_finding(tlod_mesh* mesh, tlod_finding_kind kind, uint32_t el
 /* Update                                                                   */
 /* ------------------------------------------------------------------------ */
 
+/* The common case in one pass without early exits (NaN and infinities fail
+ * the compare too); check_position names the first bad one otherwise. */
+static bool positions_in_range(const float* positions, uint32_t ps, uint32_t n) {
+  bool ok = true;
+  for (uint32_t v = 0; v < n; v++) {
+    float x[3];
+    load3(positions, ps, v, x);
+    ok &= (fabsf(x[0]) <= TLOD_POSITION_LIMIT) & (fabsf(x[1]) <= TLOD_POSITION_LIMIT) &
+          (fabsf(x[2]) <= TLOD_POSITION_LIMIT);
+  }
+  return ok;
+}
+
 static tlod_result check_update(tlod_mesh* m, const float* positions, uint32_t ps, const float* normals, uint32_t ns) {
   uint32_t n = m->info.input_vertex_count;
   if ((positions && ps < 12) || (normals && ns < 12))
     return _tlod_fail(m->ctx, TLOD_ERROR_INVALID_ARGUMENT,
                       "mesh '%s': update: stride %u bytes is smaller than an element (12 bytes)", m->label,
                       positions && ps < 12 ? ps : ns);
+  if (positions && positions_in_range(positions, ps, n)) positions = NULL; /* checked */
   for (uint32_t v = 0; positions && v < n; v++) {
     float x[3];
     load3(positions, ps, v, x);
@@ -628,22 +643,58 @@ static void write_normals(tlod_mesh* m, const float* normals, uint32_t ns) {
   copy_split(m, m->normals);
 }
 
-/* Positions without normals: computed normals follow the new positions. If
- * that runs out of memory, the old positions come back, so a failed update
- * leaves the mesh as it was. */
+/* Positions without normals: computed normals follow the new positions. A
+ * failed update leaves the mesh as it was: smooth normals allocate their
+ * scratch once, before anything is written (then nothing can fail); with
+ * creases, if computing runs out of memory the old positions come back. */
 static tlod_result update_positions_only(tlod_mesh* m, const float* positions, uint32_t ps) {
   if (!any_computed(m)) {
     write_positions(m, positions, ps);
     return TLOD_SUCCESS;
   }
+  tlod_result r = _tlod_mesh_normals_prepare(m);
+  if (r != TLOD_SUCCESS) return r;
+  if (m->normal_sum) {
+    write_positions(m, positions, ps);
+    return _tlod_mesh_compute_normals(m);
+  }
   float(*saved)[3] = _tlod_calloc(m->ctx, m->vertex_count, sizeof(*saved));
   if (!saved) return fail_oom(m, "update");
   memcpy(saved, m->positions, (size_t)m->vertex_count * sizeof(*saved));
   write_positions(m, positions, ps);
-  tlod_result r = _tlod_mesh_compute_normals(m);
+  r = _tlod_mesh_compute_normals(m);
   if (r != TLOD_SUCCESS) memcpy(m->positions, saved, (size_t)m->vertex_count * sizeof(*saved));
   _tlod_free(m->ctx, saved);
   return r;
+}
+
+/* The smooth flags compare the data of distinct vertices at one position,
+ * and nodes: with neither, every linked edge is smooth whatever the data. */
+static bool smooth_flags_can_change(const tlod_mesh* m) {
+  if (m->face_nodes) return true;
+  for (uint32_t v = 0; v < m->vertex_count; v++)
+    if (m->weld_id[v] != v) return true;
+  return false;
+}
+
+/* compute_bbox, over all vertices when every one is a face corner (no
+ * unused vertices, no nodes): the same minima and maxima without the
+ * faces' indirection, in independent chains (a float per lane). */
+static void update_bbox(tlod_mesh* m) {
+  if (m->face_nodes || m->info.unused_vertices || m->vertex_count == 0) {
+    compute_bbox(m);
+    return;
+  }
+  float lo[4][3], hi[4][3];
+  for (int k = 0; k < 4; k++)
+    memcpy(lo[k], m->positions[0], sizeof(lo[k])), memcpy(hi[k], m->positions[0], sizeof(hi[k]));
+  uint32_t n = m->vertex_count;
+  for (uint32_t v = 0; v < n; v++)
+    bbox_add(m->positions[v], lo[v & 3], hi[v & 3]);
+  for (int k = 1; k < 4; k++)
+    bbox_add(lo[k], lo[0], hi[0]), bbox_add(hi[k], lo[0], hi[0]);
+  memcpy(m->info.bbox_min, lo[0], sizeof(lo[0]));
+  memcpy(m->info.bbox_max, hi[0], sizeof(hi[0]));
 }
 
 tlod_result tlod_mesh_update(tlod_mesh* mesh, const float* positions, uint32_t position_stride, const float* normals,
@@ -661,8 +712,8 @@ tlod_result tlod_mesh_update(tlod_mesh* mesh, const float* positions, uint32_t p
   }
   if (r != TLOD_SUCCESS) return r;
   /* Smooth flags compare positions and normals bitwise; both may change. */
-  _tlod_mesh_refresh_smooth(mesh);
-  compute_bbox(mesh);
+  if (smooth_flags_can_change(mesh)) _tlod_mesh_refresh_smooth(mesh);
+  update_bbox(mesh);
   mesh->generation++;
   return TLOD_SUCCESS;
 }

@@ -35,27 +35,24 @@
 
 #define PI_D 3.14159265358979323846
 
-/* Everything a computation needs, allocated up front so that a computation
+/* Everything a computation with creases needs, allocated up front so that a computation
  * that fails has not written a normal yet. */
 typedef struct normal_job {
   tlod_mesh* m;
   bool area;             /* face area weights, else corner angles */
-  bool creases;          /* crease_angle_deg > 0 */
   double cos_crease;     /* corners with dot(n_f, n_g) >= this are on the same side */
   double (*corner_n)[3]; /* per corner slot: unit normal, zero when there is none */
   double* weight;        /* per corner slot face * 4 + corner */
   uint32_t* w_first;     /* corner slots of welded position w: w_slots[w_first[w] .. w_first[w+1]) */
   uint32_t* w_slots;     /* in face order */
-  double (*w_sum)[4];    /* no creases: weighted sum and total weight per welded position */
-  uint8_t* state;        /* creases: 0 no corner seen, 1 corners agree, 2 they differ */
-  double (*mean)[3];     /* creases: sum of the unit corner normals of a vertex */
+  uint8_t* state;        /* 0 no corner seen, 1 corners agree, 2 they differ */
+  double (*mean)[3];     /* sum of the unit corner normals of a vertex */
 } normal_job;
 
 /* Node-only vertices (no corner of any face) never get a computed normal. */
-static bool wants_normal(const normal_job* j, uint32_t v) {
-  if (_tlod_mesh_is_node_only(j->m, v)) return false;
-  return j->m->normal_computed[v] || j->m->desc.normal_mode == TLOD_NORMALS_ANGLE ||
-         j->m->desc.normal_mode == TLOD_NORMALS_AREA;
+static bool wants_normal(const tlod_mesh* m, uint32_t v) {
+  if (_tlod_mesh_is_node_only(m, v)) return false;
+  return m->normal_computed[v] || m->desc.normal_mode == TLOD_NORMALS_ANGLE || m->desc.normal_mode == TLOD_NORMALS_AREA;
 }
 
 /* ------------------------------------------------------------------------ */
@@ -104,28 +101,22 @@ static void corner_tangents(const tlod_mesh* m, uint32_t f, uint32_t i, double a
   edge_tangent(m, f, i, prev, prev, b);
 }
 
-/* Interior angle between the tangents; atan2 stays accurate near 0 and pi. */
-static double corner_angle(const double a[3], const double b[3]) {
-  double x[3];
-  cross3(a, b, x);
-  return atan2(length3(x), dot3(a, b));
-}
-
 /* A face with a given node on some edge has curved corners. */
 static bool curved_face(const tlod_mesh* m, uint32_t f) {
   return m->node_given && (m->node_given[f] & ((1u << m->face_corners[f]) - 1u)) != 0;
 }
 
-/* Twice the area vector. Quads: the cross product of the diagonals (exact
+/* Twice the area vector, and its length. Quads: the cross product of the diagonals (exact
  * for planar quads); when the diagonals are parallel (a folded quad) the
  * two triangles' sum stands in. */
-static void face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[3]) {
+static double face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[3]) {
   double a[3], b[3];
   if (k == 4) {
     sub3(p[c[2]], p[c[0]], a);
     sub3(p[c[3]], p[c[1]], b);
     cross3(a, b, out);
-    if (length3(out) > 1e-12 * (dot3(a, a) + dot3(b, b))) return;
+    double len = length3(out);
+    if (len > 1e-12 * (dot3(a, a) + dot3(b, b))) return len;
     double t[3];
     sub3(p[c[1]], p[c[0]], a);
     sub3(p[c[2]], p[c[0]], b);
@@ -134,44 +125,65 @@ static void face_cross(float (*p)[3], const uint32_t* c, uint32_t k, double out[
     cross3(b, a, t);
     for (int i = 0; i < 3; i++)
       out[i] += t[i];
-    return;
+    return length3(out);
   }
   sub3(p[c[1]], p[c[0]], a);
   sub3(p[c[2]], p[c[0]], b);
   cross3(a, b, out);
+  return length3(out);
 }
 
-/* x / |x|, zero when x is. */
-static void unit3(const double x[3], double out[3]) {
-  double len = length3(x);
+/* x / len (one division), len = |x|; zero when x is. */
+static void unit3_len(const double x[3], double len, double out[3]) {
+  double inv = len > 0.0 ? 1.0 / len : 0.0;
   for (int i = 0; i < 3; i++)
-    out[i] = len > 0.0 ? x[i] / len : 0.0;
+    out[i] = x[i] * inv;
 }
 
-/* Corner i of face f: its weight, and on a curved face its own normal
- * (the face normal n stands otherwise). */
-static void corner_geometry(normal_job* j, uint32_t f, uint32_t i, double area2, bool curved) {
-  double a[3], b[3], x[3];
-  corner_tangents(j->m, f, i, a, b);
-  j->weight[f * 4 + i] = j->area ? 0.5 * area2 : corner_angle(a, b);
-  if (!curved) return;
-  cross3(a, b, x);
-  unit3(x, j->corner_n[f * 4 + i]);
+static void unit3(const double x[3], double out[3]) { unit3_len(x, length3(x), out); }
+
+/* The unit normal of face f (zero when degenerate); returns twice its area. */
+static double face_normal(const tlod_mesh* m, uint32_t f, double n[3]) {
+  double x[3], len = face_cross(m->positions, m->faces[f], m->face_corners[f], x);
+  unit3_len(x, len, n);
+  return len;
+}
+
+/* Corner i of face f from its tangents: what its angle needs (|a x b|^2
+ * and a . b) and, for a curved face, its own unit normal (a x b / |a x b|). */
+static void corner_data(const tlod_mesh* m, uint32_t f, uint32_t i, double* y2, double* x, double own[3]) {
+  double a[3], b[3], c[3];
+  corner_tangents(m, f, i, a, b);
+  cross3(a, b, c);
+  unit3(c, own);
+  *y2 = dot3(c, c);
+  *x = dot3(a, b);
+}
+
+/* Corner i of face f (unit normal n, twice its area area2): its weight,
+ * and its unit normal in out (n, or on a curved face the tangents' own). */
+static double corner_weight(const tlod_mesh* m, bool area, uint32_t f, uint32_t i, double area2, bool curved,
+                            const double n[3], double out[3]) {
+  double y2, x, own[3], w = 0.5 * area2;
+  memcpy(out, n, 3 * sizeof(double));
+  if (area && !curved) return w;
+  corner_data(m, f, i, &y2, &x, own);
+  if (curved) memcpy(out, own, sizeof(own));
+  if (!area) _tlod_corner_angles(TLOD_SIMD_SCALAR, &y2, &x, &w, 1);
+  return w;
 }
 
 /* Corner normals and weights of face f. Area weights stay the flat area. */
 static void face_geometry(normal_job* j, uint32_t f) {
   const tlod_mesh* m = j->m;
   uint32_t k = m->face_corners[f];
-  double x[3], n[3];
-  face_cross(m->positions, m->faces[f], k, x);
-  unit3(x, n);
+  double n[3], area2 = face_normal(m, f, n);
   for (uint32_t i = 0; i < 4; i++) {
     memcpy(j->corner_n[f * 4 + i], n, sizeof(n));
     j->weight[f * 4 + i] = 0.0;
   }
   for (uint32_t i = 0; i < k; i++)
-    corner_geometry(j, f, i, length3(x), curved_face(m, f));
+    j->weight[f * 4 + i] = corner_weight(m, j->area, f, i, area2, curved_face(m, f), n, j->corner_n[f * 4 + i]);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -184,7 +196,6 @@ static void job_free(normal_job* j) {
   _tlod_free(ctx, j->weight);
   _tlod_free(ctx, j->w_first);
   _tlod_free(ctx, j->w_slots);
-  _tlod_free(ctx, j->w_sum);
   _tlod_free(ctx, j->state);
   _tlod_free(ctx, j->mean);
 }
@@ -197,16 +208,9 @@ static tlod_result job_alloc(normal_job* j) {
   j->weight = _tlod_calloc(ctx, nf * 4, sizeof(double));
   j->w_first = _tlod_calloc(ctx, nv + 1, sizeof(uint32_t));
   j->w_slots = _tlod_calloc(ctx, nf * 4, sizeof(uint32_t));
-  bool ok = j->corner_n && j->weight && j->w_first && j->w_slots;
-  if (ok && !j->creases) {
-    j->w_sum = _tlod_calloc(ctx, nv, sizeof(*j->w_sum));
-    ok = j->w_sum != NULL;
-  } else if (ok) {
-    j->state = _tlod_calloc(ctx, nv, 1);
-    j->mean = _tlod_calloc(ctx, nv, sizeof(*j->mean));
-    ok = j->state && j->mean;
-  }
-  if (ok) return TLOD_SUCCESS;
+  j->state = _tlod_calloc(ctx, nv, 1);
+  j->mean = _tlod_calloc(ctx, nv, sizeof(*j->mean));
+  if (j->corner_n && j->weight && j->w_first && j->w_slots && j->state && j->mean) return TLOD_SUCCESS;
   job_free(j);
   /* The constant, not _tlod_fail's return value: static analysis cannot
    * see that it returns its argument, and callers rely on the failure. */
@@ -232,22 +236,10 @@ static void group_corners(normal_job* j) {
       j->w_slots[--j->w_first[m->weld_id[m->faces[f][i]]]] = f * 4 + i;
 }
 
-static void sum_positions(normal_job* j) {
-  for (uint32_t w = 0; w < j->m->vertex_count; w++)
-    for (uint32_t s = j->w_first[w]; s < j->w_first[w + 1]; s++) {
-      uint32_t slot = j->w_slots[s];
-      double wt = j->weight[slot];
-      for (int i = 0; i < 3; i++)
-        j->w_sum[w][i] += wt * j->corner_n[slot][i];
-      j->w_sum[w][3] += wt;
-    }
-}
-
 static tlod_result job_start(normal_job* j, tlod_mesh* m) {
   memset(j, 0, sizeof(*j));
   j->m = m;
   j->area = m->desc.normal_mode == TLOD_NORMALS_AREA;
-  j->creases = m->desc.crease_angle_deg > 0.0f;
   /* A hair of slack so that faces exactly at the crease angle count as
    * the same side whatever the rounding of their normals. */
   j->cos_crease = cos((double)m->desc.crease_angle_deg * (PI_D / 180.0)) - 1e-9;
@@ -256,7 +248,6 @@ static tlod_result job_start(normal_job* j, tlod_mesh* m) {
   for (uint32_t f = 0; f < m->face_count; f++)
     face_geometry(j, f);
   group_corners(j);
-  if (!j->creases) sum_positions(j);
   return TLOD_SUCCESS;
 }
 
@@ -321,15 +312,6 @@ static void unused_normal(const normal_job* j, uint32_t v, float out[3]) {
 
 static bool same_normal(const float* a, const float* b) { return memcmp(a, b, 3 * sizeof(float)) == 0; }
 
-/* Without creases every corner at a position has the same normal. */
-static void assign_smooth(normal_job* j) {
-  tlod_mesh* m = j->m;
-  for (uint32_t v = 0; v < m->vertex_count; v++) {
-    uint32_t w = m->weld_id[v];
-    if (wants_normal(j, v)) unit_from_sum(j, j->w_sum[w], w, _TLOD_NONE, m->normals[v]);
-  }
-}
-
 /* Creases, topology kept: a vertex takes its corners' normal when they
  * agree (so an unchanged mesh reproduces its normals bitwise), else their
  * mean. */
@@ -338,7 +320,7 @@ static void assign_creased(normal_job* j) {
   for (uint32_t f = 0; f < m->face_count; f++)
     for (uint32_t i = 0; i < m->face_corners[f]; i++) {
       uint32_t v = m->faces[f][i];
-      if (!wants_normal(j, v)) continue;
+      if (!wants_normal(j->m, v)) continue;
       float n[3];
       corner_normal(j, f * 4 + i, m->weld_id[v], n);
       if (j->state[v] == 0) {
@@ -351,11 +333,167 @@ static void assign_creased(normal_job* j) {
         j->mean[v][c] += n[c];
     }
   for (uint32_t v = 0; v < m->vertex_count; v++) {
-    if (!wants_normal(j, v)) continue;
+    if (!wants_normal(j->m, v)) continue;
     if (j->state[v] == 0) unused_normal(j, v, m->normals[v]);
     double sum[4] = {j->mean[v][0], j->mean[v][1], j->mean[v][2], 1.0};
     if (j->state[v] == 2) unit_from_sum(j, sum, m->weld_id[v], _TLOD_NONE, m->normals[v]);
   }
+}
+
+/* ------------------------------------------------------------------------ */
+/* Smooth normals (no creases)                                              */
+/* ------------------------------------------------------------------------ */
+
+/* sum[w][3] markers (weights are >= 0): the faces at w cancel out and no
+ * corner normal was found yet; or sum[w][0..2] is the first one found. */
+#define SUM_PENDING (-1.0)
+#define SUM_FOUND (-2.0)
+
+/* Each corner adds weight * normal to its welded position's sum, faces in
+ * order: the order the grouped sums of the creased path use, with no
+ * per-corner arrays. sum[w][3] is the total weight. */
+/* Corners of up to BATCH_FACES faces, gathered so that their angles are
+ * computed in lanes (mesh_angles.c), then summed in face order. */
+enum { BATCH_FACES = _TLOD_FACE_LANES, BATCH_CORNERS = 4 * BATCH_FACES };
+typedef struct corner_batch {
+  double y2[BATCH_CORNERS]; /* |a x b|^2 of the corner's tangents */
+  double x[BATCH_CORNERS];  /* a . b */
+  double w[BATCH_CORNERS];  /* the weight */
+  double n[BATCH_CORNERS][3];
+  uint32_t v[BATCH_CORNERS];
+  uint32_t count;
+} corner_batch;
+
+/* A flat face's corners from its edge vectors e_i = p_{i+1} - p_i: at
+ * corner i the tangents are e_i and -e_{i-1} (the doubles corner_tangents
+ * gives, without its per-corner loads and divisions). */
+static void flat_corners(const tlod_mesh* m, uint32_t f, uint32_t k, corner_batch* b) {
+  static const uint8_t next[5][4] = {[3] = {1, 2, 0, 0}, [4] = {1, 2, 3, 0}};
+  static const uint8_t prev[5][4] = {[3] = {2, 0, 1, 0}, [4] = {3, 0, 1, 2}};
+  double e[4][3];
+  for (uint32_t i = 0; i < k; i++)
+    sub3(m->positions[m->faces[f][next[k][i]]], m->positions[m->faces[f][i]], e[i]);
+  for (uint32_t i = 0; i < k; i++) {
+    const double* q = e[prev[k][i]];
+    double t[3] = {-q[0], -q[1], -q[2]}, c[3];
+    cross3(e[i], t, c);
+    b->y2[b->count + i] = dot3(c, c);
+    b->x[b->count + i] = dot3(e[i], t);
+  }
+}
+
+/* Face f as lane l of the face kernel. */
+static void face_lane(const tlod_mesh* m, uint32_t f, uint32_t l, _tlod_face_lanes* lanes) {
+  uint32_t k = m->face_corners[f];
+  for (uint32_t c = 0; c < 4; c++) {
+    const float* p = m->positions[m->faces[f][c < k ? c : 0]];
+    for (uint32_t d = 0; d < 3; d++)
+      lanes->p[3 * c + d][l] = (double)p[d];
+  }
+  lanes->quad[l] = k == 4 ? 1.0 : 0.0;
+}
+
+/* The normal of face f from lane l (face_normal where the lane defers). */
+static double lane_normal(const tlod_mesh* m, uint32_t f, uint32_t l, const _tlod_face_lanes* lanes, double n[3]) {
+  if (lanes->redo[l] != 0.0) return face_normal(m, f, n);
+  for (int d = 0; d < 3; d++)
+    n[d] = lanes->n[d][l];
+  return lanes->len[l];
+}
+
+/* Face f's corners into the batch: vertex, normal, and the weight (area) or
+ * what its angle needs. */
+static void batch_face(const tlod_mesh* m, bool area, uint32_t f, const double n[3], double area2, corner_batch* b) {
+  uint32_t k = m->face_corners[f], at = b->count;
+  bool curved = curved_face(m, f);
+  for (uint32_t i = 0; i < k; i++) {
+    b->v[at + i] = m->faces[f][i];
+    memcpy(b->n[at + i], n, 3 * sizeof(double));
+    b->w[at + i] = 0.5 * area2;
+  }
+  if (!curved && !area) flat_corners(m, f, k, b);
+  for (uint32_t i = 0; curved && i < k; i++)
+    corner_data(m, f, i, &b->y2[at + i], &b->x[at + i], b->n[at + i]);
+  b->count += k;
+}
+
+static void batch_sum(const corner_batch* b, const tlod_mesh* m, double (*sum)[4]) {
+  for (uint32_t i = 0; i < b->count; i++) {
+    double* s = sum[m->weld_id[b->v[i]]];
+    for (int d = 0; d < 3; d++)
+      s[d] += b->w[i] * b->n[i][d];
+    s[3] += b->w[i];
+  }
+}
+
+/* Each corner adds weight * normal to its welded position's sum, faces in
+ * order: the order the grouped sums of the creased path use, with no
+ * per-corner arrays. sum[w][3] is the total weight. */
+static void sum_faces(const tlod_mesh* m, bool area, double (*sum)[4]) {
+  tlod_simd simd = tlod_context_simd(m->ctx);
+  corner_batch b;
+  _tlod_face_lanes lanes;
+  for (uint32_t f0 = 0; f0 < m->face_count; f0 += BATCH_FACES) {
+    uint32_t f1 = m->face_count - f0 < BATCH_FACES ? m->face_count : f0 + BATCH_FACES;
+    /* Curved faces' corners take their own normal, flat ones the face's. */
+    for (uint32_t f = f0; f < f1; f++)
+      face_lane(m, f, f - f0, &lanes);
+    _tlod_face_normals(simd, &lanes, f1 - f0);
+    b.count = 0;
+    for (uint32_t f = f0; f < f1; f++) {
+      double n[3], area2 = lane_normal(m, f, f - f0, &lanes, n);
+      batch_face(m, area, f, n, area2, &b);
+    }
+    if (!area) _tlod_corner_angles(simd, b.y2, b.x, b.w, b.count);
+    batch_sum(&b, m, sum);
+  }
+}
+
+/* The normal of v from its position's sum, as unit_from_sum; false (w
+ * marked pending) where the faces cancel out. */
+static bool from_sum(tlod_mesh* m, double (*sum)[4], uint32_t v) {
+  double* s = sum[m->weld_id[v]];
+  if (s[3] < 0.0) return false;
+  double len = length3(s);
+  if (!(len > 1e-9 * s[3]) || !(len > 0.0)) {
+    s[3] = SUM_PENDING;
+    return false;
+  }
+  double inv = 1.0 / len;
+  for (int i = 0; i < 3; i++)
+    m->normals[v][i] = (float)(s[i] * inv);
+  return true;
+}
+
+/* Pending positions take the first corner normal there in face order (as
+ * fallback_normal), else +z: one pass over the faces, rare. */
+static void resolve_pending(tlod_mesh* m, bool area, double (*sum)[4]) {
+  for (uint32_t f = 0; f < m->face_count; f++) {
+    double n[3], area2 = face_normal(m, f, n);
+    for (uint32_t i = 0; i < m->face_corners[f]; i++) {
+      double *s = sum[m->weld_id[m->faces[f][i]]], c[3];
+      if (s[3] != SUM_PENDING) continue;
+      corner_weight(m, area, f, i, area2, curved_face(m, f), n, c);
+      if (nonzero(c)) memcpy(s, c, sizeof(c)), s[3] = SUM_FOUND;
+    }
+  }
+  for (uint32_t v = 0; v < m->vertex_count; v++) {
+    const double* s = sum[m->weld_id[v]];
+    if (!wants_normal(m, v) || s[3] >= 0.0) continue;
+    bool found = s[3] == SUM_FOUND;
+    m->normals[v][0] = found ? (float)s[0] : 0.0f;
+    m->normals[v][1] = found ? (float)s[1] : 0.0f;
+    m->normals[v][2] = found ? (float)s[2] : 1.0f;
+  }
+}
+
+static void smooth_normals(tlod_mesh* m, double (*sum)[4]) {
+  bool area = m->desc.normal_mode == TLOD_NORMALS_AREA, pending = false;
+  memset(sum, 0, (size_t)m->vertex_count * sizeof(*sum));
+  sum_faces(m, area, sum);
+  for (uint32_t v = 0; v < m->vertex_count; v++)
+    if (wants_normal(m, v) && !from_sum(m, sum, v)) pending = true;
+  if (pending) resolve_pending(m, area, sum);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -436,7 +574,7 @@ static tlod_result split_corners(normal_job* j, split_list* s) {
   for (uint32_t f = 0; f < m->face_count; f++)
     for (uint32_t i = 0; i < m->face_corners[f]; i++) {
       uint32_t v = m->faces[f][i];
-      if (!wants_normal(j, v)) continue;
+      if (!wants_normal(j->m, v)) continue;
       float c[3];
       /* v < n here: a corner is rewritten only after its own normal. */
       corner_normal(j, f * 4 + i, m->weld_id[v], c);
@@ -451,7 +589,7 @@ static tlod_result split_corners(normal_job* j, split_list* s) {
       }
     }
   for (uint32_t v = 0; v < n; v++)
-    if (wants_normal(j, v) && j->state[v] == 0) unused_normal(j, v, m->normals[v]);
+    if (wants_normal(j->m, v) && j->state[v] == 0) unused_normal(j, v, m->normals[v]);
   return TLOD_SUCCESS;
 }
 
@@ -543,25 +681,43 @@ static tlod_result split_creases(normal_job* j, uint32_t** split_source) {
 /* Entry points                                                             */
 /* ------------------------------------------------------------------------ */
 
-static bool any_wanted(const normal_job* j) {
-  for (uint32_t v = 0; v < j->m->vertex_count; v++)
-    if (wants_normal(j, v)) return true;
+static bool any_wanted(const tlod_mesh* m) {
+  for (uint32_t v = 0; v < m->vertex_count; v++)
+    if (wants_normal(m, v)) return true;
   return false;
 }
 
-static tlod_result compute(tlod_mesh* m, uint32_t** split_source) {
-  normal_job j = {.m = m};
-  if (!any_wanted(&j)) return TLOD_SUCCESS; /* every normal given and valid */
+static bool has_creases(const tlod_mesh* m) { return m->desc.crease_angle_deg > 0.0f; }
+
+static tlod_result compute_creased(tlod_mesh* m, uint32_t** split_source) {
+  normal_job j;
   tlod_result r = job_start(&j, m);
   if (r != TLOD_SUCCESS) return r;
-  if (!j.creases)
-    assign_smooth(&j);
-  else if (split_source)
+  if (split_source)
     r = split_creases(&j, split_source);
   else
     assign_creased(&j);
   job_free(&j);
   return r;
+}
+
+/* Smooth normals need only the per-position sums: the mesh's scratch when
+ * tlod_mesh_update made it, else a temporary one. */
+static tlod_result compute(tlod_mesh* m, uint32_t** split_source) {
+  if (!any_wanted(m)) return TLOD_SUCCESS; /* every normal given and valid */
+  if (has_creases(m)) return compute_creased(m, split_source);
+  double(*sum)[4] = m->normal_sum ? m->normal_sum : _tlod_calloc(m->ctx, m->vertex_count + 1, sizeof(*sum));
+  if (!sum) return _tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (normals)", m->label);
+  smooth_normals(m, sum);
+  if (sum != m->normal_sum) _tlod_free(m->ctx, sum);
+  return TLOD_SUCCESS;
+}
+
+tlod_result _tlod_mesh_normals_prepare(tlod_mesh* m) {
+  if (has_creases(m) || m->normal_sum) return TLOD_SUCCESS;
+  m->normal_sum = _tlod_calloc(m->ctx, m->vertex_count + 1, sizeof(*m->normal_sum));
+  return m->normal_sum ? TLOD_SUCCESS
+                       : _tlod_fail(m->ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (normals)", m->label);
 }
 
 tlod_result _tlod_mesh_compute_normals(tlod_mesh* mesh) { return compute(mesh, NULL); }

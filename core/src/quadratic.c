@@ -238,7 +238,7 @@ void _tlod_quadratic_build(const tlod_surface* s, uint32_t f, const _tlod_corner
     info->error_bound = _tlod_quad_net_bound((const double(*)[4][3])net, c, &info->d_max);
   }
   patch_sphere(c, bez, c->n == 4 ? 9 : 6, info);
-  if (s->desc.error_tables == TLOD_ERROR_TABLES_CLOSED_FORM)
+  if (s->desc.error_tables != TLOD_ERROR_TABLES_MEASURED) /* NONE: overwritten by surface.c */
     _tlod_error_table_quadratic_closed(c, (const double(*)[3])nodes, nn, info);
   else
     _tlod_error_table_quadratic(c, c->n == 3 ? (const double(*)[3])dev : NULL,

@@ -33,15 +33,18 @@ void _tlod_sphere_of(const _tlod_corners* c, const v3* extra, uint32_t extra_n, 
   for (uint32_t i = 1; i < c->n; i++)
     center = v3_add(center, c->p[i]);
   center = v3_scale(center, 1.0f / (float)c->n);
-  float r = 0.0f;
+  /* Squared distances, one square root: sqrtf is correctly rounded and
+   * monotone, so this is bitwise the largest distance. */
+  float r2 = 0.0f;
   for (uint32_t i = 0; i < c->n; i++) {
-    float d = v3_length(v3_sub(c->p[i], center));
-    r = d > r ? d : r;
+    v3 d = v3_sub(c->p[i], center);
+    r2 = v3_dot(d, d) > r2 ? v3_dot(d, d) : r2;
   }
   for (uint32_t i = 0; i < extra_n; i++) {
-    float d = v3_length(v3_sub(extra[i], center));
-    r = d > r ? d : r;
+    v3 d = v3_sub(extra[i], center);
+    r2 = v3_dot(d, d) > r2 ? v3_dot(d, d) : r2;
   }
+  float r = sqrtf(r2);
   v3_store(info->center, center);
   /* Relative slack covers the rounding of the evaluation itself. */
   info->radius = (r + grow) * (1.0f + 1e-5f);
@@ -72,17 +75,67 @@ static void build_error_table(tlod_surface* s, uint32_t f, const _tlod_corners* 
   _tlod_error_table(s->desc.type, c, alpha_net, NULL, info);
 }
 
+/* TLOD_ERROR_TABLES_NONE: every bound "unknown" (tlod_patch_error_bound()
+ * then returns +INFINITY). */
+static void no_tables(tlod_patch_info* info) {
+  for (int l = 0; l < TLOD_ERROR_TABLE_LEVELS; l++)
+    info->error_table[l] = INFINITY;
+  info->error_tail = INFINITY;
+  info->error_slack = 0.0f;
+}
+
+/* A cheap rigorous bound on |S - q| for the Phong sphere without tables:
+ * S - q = -a sum_x w_x ((q - p_x).n_x) n_x with q = sum_y w_y p_y, so
+ * |S - q| <= a_max sum_{x != y} w_x w_y |(p_y - p_x).n_x| <= a_max D (1 -
+ * sum w_x^2) <= a_max D (n - 1) / n, D = max |(p_y - p_x).n_x|, the weights
+ * being non-negative and summing to 1 inside the patch. The float rounding
+ * of n_x (|n_x| within 2^-23 of 1) and of the evaluation is inside the
+ * sphere's relative slack (_tlod_sphere_of) and _tlod_bound_slack. */
+static float phong_grow(const _tlod_corners* c) {
+  /* Maxima per y, independent chains across x (not one chain of n^2). */
+  double d[4] = {0.0, 0.0, 0.0, 0.0}, a = 0.0, extent2 = 0.0;
+  for (uint32_t x = 0; x < c->n; x++) {
+    a = c->alpha[x] > a ? c->alpha[x] : a;
+    double q[3] = {(double)c->p[x].x - c->p[0].x, (double)c->p[x].y - c->p[0].y, (double)c->p[x].z - c->p[0].z};
+    double e2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+    extent2 = e2 > extent2 ? e2 : extent2;
+    for (uint32_t y = 0; y < c->n; y++) {
+      double e = ((double)c->p[y].x - c->p[x].x) * c->nrm[x].x + ((double)c->p[y].y - c->p[x].y) * c->nrm[x].y +
+                 ((double)c->p[y].z - c->p[x].z) * c->nrm[x].z;
+      d[y] = fabs(e) > d[y] ? fabs(e) : d[y];
+    }
+  }
+  double dm = d[0] > d[1] ? d[0] : d[1], dn = d[2] > d[3] ? d[2] : d[3];
+  dm = dm > dn ? dm : dn;
+  /* 1e-6 of the extent, as _tlod_bound_slack (without its libm fmax calls). */
+  return (float)(a * dm * (double)(c->n - 1) / (double)c->n * (1.0 + 0x1p-20) + 1e-6 * sqrt(extent2));
+}
+
+/* Phong without tables: the sphere alone, no error bound. */
+static void build_phong_untabled(const _tlod_corners* c, tlod_patch_info* info) {
+  info->error_bound = INFINITY;
+  info->d_max = INFINITY;
+  _tlod_sphere_of(c, NULL, 0, phong_grow(c), info);
+  no_tables(info);
+}
+
 static void build_patch(tlod_surface* s, uint32_t f) {
   _tlod_corners c;
   gather(s, f, &c);
   tlod_patch_info* info = &s->info[f];
   info->corner_count = c.n;
+  bool none = s->desc.error_tables == TLOD_ERROR_TABLES_NONE;
+  if (none && s->desc.type == TLOD_SURFACE_PHONG) {
+    build_phong_untabled(&c, info);
+    return;
+  }
   double quad_net[4][4][3], alpha_net[10][3];
   bool per_vertex = false;
   switch (s->desc.type) {
   case TLOD_SURFACE_QUADRATIC:
     /* Nodes, bounds, sphere and tables of its own (quadratic.c). */
     _tlod_quadratic_build(s, f, &c, &s->quad[f], info);
+    if (none) no_tables(info);
     return;
   case TLOD_SURFACE_PN: {
     _tlod_pn_build(&c, &s->pn[f]);
@@ -112,20 +165,17 @@ static void build_patch(tlod_surface* s, uint32_t f) {
     _tlod_sphere_of(&c, NULL, 0, info->error_bound, info);
     break;
   }
-  build_error_table(s, f, &c, per_vertex ? (const double(*)[3])alpha_net : NULL, quad_net);
+  if (none)
+    no_tables(info);
+  else
+    build_error_table(s, f, &c, per_vertex ? (const double(*)[3])alpha_net : NULL, quad_net);
 }
-
-typedef struct build_job {
-  tlod_surface* s;
-  const uint8_t* dirty; /* NULL: all */
-} build_job;
 
 static void build_range(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
-  build_job* job = data;
-  for (uint32_t f = begin; f < end; f++) {
-    if (!job->dirty || job->dirty[f]) build_patch(job->s, f);
-  }
+  tlod_surface* s = data;
+  for (uint32_t f = begin; f < end; f++)
+    build_patch(s, f);
 }
 
 static tlod_result validate_surface_desc(tlod_context* ctx, const tlod_mesh* mesh, const tlod_surface_desc* d) {
@@ -166,6 +216,7 @@ void tlod_surface_destroy(tlod_surface* s) {
   _tlod_free(ctx, s->quad);
   _tlod_free(ctx, s->alpha);
   _tlod_free(ctx, s->snapshot);
+  _tlod_free(ctx, s->changed);
   _tlod_free(ctx, s);
 }
 
@@ -219,43 +270,64 @@ tlod_result tlod_surface_create(tlod_context* ctx, const tlod_mesh* mesh, const 
     s->alpha[v] =
         d.type == TLOD_SURFACE_FLAT ? 0.0f : (d.alpha_mode == TLOD_ALPHA_PER_VERTEX ? mesh->alphas[v] : d.alpha);
   take_snapshot(s);
-  build_job job = {s, NULL};
-  _tlod_parallel_for(ctx, build_range, &job, s->patch_count);
+  _tlod_parallel_for(ctx, build_range, s, s->patch_count);
   *out = s;
   return TLOD_SUCCESS;
 }
 
-static bool vertex_changed(const tlod_surface* s, uint32_t v) {
+/* Flags the vertices whose position or normal differs (bitwise) from the
+ * snapshot, and takes their new values into it (the patches are rebuilt
+ * from the mesh, not from the snapshot). */
+static void mark_vertices(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
+  (void)worker;
+  tlod_surface* s = data;
   const tlod_mesh* m = s->mesh;
-  return memcmp(s->snapshot[v], m->positions[v], sizeof(float) * 3) != 0 ||
-         memcmp(s->snapshot[v] + 3, m->normals[v], sizeof(float) * 3) != 0;
+  for (uint32_t v = begin; v < end; v++) {
+    float* snap = s->snapshot[v];
+    bool changed = memcmp(snap, m->positions[v], sizeof(float) * 3) != 0 ||
+                   memcmp(snap + 3, m->normals[v], sizeof(float) * 3) != 0;
+    s->changed[v] = changed;
+    if (!changed) continue;
+    memcpy(snap, m->positions[v], sizeof(float) * 3);
+    memcpy(snap + 3, m->normals[v], sizeof(float) * 3);
+  }
 }
 
 /* A patch depends on its corners and, on a quadratic surface, its nodes. */
 static bool face_changed(const tlod_surface* s, uint32_t f) {
   const tlod_mesh* m = s->mesh;
+  const uint8_t* changed = s->changed;
   for (uint32_t i = 0; i < m->face_corners[f]; i++)
-    if (vertex_changed(s, m->faces[f][i])) return true;
+    if (changed[m->faces[f][i]]) return true;
   for (uint32_t i = 0; s->quad && m->face_nodes && i < TLOD_FACE_NODES; i++)
-    if (m->face_nodes[f][i] != _TLOD_NONE && vertex_changed(s, m->face_nodes[f][i])) return true;
+    if (m->face_nodes[f][i] != _TLOD_NONE && changed[m->face_nodes[f][i]]) return true;
   return false;
 }
 
+/* Rebuilds the patches some vertex of which changed; flags them. */
+static void rebuild_range(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
+  (void)worker;
+  tlod_surface* s = data;
+  uint8_t* dirty = s->changed + s->mesh->vertex_count;
+  for (uint32_t f = begin; f < end; f++) {
+    dirty[f] = face_changed(s, f);
+    if (dirty[f]) build_patch(s, f);
+  }
+}
+
+/* Flags are kept between calls: a refresh allocates only the first time. */
 tlod_result tlod_surface_refresh(tlod_surface* s, uint32_t* updated) {
   if (updated) *updated = 0;
   if (!s) return TLOD_ERROR_INVALID_ARGUMENT;
   const tlod_mesh* m = s->mesh;
-  uint8_t* dirty = _tlod_calloc(s->ctx, m->face_count, 1);
-  if (!dirty) return _tlod_fail(s->ctx, TLOD_ERROR_OUT_OF_MEMORY, "surface '%s': out of memory", s->label);
+  if (!s->changed) s->changed = _tlod_calloc(s->ctx, (size_t)m->vertex_count + m->face_count + 1, 1);
+  if (!s->changed) return _tlod_fail(s->ctx, TLOD_ERROR_OUT_OF_MEMORY, "surface '%s': out of memory", s->label);
+  _tlod_parallel_for(s->ctx, mark_vertices, s, m->vertex_count);
+  _tlod_parallel_for(s->ctx, rebuild_range, s, m->face_count);
+  const uint8_t* dirty = s->changed + m->vertex_count;
   uint32_t count = 0;
-  for (uint32_t f = 0; f < m->face_count; f++) {
-    dirty[f] = face_changed(s, f);
+  for (uint32_t f = 0; f < m->face_count; f++)
     count += dirty[f];
-  }
-  build_job job = {s, dirty};
-  _tlod_parallel_for(s->ctx, build_range, &job, m->face_count);
-  take_snapshot(s);
-  _tlod_free(s->ctx, dirty);
   s->generation += count > 0;
   if (updated) *updated = count;
   return TLOD_SUCCESS;

@@ -86,6 +86,12 @@ tlod_result tlod_scheduler_create(tlod_context* ctx, const tlod_surface* surface
   tlod_scheduler_desc d = scheduler_desc_defaults(desc, patterns);
   tlod_result r = validate_desc(ctx, &d, patterns);
   if (r != TLOD_SUCCESS) return r;
+  if ((d.policy == TLOD_POLICY_ERROR || d.policy == TLOD_POLICY_HYBRID) &&
+      tlod_surface_query_desc(surface).error_tables == TLOD_ERROR_TABLES_NONE)
+    return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT,
+                             "scheduler '%s': the ERROR and HYBRID policies need error bounds, but surface '%s' was "
+                             "made with TLOD_ERROR_TABLES_NONE (use CLOSED_FORM, or the UNIFORM policy)",
+                             d.label, tlod_surface_query_desc(surface).label);
   tlod_scheduler* s = tlod_context_calloc(ctx, 1, sizeof(*s));
   if (!s) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "scheduler '%s': out of memory", d.label);
   s->ctx = ctx;

@@ -506,6 +506,17 @@ typedef enum tlod_error_tables {
    * finer levels. Never below the MEASURED table of the same patch (whose
    * entries are capped by it). */
   TLOD_ERROR_TABLES_CLOSED_FORM,
+  /* No error bound at all, for users that pick levels themselves (a uniform
+   * level: tlod_cpu_tessellate, the scheduler's UNIFORM, FLAT or SILHOUETTE
+   * policies) on meshes refreshed every frame: error_table[], error_tail
+   * are +INFINITY and error_slack 0, so tlod_patch_error_bound() returns
+   * +INFINITY at every level ("unknown"); Phong surfaces also leave
+   * error_bound and d_max at +INFINITY and keep only a (looser, still
+   * rigorous) bounding sphere: the cheapest build and refresh. PN and
+   * QUADRATIC surfaces still compute error_bound (their sphere needs the
+   * net). tlod_scheduler_create() refuses it for the ERROR and HYBRID
+   * policies (INVALID_ARGUMENT), whose level rule needs the bounds. */
+  TLOD_ERROR_TABLES_NONE,
   TLOD_ERROR_TABLES_NUM,
   _TLOD_ERROR_TABLES_FORCE_U32 = 0x7FFFFFFF
 } tlod_error_tables;
@@ -553,7 +564,8 @@ typedef struct tlod_patch_info {
 } tlod_patch_info;
 
 /* The world-space bound on |surface - level-l pattern| of a patch, any level
- * (0..10, tesslod/lod.h TLOD_MAX_LEVEL): error_table[level], or the tail.
+ * (0..10, tesslod/lod.h TLOD_MAX_LEVEL): error_table[level], or the tail;
+ * +INFINITY for a surface made with TLOD_ERROR_TABLES_NONE (no bound known).
  * Pure; non-increasing in level, so a level rule is a compare ladder:
  * the first level whose bound (times the projection scale) meets the
  * tolerance; no transcendental function is needed (4^-l is a power of two). */

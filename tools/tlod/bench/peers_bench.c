@@ -185,13 +185,50 @@ static void measure(const peers_case* c, peers_pair* p, peers_accuracy* a) {
   }
 }
 
-/* Deforming meshes are refreshed every frame: closed-form tables, as the
- * core's manual advises for them. */
-static bool closed_form(peers_ours* s) {
+/* The surface again, with other error tables. */
+static bool remake_surface(peers_ours* s, tlod_error_tables tables) {
   tlod_surface_destroy(s->surface);
   s->surface = NULL;
-  tlod_surface_desc d = {.type = TLOD_SURFACE_PHONG, .error_tables = TLOD_ERROR_TABLES_CLOSED_FORM};
+  tlod_surface_desc d = {.type = TLOD_SURFACE_PHONG, .error_tables = tables};
   return tlod_surface_create(s->ctx, s->mesh, &d, &s->surface) == TLOD_SUCCESS;
+}
+
+/* Thread CPU ns per face of tlod_mesh_update (normals recomputed) and
+ * tlod_surface_refresh with the surface's tables: min over the frames. */
+static bool time_refresh(peers_run* r, const peers_case* c, peers_ours* s, double* update_ns, double* refresh_ns) {
+  *update_ns = *refresh_ns = INFINITY;
+  for (uint32_t i = 0; i < r->o->warmup + r->o->repeat; i++) {
+    peers_mesh_deform(c->m, i, r->control);
+    double t0 = peers_thread_ms();
+    if (tlod_mesh_update(s->mesh, r->control, 0, NULL, 0) != TLOD_SUCCESS) return false;
+    double t1 = peers_thread_ms();
+    if (tlod_surface_refresh(s->surface, NULL) != TLOD_SUCCESS) return false;
+    double t2 = peers_thread_ms(), per = 1e6 / c->m->face_count;
+    if (i < r->o->warmup) continue;
+    *update_ns = fmin(*update_ns, (t1 - t0) * per);
+    *refresh_ns = fmin(*refresh_ns, (t2 - t1) * per);
+  }
+  return true;
+}
+
+/* The deforming frames above use TLOD_ERROR_TABLES_NONE (uniform levels need
+ * no bounds); what a CLOSED_FORM surface (a scheduler's ERROR/HYBRID
+ * levels) would add, on one line. */
+static int report_refresh(peers_run* r, const peers_case* c, peers_ours* s) {
+  double upd, none, closed;
+  if (!time_refresh(r, c, s, &upd, &none) || !remake_surface(s, TLOD_ERROR_TABLES_CLOSED_FORM) ||
+      !time_refresh(r, c, s, &upd, &closed))
+    return cli_error(CLI_FAILED, "bench --peers: %s", tlod_context_last_error(s->ctx));
+  printf("  L%u deforming cost per face: tlod_mesh_update %.1f ns, tlod_surface_refresh NONE %.1f ns, CLOSED_FORM "
+         "%.1f ns\n",
+         c->level, upd, none, closed);
+  if (!r->json) return CLI_OK;
+  json_object_begin(r->json, "deforming_refresh_ns_per_face");
+  json_number(r->json, "mesh_update", upd);
+  json_number(r->json, "refresh_none", none);
+  json_number(r->json, "refresh_closed_form", closed);
+  json_object_end(r->json);
+  return CLI_OK;
 }
 
 static int run_path(peers_run* r, const peers_mesh* m, uint32_t level, bool normals, peers_accuracy* a) {
@@ -201,10 +238,12 @@ static int run_path(peers_run* r, const peers_mesh* m, uint32_t level, bool norm
   int rc = preprocess(r, &c, &p);
   if (rc == CLI_OK) rc = run_case(r, &c, &p);
   if (rc == CLI_OK) measure(&c, &p, a);
-  if (rc == CLI_OK && !closed_form(&p.ours))
+  /* Deforming at a uniform level: no error bounds to refresh. */
+  if (rc == CLI_OK && !remake_surface(&p.ours, TLOD_ERROR_TABLES_NONE))
     rc = cli_error(CLI_FAILED, "bench --peers: %s", tlod_context_last_error(p.ours.ctx));
   c.deforming = true;
   if (rc == CLI_OK) rc = run_case(r, &c, &p);
+  if (rc == CLI_OK && !normals) rc = report_refresh(r, &c, &p.ours);
   if (r->json) json_object_end(r->json);
   if (p.ours.ctx) peers_ours_destroy(&p.ours);
   if (p.osd) peers_osd_destroy(p.osd);
