@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "surface_eval.h"
+#include "error_table_lanes.h"
 
 static tlod_surface_desc surface_desc_defaults(const tlod_surface_desc* in) {
   tlod_surface_desc d = in ? *in : (tlod_surface_desc){0};
@@ -120,12 +120,44 @@ typedef struct build_job {
   const uint8_t* dirty; /* NULL: all */
 } build_job;
 
+/* Phong quads are built in lanes of patches (error_table_lanes.c): bitwise
+ * build_patch's bound, sphere and table. */
+typedef struct quad_lanes {
+  uint32_t n, face[_TLOD_QUAD_LANES];
+  _tlod_corners c[_TLOD_QUAD_LANES];
+} quad_lanes;
+
+static void flush_quads(tlod_surface* s, quad_lanes* q) {
+  if (!q->n) return;
+  tlod_patch_info* info[_TLOD_QUAD_LANES];
+  for (uint32_t i = 0; i < q->n; i++)
+    info[i] = &s->info[q->face[i]], info[i]->corner_count = 4;
+  bool measured = s->desc.error_tables == TLOD_ERROR_TABLES_MEASURED;
+  _tlod_phong_quads(s->ctx->desc.simd, q->c, q->n, measured, info);
+  for (uint32_t i = 0; i < q->n; i++) {
+    _tlod_sphere_of(&q->c[i], NULL, 0, info[i]->error_bound, info[i]);
+    if (!measured) build_error_table(s, q->face[i], &q->c[i], NULL, NULL);
+  }
+  q->n = 0;
+}
+
 static void build_range(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   build_job* job = data;
+  tlod_surface* s = job->s;
+  bool phong = s->desc.type == TLOD_SURFACE_PHONG;
+  quad_lanes q = {0};
   for (uint32_t f = begin; f < end; f++) {
-    if (!job->dirty || job->dirty[f]) build_patch(job->s, f);
+    if (job->dirty && !job->dirty[f]) continue;
+    if (!phong || s->mesh->face_corners[f] != 4) {
+      build_patch(s, f);
+      continue;
+    }
+    gather(s, f, &q.c[q.n]);
+    q.face[q.n++] = f;
+    if (q.n == _TLOD_QUAD_LANES) flush_quads(s, &q);
   }
+  flush_quads(s, &q);
 }
 
 static tlod_result validate_surface_desc(tlod_context* ctx, const tlod_mesh* mesh, const tlod_surface_desc* d) {

@@ -1,0 +1,91 @@
+/* tesslod::core -- Phong quad patches' bound and error table in lanes of
+ * patches (error_table_lanes.inc, compiled per instruction set): the net,
+ * its second-derivative maximum and the shared sample grid's cells were
+ * 90% of a Phong quad surface's build. Bitwise the scalar path of phong.c
+ * and error_table.c: same operations in the same order per lane, exact IEEE
+ * division and sqrt, no contraction (-ffp-contract=off); the few per-patch
+ * scalar steps (slack, rounding up) are the scalar code's own functions. */
+#include <string.h>
+
+#include "error_table_lanes.h"
+
+#define K (TLOD_ERROR_TABLE_LEVELS - 1)
+enum { L = _TLOD_QUAD_LANES, G = 2 << K, S = G + 1 };
+
+typedef struct lanes_in {
+  float p[4][3][L], n[4][3][L], alpha[4][L];
+} lanes_in;
+
+typedef struct lanes_out {
+  double m[L], worst2[K + 1][L];
+} lanes_out;
+
+typedef void (*quads_kernel)(const lanes_in* in, bool measured, lanes_out* out);
+
+#if defined(__GNUC__) && !defined(__clang__)
+#define KERNEL_TARGET __attribute__((optimize("no-tree-vectorize")))
+#else
+#define KERNEL_TARGET
+#endif
+#define KERNEL(name) name##_scalar
+#include "error_table_lanes.inc"
+#undef KERNEL
+#undef KERNEL_TARGET
+
+#if defined(__x86_64__)
+#define KERNEL_TARGET __attribute__((target("sse2")))
+#define KERNEL(name) name##_sse2
+#include "error_table_lanes.inc"
+#undef KERNEL
+#undef KERNEL_TARGET
+#define KERNEL_TARGET __attribute__((target("avx2")))
+#define KERNEL(name) name##_avx2
+#include "error_table_lanes.inc"
+#undef KERNEL
+#undef KERNEL_TARGET
+#define KERNEL_TARGET __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
+#define KERNEL(name) name##_avx512
+#include "error_table_lanes.inc"
+#undef KERNEL
+#undef KERNEL_TARGET
+#endif
+
+static quads_kernel kernel_for(tlod_simd simd) {
+#if defined(__x86_64__)
+  if (simd == TLOD_SIMD_AVX512) return quads_avx512;
+  if (simd == TLOD_SIMD_AVX2) return quads_avx2;
+  if (simd == TLOD_SIMD_SSE2) return quads_sse2;
+#else
+  (void)simd;
+#endif
+  return quads_scalar;
+}
+
+/* Lanes past n repeat patch 0 (their results are dropped). */
+static void load_lanes(const _tlod_corners* c, uint32_t n, lanes_in* in) {
+  for (int l = 0; l < L; l++) {
+    const _tlod_corners* x = &c[(uint32_t)l < n ? l : 0];
+    for (int i = 0; i < 4; i++) {
+      const float p[3] = {x->p[i].x, x->p[i].y, x->p[i].z}, m[3] = {x->nrm[i].x, x->nrm[i].y, x->nrm[i].z};
+      for (int k = 0; k < 3; k++)
+        in->p[i][k][l] = p[k], in->n[i][k][l] = m[k];
+      in->alpha[i][l] = x->alpha[i];
+    }
+  }
+}
+
+void _tlod_phong_quads(tlod_simd simd, const _tlod_corners* c, uint32_t n, bool measured,
+                       tlod_patch_info* const* info) {
+  lanes_in in;
+  lanes_out out;
+  load_lanes(c, n, &in);
+  kernel_for(simd)(&in, measured, &out);
+  for (uint32_t l = 0; l < n; l++) {
+    info[l]->error_bound = _tlod_quad_m_bound(out.m[l], &c[l], &info[l]->d_max);
+    if (!measured) continue;
+    double worst2[K + 1];
+    for (int lv = 0; lv <= K; lv++)
+      worst2[lv] = out.worst2[lv][l];
+    _tlod_phong_quad_table_from(&c[l], out.m[l], worst2, info[l]);
+  }
+}
