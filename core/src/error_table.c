@@ -541,9 +541,9 @@ static void quad_table_from(double m, const double* worst2, const biquad_law* la
   finish(info, e, dmin(m / 4.0, biquad_at(law, 1.0 / (1 << (K + 1))) * (double)(1 << (2 * (K + 1)))), slack);
 }
 
-void _tlod_phong_quad_table_from(const _tlod_corners* c, double m, const double* worst2, tlod_patch_info* info) {
+void _tlod_phong_quad_table_from(double m, const double* worst2, double slack, tlod_patch_info* info) {
   const biquad_law none = {INFINITY, 0.0, 0.0};
-  quad_table_from(m, worst2, &none, eval_slack(c, NULL, 0), info);
+  quad_table_from(m, worst2, &none, slack, info);
 }
 
 /* All cells of levels 0..K on the shared (QUAD_G + 1)^2 grid (the same

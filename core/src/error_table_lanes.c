@@ -5,6 +5,7 @@
  * and error_table.c: same operations in the same order per lane, exact IEEE
  * division and sqrt, no contraction (-ffp-contract=off); the few per-patch
  * scalar steps (slack, rounding up) are the scalar code's own functions. */
+#include <math.h>
 #include <string.h>
 
 #include "error_table_lanes.h"
@@ -17,7 +18,8 @@ typedef struct lanes_in {
 } lanes_in;
 
 typedef struct lanes_out {
-  double m[L], worst2[K + 1][L];
+  double m[L], worst2[K + 1][L], slack[L];
+  float bound[L], center[3][L], radius[L];
 } lanes_out;
 
 typedef void (*quads_kernel)(const lanes_in* in, bool measured, lanes_out* out);
@@ -81,11 +83,14 @@ void _tlod_phong_quads(tlod_simd simd, const _tlod_corners* c, uint32_t n, bool 
   load_lanes(c, n, &in);
   kernel_for(simd)(&in, measured, &out);
   for (uint32_t l = 0; l < n; l++) {
-    info[l]->error_bound = _tlod_quad_m_bound(out.m[l], &c[l], &info[l]->d_max);
+    tlod_patch_info* p = info[l];
+    p->error_bound = p->d_max = out.bound[l];
+    p->center[0] = out.center[0][l], p->center[1] = out.center[1][l], p->center[2] = out.center[2][l];
+    p->radius = out.radius[l];
     if (!measured) continue;
     double worst2[K + 1];
     for (int lv = 0; lv <= K; lv++)
       worst2[lv] = out.worst2[lv][l];
-    _tlod_phong_quad_table_from(&c[l], out.m[l], worst2, info[l]);
+    _tlod_phong_quad_table_from(out.m[l], worst2, out.slack[l], p);
   }
 }

@@ -5,7 +5,7 @@
  *   J. Dupuy. Phong Tessellation for Quads. 2013 (tangents; the surface is C0
  *   across patch edges, not C1 as stated there).
  * Maths and the error bound: docs/design.md. */
-#include "error_table_lanes.h"
+#include "surface_eval.h"
 
 void _tlod_phong_edge(v3 pa, v3 na, float alpha_a, v3 pb, v3 nb, float alpha_b, float t, v3* pos, v3* nrm) {
   float s = 1.0f - t;
@@ -270,11 +270,7 @@ double _tlod_quad_net_m(const double net[4][4][3]) {
 }
 
 float _tlod_quad_net_bound(const double net[4][4][3], const _tlod_corners* c, float* d_max) {
-  return _tlod_quad_m_bound(_tlod_quad_net_m(net), c, d_max);
-}
-
-float _tlod_quad_m_bound(double m, const _tlod_corners* c, float* d_max) {
-  double bound = m / 4.0 + _tlod_bound_slack(c);
+  double bound = _tlod_quad_net_m(net) / 4.0 + _tlod_bound_slack(c);
   *d_max = (float)bound;
   return (float)bound;
 }

@@ -134,10 +134,8 @@ static void flush_quads(tlod_surface* s, quad_lanes* q) {
     info[i] = &s->info[q->face[i]], info[i]->corner_count = 4;
   bool measured = s->desc.error_tables == TLOD_ERROR_TABLES_MEASURED;
   _tlod_phong_quads(s->ctx->desc.simd, q->c, q->n, measured, info);
-  for (uint32_t i = 0; i < q->n; i++) {
-    _tlod_sphere_of(&q->c[i], NULL, 0, info[i]->error_bound, info[i]);
-    if (!measured) build_error_table(s, q->face[i], &q->c[i], NULL, NULL);
-  }
+  for (uint32_t i = 0; !measured && i < q->n; i++)
+    build_error_table(s, q->face[i], &q->c[i], NULL, NULL);
   q->n = 0;
 }
 
