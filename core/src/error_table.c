@@ -594,10 +594,14 @@ static void flat_quad_table(const _tlod_corners* c, tlod_patch_info* info) {
  * deviation with the 4^-l law (docs/design.md 3.5); the slack is the
  * measured tables' own, so the two modes differ only in e_l. */
 void _tlod_error_table_closed(const _tlod_corners* c, const double (*extra)[3], int extra_n, tlod_patch_info* info) {
+  _tlod_error_table_closed_slack(eval_slack(c, extra, extra_n), info);
+}
+
+void _tlod_error_table_closed_slack(double slack, tlod_patch_info* info) {
   double e[K + 1], e0 = closed_form_bound(info);
   for (int l = 0; l <= K; l++)
     e[l] = e0 * k_pow4[l];
-  finish(info, e, e0, eval_slack(c, extra, extra_n));
+  finish(info, e, e0, slack);
 }
 
 /* A quadratic face's evaluation is a sum of up to 9 products with Lagrange

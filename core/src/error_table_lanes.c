@@ -76,17 +76,19 @@ static void load_lanes(const _tlod_corners* c, uint32_t n, lanes_in* in) {
   }
 }
 
-void _tlod_phong_quads(tlod_simd simd, const _tlod_corners* c, uint32_t n, bool measured,
+void _tlod_phong_quads(tlod_simd simd, const _tlod_corners* c, uint32_t n, tlod_error_tables tables,
                        tlod_patch_info* const* info) {
   lanes_in in;
   lanes_out out;
   load_lanes(c, n, &in);
+  bool measured = tables == TLOD_ERROR_TABLES_MEASURED;
   kernel_for(simd)(&in, measured, &out);
   for (uint32_t l = 0; l < n; l++) {
     tlod_patch_info* p = info[l];
     p->error_bound = p->d_max = out.bound[l];
     p->center[0] = out.center[0][l], p->center[1] = out.center[1][l], p->center[2] = out.center[2][l];
     p->radius = out.radius[l];
+    if (tables == TLOD_ERROR_TABLES_CLOSED_FORM) _tlod_error_table_closed_slack(out.slack[l], p);
     if (!measured) continue;
     double worst2[K + 1];
     for (int lv = 0; lv <= K; lv++)

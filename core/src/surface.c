@@ -132,9 +132,10 @@ static void flush_quads(tlod_surface* s, quad_lanes* q) {
   tlod_patch_info* info[_TLOD_QUAD_LANES];
   for (uint32_t i = 0; i < q->n; i++)
     info[i] = &s->info[q->face[i]], info[i]->corner_count = 4;
-  bool measured = s->desc.error_tables == TLOD_ERROR_TABLES_MEASURED;
-  _tlod_phong_quads(s->ctx->desc.simd, q->c, q->n, measured, info);
-  for (uint32_t i = 0; !measured && i < q->n; i++)
+  tlod_error_tables t = s->desc.error_tables;
+  _tlod_phong_quads(s->ctx->desc.simd, q->c, q->n, t, info);
+  bool built = t == TLOD_ERROR_TABLES_MEASURED || t == TLOD_ERROR_TABLES_CLOSED_FORM;
+  for (uint32_t i = 0; !built && i < q->n; i++)
     build_error_table(s, q->face[i], &q->c[i], NULL, NULL);
   q->n = 0;
 }
