@@ -24,33 +24,9 @@ typedef struct lanes_out {
 
 typedef void (*quads_kernel)(const lanes_in* in, bool measured, lanes_out* out);
 
-#if defined(__GNUC__) && !defined(__clang__)
-#define KERNEL_TARGET __attribute__((optimize("no-tree-vectorize")))
-#else
-#define KERNEL_TARGET
-#endif
-#define KERNEL(name) name##_scalar
-#include "error_table_lanes.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-
-#if defined(__x86_64__)
-#define KERNEL_TARGET __attribute__((target("sse2")))
-#define KERNEL(name) name##_sse2
-#include "error_table_lanes.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#define KERNEL_TARGET __attribute__((target("avx2")))
-#define KERNEL(name) name##_avx2
-#include "error_table_lanes.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#define KERNEL_TARGET __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
-#define KERNEL(name) name##_avx512
-#include "error_table_lanes.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#endif
+#define KERNEL_FILE "error_table_lanes.inc"
+#include "simd_instances.inc"
+#undef KERNEL_FILE
 
 static quads_kernel kernel_for(tlod_simd simd) {
 #if defined(__x86_64__)
