@@ -30,7 +30,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "surface_eval.h"
+#include "error_table_lanes.h"
 
 #define K (TLOD_ERROR_TABLE_LEVELS - 1)
 /* Grid of the quadratic maximum (1/(1 - 1/N^2) = 36/35) and of the cubic cells. */
@@ -524,10 +524,30 @@ static double quad_cell_m2(const d3 (*f)[QUAD_G + 1], int i0, int j0, int step) 
   return worst;
 }
 
-/* All cells of levels 0..K on the shared (QUAD_G + 1)^2 grid; between grid
+/* The table of a quad (Phong or biquadratic) from its net's m and the
+ * squared maxima worst2[l] of the shared grid's level-l cells: between grid
  * points (sub-triangles with legs 1/G, R^2 = 1/(2 G^2)) at most M/(4 G^2).
- * A biquadratic (biquadratic true) also takes the h^2 law above, for the
+ * A biquadratic (law finite) also takes the h^2 law above, for the
  * remainder, every level and the tail. */
+static void quad_table_from(double m, const double* worst2, const biquad_law* law, double slack,
+                            tlod_patch_info* info) {
+  enum { G = QUAD_G };
+  double e[K + 1];
+  for (int l = 0; l <= K; l++) {
+    double sampled = sqrt(worst2[l]) + dmin(m / (4.0 * G * G), biquad_at(law, 1.0 / G));
+    e[l] = dmin(dmin(sampled, m / 4.0 * k_pow4[l]), biquad_at(law, k_pow4[l] * (1 << l)));
+  }
+  /* l > K: h <= 2^-(K+1), so e(h) <= 4^-l (q + 2^-(K+1) (c + 2^-(K+1) d)). */
+  finish(info, e, dmin(m / 4.0, biquad_at(law, 1.0 / (1 << (K + 1))) * (double)(1 << (2 * (K + 1)))), slack);
+}
+
+void _tlod_phong_quad_table_from(double m, const double* worst2, double slack, tlod_patch_info* info) {
+  const biquad_law none = {INFINITY, 0.0, 0.0};
+  quad_table_from(m, worst2, &none, slack, info);
+}
+
+/* All cells of levels 0..K on the shared (QUAD_G + 1)^2 grid (the same
+ * loops, in lanes of patches: error_table_lanes.inc). */
 static void phong_quad_table(const double (*net)[4][3], bool biquadratic, double slack, tlod_patch_info* info) {
   enum { G = QUAD_G, S = G + 1 };
   d3 a[4][4];
@@ -545,19 +565,17 @@ static void phong_quad_table(const double (*net)[4][3], bool biquadratic, double
         f[i][j][k] = ((col[3][k] * v + col[2][k]) * v + col[1][k]) * v + col[0][k];
     }
   }
-  double m = _tlod_quad_net_m(net), e[K + 1];
-  biquad_law law = biquadratic ? biquad_bound((const d3(*)[4])a) : (biquad_law){INFINITY, 0.0, 0.0};
+  double worst2[K + 1];
   for (int l = 0; l <= K; l++) {
     int step = G >> l, cells = 1 << l;
     double worst = 0.0;
     for (int ca = 0; ca < cells; ca++)
       for (int cb = 0; cb < cells; cb++)
         worst = dmax(worst, quad_cell_m2((const d3(*)[S])f, ca * step, cb * step, step));
-    double sampled = sqrt(worst) + dmin(m / (4.0 * G * G), biquad_at(&law, 1.0 / G));
-    e[l] = dmin(dmin(sampled, m / 4.0 * k_pow4[l]), biquad_at(&law, k_pow4[l] * (1 << l)));
+    worst2[l] = worst;
   }
-  /* l > K: h <= 2^-(K+1), so e(h) <= 4^-l (q + 2^-(K+1) (c + 2^-(K+1) d)). */
-  finish(info, e, dmin(m / 4.0, biquad_at(&law, 1.0 / (1 << (K + 1))) * (double)(1 << (2 * (K + 1)))), slack);
+  biquad_law law = biquadratic ? biquad_bound((const d3(*)[4])a) : (biquad_law){INFINITY, 0.0, 0.0};
+  quad_table_from(_tlod_quad_net_m(net), worst2, &law, slack, info);
 }
 
 /* Bilinear: S = ... + u v (p0 - p1 + p2 - p3); on a cell's triangle the
@@ -576,10 +594,14 @@ static void flat_quad_table(const _tlod_corners* c, tlod_patch_info* info) {
  * deviation with the 4^-l law (docs/design.md 3.5); the slack is the
  * measured tables' own, so the two modes differ only in e_l. */
 void _tlod_error_table_closed(const _tlod_corners* c, const double (*extra)[3], int extra_n, tlod_patch_info* info) {
+  _tlod_error_table_closed_slack(eval_slack(c, extra, extra_n), info);
+}
+
+void _tlod_error_table_closed_slack(double slack, tlod_patch_info* info) {
   double e[K + 1], e0 = closed_form_bound(info);
   for (int l = 0; l <= K; l++)
     e[l] = e0 * k_pow4[l];
-  finish(info, e, e0, eval_slack(c, extra, extra_n));
+  finish(info, e, e0, slack);
 }
 
 /* A quadratic face's evaluation is a sum of up to 9 products with Lagrange

@@ -135,8 +135,23 @@ static uint32_t eps_find(const weld_table* t, float (*pos)[3], uint32_t v) {
   return best;
 }
 
+/* Slots are random in a table larger than the caches: the slot of the
+ * vertex WELD_AHEAD on is fetched while this one is looked up (a hint only:
+ * the same result). */
+enum { WELD_AHEAD = 16 };
+
+static void prefetch_slot(const weld_table* t, const tlod_mesh* m, uint32_t v) {
+#if defined(__GNUC__)
+  if (t->inv_cell == 0.0 && v < m->vertex_count)
+    __builtin_prefetch(&t->slots[(size_t)exact_hash(m->positions[v]) & t->mask]);
+#else
+  (void)t, (void)m, (void)v;
+#endif
+}
+
 static void weld_all(weld_table* t, tlod_mesh* m) {
   for (uint32_t v = 0; v < m->vertex_count; v++) {
+    prefetch_slot(t, m, v + WELD_AHEAD);
     uint64_t h;
     uint32_t rep;
     if (t->inv_cell > 0.0) {

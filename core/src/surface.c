@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "surface_eval.h"
+#include "error_table_lanes.h"
 
 static tlod_surface_desc surface_desc_defaults(const tlod_surface_desc* in) {
   tlod_surface_desc d = in ? *in : (tlod_surface_desc){0};
@@ -171,11 +171,45 @@ static void build_patch(tlod_surface* s, uint32_t f) {
     build_error_table(s, f, &c, per_vertex ? (const double(*)[3])alpha_net : NULL, quad_net);
 }
 
+/* Phong quads with tables are built in lanes of patches
+ * (error_table_lanes.c): bitwise build_patch's bound, sphere and table. */
+typedef struct quad_lanes {
+  uint32_t n, face[_TLOD_QUAD_LANES];
+  _tlod_corners c[_TLOD_QUAD_LANES];
+} quad_lanes;
+
+static void flush_quads(tlod_surface* s, quad_lanes* q) {
+  if (!q->n) return;
+  tlod_patch_info* info[_TLOD_QUAD_LANES];
+  for (uint32_t i = 0; i < q->n; i++)
+    info[i] = &s->info[q->face[i]], info[i]->corner_count = 4;
+  _tlod_phong_quads(s->ctx->desc.simd, q->c, q->n, s->desc.error_tables, info);
+  q->n = 0;
+}
+
+static bool in_lanes(const tlod_surface* s, uint32_t f) {
+  return s->desc.type == TLOD_SURFACE_PHONG && s->desc.error_tables != TLOD_ERROR_TABLES_NONE &&
+         s->mesh->face_corners[f] == 4;
+}
+
+/* Builds patch f now, or queues it for the next lanes (flush_quads). */
+static void build_or_queue(tlod_surface* s, uint32_t f, quad_lanes* q) {
+  if (!in_lanes(s, f)) {
+    build_patch(s, f);
+    return;
+  }
+  gather(s, f, &q->c[q->n]);
+  q->face[q->n++] = f;
+  if (q->n == _TLOD_QUAD_LANES) flush_quads(s, q);
+}
+
 static void build_range(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   tlod_surface* s = data;
+  quad_lanes q = {0};
   for (uint32_t f = begin; f < end; f++)
-    build_patch(s, f);
+    build_or_queue(s, f, &q);
+  flush_quads(s, &q);
 }
 
 static tlod_result validate_surface_desc(tlod_context* ctx, const tlod_mesh* mesh, const tlod_surface_desc* d) {
@@ -309,10 +343,12 @@ static void rebuild_range(void* data, uint32_t begin, uint32_t end, uint32_t wor
   (void)worker;
   tlod_surface* s = data;
   uint8_t* dirty = s->changed + s->mesh->vertex_count;
+  quad_lanes q = {0};
   for (uint32_t f = begin; f < end; f++) {
     dirty[f] = face_changed(s, f);
-    if (dirty[f]) build_patch(s, f);
+    if (dirty[f]) build_or_queue(s, f, &q);
   }
+  flush_quads(s, &q);
 }
 
 /* Flags are kept between calls: a refresh allocates only the first time. */

@@ -31,33 +31,9 @@ typedef struct kernels {
   store_kernel store;
 } kernels;
 
-#if defined(__GNUC__) && !defined(__clang__)
-#define KERNEL_TARGET __attribute__((optimize("no-tree-vectorize")))
-#else
-#define KERNEL_TARGET
-#endif
-#define KERNEL(name) name##_scalar
-#include "surface_batch.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-
-#if defined(__x86_64__)
-#define KERNEL_TARGET __attribute__((target("sse2")))
-#define KERNEL(name) name##_sse2
-#include "surface_batch.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#define KERNEL_TARGET __attribute__((target("avx2")))
-#define KERNEL(name) name##_avx2
-#include "surface_batch.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#define KERNEL_TARGET __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
-#define KERNEL(name) name##_avx512
-#include "surface_batch.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#endif
+#define KERNEL_FILE "surface_batch.inc"
+#include "simd_instances.inc"
+#undef KERNEL_FILE
 
 static const kernels* kernels_for(tlod_simd simd) {
   static const kernels table[] = {

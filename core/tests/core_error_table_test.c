@@ -2,7 +2,8 @@
  * core_error_table_test.c -- the per-level error tables of tesslod/core.h
  * (issue #9) against the densely sampled true deviation, and the
  * per-vertex-alpha Phong net against the surface it stands for.
- * Reads private state: surface_eval.h (_tlod_phong_alpha_net) only.
+ * Reads private state: surface_eval.h (_tlod_phong_alpha_net; the scalar
+ * Phong quad path, the oracle of the lanes in test_quad_lanes_bitwise).
  *
  * The true deviation of level l is measured independently of the table's
  * maths: the surface (tlod_surface_eval, float, as the renderer sees it) on a
@@ -761,10 +762,90 @@ static void print_tightness(void) {
   printf("  largest (dense - bound) / scale: %.3g (tolerance %.0e)\n", g_stats.worst_excess, TOL_REL);
 }
 
+/* The scalar path of one Phong quad patch (phong.c, error_table.c), as
+ * build_patch ran it before the lanes: the oracle of the lane kernels. */
+static tlod_patch_info scalar_quad_patch(const tlod_surface* s, uint32_t f, bool closed) {
+  _tlod_corners c;
+  _tlod_patch_corners(s, f, &c);
+  tlod_patch_info info = {.corner_count = c.n};
+  double net[4][4][3];
+  _tlod_quad_net(&c, net);
+  info.error_bound = _tlod_quad_net_bound((const double(*)[4][3])net, &c, &info.d_max);
+  _tlod_sphere_of(&c, NULL, 0, info.error_bound, &info);
+  if (closed)
+    _tlod_error_table_closed(&c, NULL, 0, &info);
+  else
+    _tlod_error_table(TLOD_SURFACE_PHONG, &c, NULL, (const double(*)[4][3])net, &info);
+  return info;
+}
+
+/* Phong quads are built in lanes of 8 patches (error_table_lanes.c): every
+ * patch's info bitwise the scalar path's, at every instruction set and
+ * thread count, MEASURED and CLOSED_FORM, per-vertex and global alphas,
+ * patch counts that leave part-filled lanes, quads between triangles. */
+static int lanes_case(const mesh_data* d, tlod_simd simd, uint32_t threads, tlod_error_tables tables,
+                      tlod_alpha_mode am) {
+  tlod_context* ctx = NULL;
+  tlod_context_desc cd = {.thread_count = threads, .simd = simd};
+  if (tlod_context_create(&cd, &ctx) != TLOD_SUCCESS) return 1;
+  tlod_mesh* mesh = make_mesh(ctx, d);
+  tlod_surface* s = NULL;
+  int bad = !mesh || tlod_surface_create(ctx, mesh,
+                                         &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha_mode = am,
+                                                              .alpha = 0.6f, .error_tables = tables},
+                                         &s) != TLOD_SUCCESS;
+  for (uint32_t f = 0; !bad && f < tlod_surface_patch_count(s); f++) {
+    tlod_patch_info got = tlod_surface_patch(s, f);
+    if (got.corner_count != 4) continue;
+    tlod_patch_info want = scalar_quad_patch(s, f, tables == TLOD_ERROR_TABLES_CLOSED_FORM);
+    if (memcmp(&got, &want, sizeof got) != 0 && bad++ < 5)
+      fprintf(stderr, "  %s simd %d, %u threads, tables %d: patch %u differs from the scalar path\n", d->name,
+              (int)simd, threads, (int)tables, f);
+  }
+  tlod_surface_destroy(s);
+  tlod_mesh_destroy(mesh);
+  tlod_context_destroy(ctx);
+  return bad;
+}
+
+TEST(test_quad_lanes_bitwise) {
+  mesh_data q = random_patches(600, 203, 4, 85.0), t = random_patches(601, 5, 3, 40.0);
+  /* q with t's triangles after every 50th quad: a mixed mesh */
+  mesh_data m = {.name = "mixed random", .has_quads = true};
+  m.vertex_count = m.index_count = q.vertex_count + t.vertex_count;
+  m.face_count = q.face_count + t.face_count;
+  m.positions = malloc(sizeof(float) * 3 * m.vertex_count), m.normals = malloc(sizeof(float) * 3 * m.vertex_count);
+  m.alphas = malloc(sizeof(float) * m.vertex_count), m.indices = malloc(sizeof(uint32_t) * m.index_count);
+  m.sizes = malloc(m.face_count);
+  for (uint32_t f = 0, qf = 0, tf = 0, v = 0; f < m.face_count; f++) {
+    bool tri = tf < t.face_count && (qf == q.face_count || qf % 50 == 7);
+    const mesh_data* src = tri ? &t : &q;
+    uint32_t n = tri ? 3 : 4, first = (tri ? tf++ : qf++) * n;
+    for (uint32_t x = 0; x < n; x++, v++) {
+      memcpy(m.positions + 3 * v, src->positions + 3 * (first + x), sizeof(float) * 3);
+      memcpy(m.normals + 3 * v, src->normals + 3 * (first + x), sizeof(float) * 3);
+      m.alphas[v] = src->alphas[first + x], m.indices[v] = v;
+    }
+    m.sizes[f] = (uint8_t)n;
+  }
+  const mesh_data* meshes[2] = {&q, &m};
+  int bad = 0;
+  for (int k = 0; k < 2; k++)
+    for (int simd = TLOD_SIMD_SCALAR; simd < TLOD_SIMD_NUM; simd++)
+      for (uint32_t threads = 1; threads <= 2; threads++) {
+        bad += lanes_case(meshes[k], (tlod_simd)simd, threads, TLOD_ERROR_TABLES_MEASURED, TLOD_ALPHA_PER_VERTEX);
+        bad += lanes_case(meshes[k], (tlod_simd)simd, threads, TLOD_ERROR_TABLES_CLOSED_FORM, TLOD_ALPHA_PER_VERTEX);
+        bad += lanes_case(meshes[k], (tlod_simd)simd, threads, TLOD_ERROR_TABLES_MEASURED, TLOD_ALPHA_GLOBAL);
+      }
+  mesh_data_free(&q), mesh_data_free(&t), mesh_data_free(&m);
+  CHECK_MSG(bad == 0, "%d Phong quad patches differ from the scalar path", bad);
+}
+
 int main(void) {
   g_stats.worst_excess = -INFINITY;
   RUN(test_phong_alpha_net_is_the_surface);
   RUN(test_tables_refresh);
+  RUN(test_quad_lanes_bitwise);
   RUN(test_closed_form_tables);
   RUN(test_tables_random);
   RUN(test_tables_meshes);
