@@ -33,33 +33,8 @@
 typedef void (*angle_kernel)(const double* y2, const double* x, double* w, uint32_t n);
 typedef void (*face_kernel)(_tlod_face_lanes* lanes, uint32_t n);
 
-#if defined(__GNUC__) && !defined(__clang__)
-#define KERNEL_TARGET __attribute__((optimize("no-tree-vectorize")))
-#else
-#define KERNEL_TARGET
-#endif
-#define KERNEL(name) name##_scalar
-#include "mesh_angles.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-
-#if defined(__x86_64__)
-#define KERNEL_TARGET __attribute__((target("sse2")))
-#define KERNEL(name) name##_sse2
-#include "mesh_angles.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#define KERNEL_TARGET __attribute__((target("avx2")))
-#define KERNEL(name) name##_avx2
-#include "mesh_angles.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#define KERNEL_TARGET __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
-#define KERNEL(name) name##_avx512
-#include "mesh_angles.inc"
-#undef KERNEL
-#undef KERNEL_TARGET
-#endif
+#define KERNEL_FILE "mesh_angles.inc"
+#include "simd_instances.inc"
 
 void _tlod_corner_angles(tlod_simd simd, const double* y2, const double* x, double* w, uint32_t n) {
   angle_kernel k = angles_scalar;
