@@ -91,7 +91,6 @@ static uint32_t strip_triangles(const tlod_patterns* p, const tlod_draw_strip* s
 typedef struct chunk_tally {
   float e_min, e_max;
   uint32_t strips, culled;
-  uint64_t strip_triangles;
 } chunk_tally;
 
 /* The continuous level as the list sees it: two patches draw the same
@@ -101,26 +100,28 @@ typedef struct chunk_tally {
  * (and NaN) every patch draws level 0 at blend 1. */
 static float drawn_key(float c) { return c > 0.0f ? c : 0.0f; }
 
-/* Strips of visible patch f at level l, blend m, into the tally; the
- * edges that have one into the low bits of edges[f], for the second pass.
- * An edge needs one towards a visible neighbour across a crease or at
- * another (level, blend): one compare per edge, the strip made only then. */
-static void count_strips(const list_arrays* a, chunk_tally* t, uint32_t f, uint32_t l, float m) {
-  uint8_t up = a->edges[f] >> _TLOD_UP_SHIFT, mask = 0;
+/* Whether edge e of visible patch f (drawn key key) has a strip: a visible
+ * neighbour of higher index across a crease or at another (level, blend).
+ * Branch-free once the edge can have one: one compare per edge. */
+static uint32_t strip_bit(const list_arrays* a, uint32_t f, uint32_t e, float key) {
+  tlod_edge_link link = a->links[f][e];
+  uint32_t other = drawn_key(a->cont[link.face]) != key;
+  return (uint32_t)(a->visible[link.face] != 0) & ((uint32_t)!link.smooth | other);
+}
+
+/* The edges of visible patch f that have a strip into the low bits of
+ * edges[f] (for the second pass, which makes the strips); returns how many. */
+static uint32_t count_strips(const list_arrays* a, uint32_t f) {
+  uint32_t up = a->edges[f] >> _TLOD_UP_SHIFT, mask = 0, n = 0;
   float key = drawn_key(a->cont[f]);
-  for (uint32_t e = 0; up >> e; e++) {
+  for (uint32_t e = 0; e < 4; e++) {
     if (!(up & (1u << e))) continue;
-    tlod_edge_link link = a->links[f][e];
-    bool need = a->visible[link.face] && (!link.smooth || drawn_key(a->cont[link.face]) != key);
-    mask |= (uint8_t)(need << e);
-  }
-  for (uint32_t e = 0; mask >> e; e++) {
-    tlod_draw_strip st;
-    if (!(mask & (1u << e)) || !strip_at(a, f, e, l, m, &st)) continue;
-    t->strips++;
-    t->strip_triangles += strip_triangles(a->pat, &st);
+    uint32_t bit = strip_bit(a, f, e, key);
+    mask |= bit << e;
+    n += bit;
   }
   a->edges[f] = (uint8_t)(up << _TLOD_UP_SHIFT | mask);
+  return n;
 }
 
 /* Visible patch f: its drawn level, bucket count, statistics and strips. */
@@ -131,7 +132,7 @@ static void count_visible(const list_arrays* a, uint32_t* counts, chunk_tally* t
   counts[bucket_of(a, f, l)]++;
   t->e_min = e < t->e_min ? e : t->e_min;
   t->e_max = e > t->e_max ? e : t->e_max;
-  if (a->strips) count_strips(a, t, f, l, _tlod_morph_of(c, l));
+  if (a->strips) t->strips += count_strips(a, f);
 }
 
 /* The n visible bytes from f OR-ed, 8 at a time (n a multiple of 8). */
@@ -240,7 +241,6 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
     }
     ch->e_max_min = t.e_min, ch->e_max_max = t.e_max;
     ch->strips = t.strips, ch->culled = t.culled;
-    ch->strip_triangles = t.strip_triangles;
   }
 }
 
@@ -282,6 +282,8 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
       block_range(f0, f1, k, &b0, &b1);
       if (ch->blocks & (1u << k)) write_block(&a, fr->vs, ch->counts, ch->strips ? &st : NULL, b0, b1);
     }
+    for (uint32_t k = ch->strip_first; k < st; k++)
+      ch->strip_triangles += strip_triangles(a.pat, &fr->vs->strips[k]);
   }
 }
 
@@ -324,7 +326,6 @@ static uint32_t lay_out_buckets(_tlod_frame* fr, uint32_t chunks) {
 static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
   _tlod_view_state* vs = fr->vs;
   tlod_draw_list* dl = &vs->list;
-  dl->strip_triangles = 0;
   dl->culled = dl->strip_count = 0;
   dl->e_max_min = INFINITY;
   dl->e_max_max = 0.0f;
@@ -332,12 +333,18 @@ static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
     _tlod_list_chunk* ch = &vs->chunks[c];
     ch->strip_first = dl->strip_count;
     dl->strip_count += ch->strips;
-    dl->strip_triangles += ch->strip_triangles;
     dl->culled += ch->culled;
     dl->e_max_min = ch->e_max_min < dl->e_max_min ? ch->e_max_min : dl->e_max_min;
     dl->e_max_max = ch->e_max_max > dl->e_max_max ? ch->e_max_max : dl->e_max_max;
   }
   if (dl->culled == fr->s->patch_count) dl->e_max_min = 0.0f;
+}
+
+/* The strips' triangles (counted by pass 2), summed in chunk order. */
+static void sum_strip_triangles(_tlod_view_state* vs, uint32_t chunks) {
+  vs->list.strip_triangles = 0;
+  for (uint32_t c = 0; c < chunks; c++)
+    vs->list.strip_triangles += vs->chunks[c].strip_triangles;
 }
 
 /* The strip array grown once to the counted size: it only grows, so a
@@ -395,6 +402,7 @@ tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   tlod_result r = reserve_strips(fr->s, vs, vs->list.strip_count);
   if (r != TLOD_SUCCESS) drop_strips(vs, chunks);
   tlod_context_parallel_for(fr->s->ctx, write_task, fr, vs->busy_count);
+  sum_strip_triangles(vs, chunks);
   vs->list.strips = vs->strips;
   return r;
 }
