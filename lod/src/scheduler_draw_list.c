@@ -91,6 +91,10 @@ static uint32_t strip_triangles(const tlod_patterns* p, const tlod_draw_strip* s
 typedef struct chunk_tally {
   float e_min, e_max;
   uint32_t strips, culled;
+  /* The bucket of the last visible patch and the visible patches in it
+   * since counts[] had them: neighbours mostly share a bucket, and a
+   * counts[b]++ per patch would wait on the last one's store. */
+  uint32_t run_bucket, run_count;
 } chunk_tally;
 
 /* The continuous level as the list sees it: two patches draw the same
@@ -129,7 +133,12 @@ static void count_visible(const list_arrays* a, uint32_t* counts, chunk_tally* t
   float c = a->cont[f], e = a->e_max[f];
   uint32_t l = _tlod_drawn_level(c);
   a->levels[f] = (int8_t)l;
-  counts[bucket_of(a, f, l)]++;
+  uint32_t b = bucket_of(a, f, l);
+  if (b != t->run_bucket) {
+    counts[t->run_bucket] += t->run_count;
+    t->run_bucket = b, t->run_count = 0;
+  }
+  t->run_count++;
   t->e_min = e < t->e_min ? e : t->e_min;
   t->e_max = e > t->e_max ? e : t->e_max;
   if (a->strips) t->strips += count_strips(a, f);
@@ -239,31 +248,50 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
       block_range(f0, f1, k, &b0, &b1);
       if (ch->blocks & (1u << k)) count_block(&a, ch->counts, &t, b0, b1);
     }
+    ch->counts[t.run_bucket] += t.run_count;
     ch->e_max_min = t.e_min, ch->e_max_max = t.e_max;
     ch->strips = t.strips, ch->culled = t.culled;
   }
 }
 
+/* Where pass 2 writes a chunk: its next slot per bucket, the current
+ * bucket's kept as a pointer (see chunk_tally.run_bucket), the next strip. */
+typedef struct write_cursor {
+  uint32_t* slots;
+  tlod_draw_instance* base;
+  tlod_draw_instance* next; /* of bucket `bucket`; slots[bucket] is stale */
+  uint32_t bucket;
+  tlod_draw_strip* strip; /* NULL: no strips */
+} write_cursor;
+
+static write_cursor cursor_of(_tlod_view_state* vs, _tlod_list_chunk* ch) {
+  return (write_cursor){ch->counts, vs->instances, vs->instances + ch->counts[0], 0,
+                        ch->strips ? vs->strips + ch->strip_first : NULL};
+}
+
 /* Visible patch f's instance at its bucket's next slot and its strips
- * (the edges counted in pass 1) from strip slot *st. */
-static void write_visible(const list_arrays* a, _tlod_view_state* vs, uint32_t* slots, uint32_t* st, uint32_t f) {
-  uint32_t l = (uint32_t)a->levels[f];
+ * (the edges counted in pass 1). */
+static void write_visible(const list_arrays* a, write_cursor* w, uint32_t f) {
+  uint32_t l = (uint32_t)a->levels[f], b = bucket_of(a, f, l);
+  if (b != w->bucket) {
+    w->slots[w->bucket] = (uint32_t)(w->next - w->base);
+    w->bucket = b, w->next = w->base + w->slots[b];
+  }
   /* Edges blend with their patch (see _tlod_strip_needed). */
   float m = _tlod_morph_of(a->cont[f], l);
-  vs->instances[slots[bucket_of(a, f, l)]++] = (tlod_draw_instance){.patch = f, .level = l, .morph = m};
+  *w->next++ = (tlod_draw_instance){.patch = f, .level = l, .morph = m};
   uint32_t mask = a->edges[f] & ((1u << _TLOD_UP_SHIFT) - 1);
-  for (uint32_t e = 0; st && mask >> e; e++)
-    if (mask & (1u << e)) strip_at(a, f, e, l, m, &vs->strips[(*st)++]);
+  for (uint32_t e = 0; w->strip && mask >> e; e++)
+    if (mask & (1u << e)) strip_at(a, f, e, l, m, w->strip++);
 }
 
 /* Patches [f0, f1) of a visible block into the list. */
-static void write_block(const list_arrays* a, _tlod_view_state* vs, uint32_t* slots, uint32_t* st, uint32_t f0,
-                        uint32_t f1) {
+static void write_block(const list_arrays* a, write_cursor* w, uint32_t f0, uint32_t f1) {
   for (uint32_t f = f0; f < f1; f++) {
     if (culled_8(a->visible, f, f1))
       f += 7;
     else if (a->visible[f])
-      write_visible(a, vs, slots, st, f);
+      write_visible(a, w, f);
   }
 }
 
@@ -276,14 +304,14 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
   for (uint32_t i = begin; i < end; i++) {
     uint32_t c = fr->vs->busy[i], f0, f1, b0, b1;
     _tlod_list_chunk* ch = &fr->vs->chunks[c];
-    uint32_t st = ch->strip_first;
+    write_cursor w = cursor_of(fr->vs, ch);
     chunk_range(fr, c, &f0, &f1);
     for (uint32_t k = 0; ch->blocks >> k; k++) {
       block_range(f0, f1, k, &b0, &b1);
-      if (ch->blocks & (1u << k)) write_block(&a, fr->vs, ch->counts, ch->strips ? &st : NULL, b0, b1);
+      if (ch->blocks & (1u << k)) write_block(&a, &w, b0, b1);
     }
-    for (uint32_t k = ch->strip_first; k < st; k++)
-      ch->strip_triangles += strip_triangles(a.pat, &fr->vs->strips[k]);
+    for (const tlod_draw_strip* st = fr->vs->strips + ch->strip_first; w.strip && st < w.strip; st++)
+      ch->strip_triangles += strip_triangles(a.pat, st);
   }
 }
 
