@@ -2,10 +2,12 @@
  * of one (shape, level) pattern each, connection strips, statistics.
  *
  * Built in parallel and deterministically: the patches are cut into fixed
- * chunks of _TLOD_LIST_CHUNK (never dependent on the thread count); a first
- * pass counts each chunk's instances per bucket, strips and statistics, a
- * serial prefix sum in chunk order gives each chunk its offsets, and a
- * second pass writes every chunk at its offsets. The result is the serial
+ * chunks of _TLOD_LIST_CHUNK (never dependent on the thread count); a scan
+ * finds each chunk's blocks with a visible patch (culled blocks are not
+ * read again) and lists the busy chunks; a first pass over those counts
+ * each chunk's instances per bucket, strips and statistics, a serial
+ * prefix sum in chunk order gives each chunk its offsets, and a second
+ * pass writes every chunk at its offsets (docs/design.md 1.4). The result is the serial
  * order (bucket-major, patch order inside a bucket; strips in patch order)
  * whatever the workers and however the engine splits the chunks.
  *
@@ -19,13 +21,40 @@
 
 #include "scheduler_frame.h"
 
-static tlod_pattern_shape shape_of(const tlod_mesh_view* m, uint32_t f) {
-  return m->face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
+/* The frame's arrays as locals: the per-patch int8 level stores may alias
+ * anything, and read through fr->vs every pointer would be reloaded after
+ * each of them. */
+typedef struct list_arrays {
+  const uint8_t* visible;
+  const float* cont;
+  const float* e_max;
+  const uint8_t* corners;
+  const tlod_edge_link (*links)[4];
+  int8_t* levels;
+  uint8_t* edges; /* strip_edges */
+  const tlod_patterns* pat;
+  uint32_t levels_n; /* max_level + 1: buckets per shape */
+  bool strips;       /* FLAT draws no strip */
+} list_arrays;
+
+static list_arrays arrays_of(const _tlod_frame* fr) {
+  _tlod_view_state* vs = fr->vs;
+  return (list_arrays){.visible = vs->visible,
+                       .cont = vs->cont,
+                       .e_max = vs->e_max,
+                       .corners = fr->mesh.face_corners,
+                       .links = fr->mesh.links,
+                       .levels = vs->levels,
+                       .edges = vs->strip_edges,
+                       .pat = fr->s->patterns,
+                       .levels_n = fr->s->desc.max_level + 1,
+                       .strips = fr->s->desc.policy != TLOD_POLICY_FLAT};
 }
 
 /* Buckets are ordered by shape, then level: bucket index shape * (lmax + 1) + level. */
-static uint32_t bucket_of(const _tlod_frame* fr, uint32_t f, uint32_t level) {
-  return (uint32_t)shape_of(&fr->mesh, f) * (fr->s->desc.max_level + 1) + level;
+static uint32_t bucket_of(const list_arrays* a, uint32_t f, uint32_t level) {
+  uint32_t shape = a->corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
+  return shape * a->levels_n + level;
 }
 
 static uint32_t chunk_count(uint32_t patches) { return (patches + _TLOD_LIST_CHUNK - 1) / _TLOD_LIST_CHUNK; }
@@ -35,15 +64,28 @@ static void chunk_range(const _tlod_frame* fr, uint32_t c, uint32_t* begin, uint
   *end = *begin + _TLOD_LIST_CHUNK < fr->s->patch_count ? *begin + _TLOD_LIST_CHUNK : fr->s->patch_count;
 }
 
-/* The strip across edge e of visible patch f at level l (a strip is needed). */
-static tlod_draw_strip strip_of(const _tlod_frame* fr, uint32_t f, uint32_t e, uint32_t l) {
-  tlod_edge_link link = fr->mesh.links[f][e];
-  uint32_t lg = _tlod_drawn_level(fr->vs->cont[link.face]);
+/* Whether edge e of visible patch f (drawn level l, blend m) has a strip
+ * (see _tlod_strip_needed), and if so the strip. Only edges towards a
+ * neighbour of higher index come here (the bits from _TLOD_UP_SHIFT). */
+static bool strip_at(const list_arrays* a, uint32_t f, uint32_t e, uint32_t l, float m, tlod_draw_strip* st) {
+  tlod_edge_link link = a->links[f][e];
+  uint32_t g = link.face;
+  if (!a->visible[g]) return false;
+  float cg = a->cont[g];
+  uint32_t lg = _tlod_drawn_level(cg);
+  float mg = _tlod_morph_of(cg, lg);
+  if (link.smooth && l == lg && m == mg) return false;
   /* The coarser side's edge points are exact when its new vertices are at
    * rest: then the finer side has the same points (all of lower level). */
-  uint32_t coarse = l < lg ? f : link.face, lc = l < lg ? l : lg;
-  bool exact = link.smooth && l != lg && _tlod_morph_of(fr->vs->cont[coarse], lc) == 1.0f;
-  return (tlod_draw_strip){f, link.face, (uint8_t)e, link.edge, (uint8_t)l, (uint8_t)lg, !link.smooth, exact};
+  bool exact = link.smooth && l != lg && (l < lg ? m : mg) == 1.0f;
+  *st = (tlod_draw_strip){f, g, (uint8_t)e, link.edge, (uint8_t)l, (uint8_t)lg, !link.smooth, exact};
+  return true;
+}
+
+/* The triangles of strip st (tlod_draw_strip_connection without its checks:
+ * the levels are the scheduler's, never above the patterns'). */
+static uint32_t strip_triangles(const tlod_patterns* p, const tlod_draw_strip* st) {
+  return (st->exact ? p->connect_exact_count : p->connect_count)[st->level_a][st->level_b];
 }
 
 /* Running statistics of a chunk's count pass, kept in locals rather
@@ -51,128 +93,236 @@ static tlod_draw_strip strip_of(const _tlod_frame* fr, uint32_t f, uint32_t e, u
 typedef struct chunk_tally {
   float e_min, e_max;
   uint32_t strips, culled;
-  uint64_t strip_triangles;
+  /* The bucket of the last visible patch and the visible patches in it
+   * since counts[] had them: neighbours mostly share a bucket, and a
+   * counts[b]++ per patch would wait on the last one's store. */
+  uint32_t run_bucket, run_count;
 } chunk_tally;
 
-/* Whether edge e of visible patch f (drawn level l, blend m) needs a strip:
- * _tlod_strip_needed with f's level and blend computed once per patch. */
-static bool strip_needed_at(const _tlod_frame* fr, uint32_t f, uint32_t e, uint32_t l, float m) {
-  tlod_edge_link link = fr->mesh.links[f][e];
-  uint32_t g = link.face;
-  if (g == _TLOD_NO_FACE || g < f || !fr->vs->visible[g]) return false;
-  float cg = fr->vs->cont[g];
-  uint32_t lg = _tlod_drawn_level(cg);
-  return !link.smooth || l != lg || m != _tlod_morph_of(cg, lg);
+/* The continuous level as the list sees it: two patches draw the same
+ * level and blend exactly when these are equal. Above 0 the drawn level
+ * is l = ceil(c) and the blend c - (l - 1), exact (Sterbenz: l - 1 <= c
+ * <= 2 (l - 1), or l - 1 == 0), so (l, blend) gives c back; at or below 0
+ * (and NaN) every patch draws level 0 at blend 1. */
+static float drawn_key(float c) { return c > 0.0f ? c : 0.0f; }
+
+/* Whether edge e of visible patch f (drawn key key) has a strip: a visible
+ * neighbour of higher index across a crease or at another (level, blend).
+ * Branch-free once the edge can have one: one compare per edge. */
+static uint32_t strip_bit(const list_arrays* a, uint32_t f, uint32_t e, float key) {
+  tlod_edge_link link = a->links[f][e];
+  uint32_t other = drawn_key(a->cont[link.face]) != key;
+  return (uint32_t)(a->visible[link.face] != 0) & ((uint32_t)!link.smooth | other);
 }
 
-/* Strips of visible patch f at level l into the tally; the edges that
- * have one into strip_edges[f] (bit e), for the second pass. */
-static void count_strips(const _tlod_frame* fr, chunk_tally* t, uint32_t f, uint32_t l) {
-  uint8_t mask = 0;
-  float m = _tlod_morph_of(fr->vs->cont[f], l);
-  bool flat = fr->s->desc.policy == TLOD_POLICY_FLAT; /* FLAT draws no strip */
-  for (uint32_t e = 0; !flat && e < fr->mesh.face_corners[f]; e++) {
-    if (!strip_needed_at(fr, f, e, l, m)) continue;
-    mask |= (uint8_t)(1u << e);
-    tlod_draw_strip st = strip_of(fr, f, e, l);
-    uint32_t n = 0;
-    tlod_draw_strip_connection(fr->s->patterns, &st, &n);
-    t->strips++;
-    t->strip_triangles += n;
+/* The edges of visible patch f that have a strip into the low bits of
+ * edges[f] (for the second pass, which makes the strips); returns how many. */
+static uint32_t count_strips(const list_arrays* a, uint32_t f) {
+  uint32_t up = a->edges[f] >> _TLOD_UP_SHIFT, mask = 0, n = 0;
+  float key = drawn_key(a->cont[f]);
+  for (uint32_t e = 0; e < 4; e++) {
+    if (!(up & (1u << e))) continue;
+    uint32_t bit = strip_bit(a, f, e, key);
+    mask |= bit << e;
+    n += bit;
   }
-  fr->vs->strip_edges[f] = mask;
+  a->edges[f] = (uint8_t)(up << _TLOD_UP_SHIFT | mask);
+  return n;
 }
 
-/* Visible patch f at level l: its bucket count, statistics and strips. */
-static void count_visible(const _tlod_frame* fr, _tlod_list_chunk* ch, chunk_tally* t, uint32_t f, uint32_t l) {
-  float e = fr->vs->e_max[f];
-  ch->counts[bucket_of(fr, f, l)]++;
+/* Visible patch f: its drawn level, bucket count, statistics and strips. */
+static void count_visible(const list_arrays* a, uint32_t* counts, chunk_tally* t, uint32_t f) {
+  float c = a->cont[f], e = a->e_max[f];
+  uint32_t l = _tlod_drawn_level(c);
+  a->levels[f] = (int8_t)l;
+  uint32_t b = bucket_of(a, f, l);
+  if (b != t->run_bucket) {
+    counts[t->run_bucket] += t->run_count;
+    t->run_bucket = b, t->run_count = 0;
+  }
+  t->run_count++;
   t->e_min = e < t->e_min ? e : t->e_min;
   t->e_max = e > t->e_max ? e : t->e_max;
-  count_strips(fr, t, f, l);
+  if (a->strips) t->strips += count_strips(a, f);
 }
 
-/* Whether the n visible bytes from f are all 0 (culled). */
-static bool all_culled(const uint8_t* visible, uint32_t f, uint32_t n) {
-  uint8_t any = 0;
-  for (uint32_t i = f; i < f + n; i++)
-    any |= visible[i];
-  return !any;
+/* The n visible bytes from f OR-ed, 8 at a time (n a multiple of 8). */
+static uint64_t any_visible(const uint8_t* visible, uint32_t f, uint32_t n) {
+  uint64_t any = 0;
+  for (uint32_t i = f; i < f + n; i += 8) {
+    uint64_t w;
+    memcpy(&w, visible + i, 8);
+    any |= w;
+  }
+  return any;
 }
 
-/* The culled patches from f skipped at once, else 0: a whole block when f
- * starts one (chunks are whole blocks), else 8 when f is a multiple of 8
- * (a visible border patch's block is mostly culled too). One scan of the
- * visible bytes instead of a test per patch. */
-static uint32_t culled_run(const uint8_t* visible, uint32_t f, uint32_t end) {
-  if (f % FAST_BLOCK == 0 && end - f >= FAST_BLOCK && all_culled(visible, f, FAST_BLOCK)) return FAST_BLOCK;
-  if (f % 8 == 0 && end - f >= 8 && all_culled(visible, f, 8)) return 8;
-  return 0;
+/* Whether the 8 patches from f, all inside [f, end), are culled: a visible
+ * block's culled patches skipped 8 at a time. */
+static bool culled_8(const uint8_t* visible, uint32_t f, uint32_t end) {
+  return f % 8 == 0 && end - f >= 8 && !any_visible(visible, f, 8);
 }
 
-/* Patches [f0, f1) of a chunk: drawn levels (-1 when culled; a culled
- * patch needs no level), bucket and strip counts, statistics. */
-static void count_patches(const _tlod_frame* fr, _tlod_list_chunk* ch, chunk_tally* t, uint32_t f0, uint32_t f1) {
-  _tlod_view_state* vs = fr->vs;
+/* Patches [f0, f1) of a visible block: levels (-1 when culled), bucket and
+ * strip counts, statistics. */
+static void count_block(const list_arrays* a, uint32_t* counts, chunk_tally* t, uint32_t f0, uint32_t f1) {
   for (uint32_t f = f0; f < f1; f++) {
-    uint32_t run = culled_run(vs->visible, f, f1);
-    if (run) { /* culled: no level to read */
-      memset(vs->levels + f, -1, run);
-      t->culled += run;
-      f += run - 1;
-      continue;
-    }
-    if (!vs->visible[f]) {
-      vs->levels[f] = -1;
+    if (culled_8(a->visible, f, f1)) {
+      memset(a->levels + f, -1, 8);
+      t->culled += 8;
+      f += 7;
+    } else if (!a->visible[f]) {
+      a->levels[f] = -1;
       t->culled++;
-      continue;
+    } else {
+      count_visible(a, counts, t, f);
     }
-    uint32_t l = _tlod_drawn_level(vs->cont[f]);
-    vs->levels[f] = (int8_t)l;
-    count_visible(fr, ch, t, f, l);
   }
 }
 
-/* Pass 1 over chunks [begin, end): count_patches. */
+/* Block k of chunk [f0, f1): its patch range. */
+static void block_range(uint32_t f0, uint32_t f1, uint32_t k, uint32_t* b0, uint32_t* b1) {
+  *b0 = f0 + k * FAST_BLOCK;
+  *b1 = *b0 + FAST_BLOCK < f1 ? *b0 + FAST_BLOCK : f1;
+}
+
+/* The edges of patch f that can have a strip: a neighbour of higher index. */
+static uint8_t up_edges(const list_arrays* a, uint32_t f) {
+  uint8_t up = 0;
+  for (uint32_t e = 0; e < a->corners[f]; e++) {
+    uint32_t g = a->links[f][e].face;
+    if (g != _TLOD_NO_FACE && g > f) up |= (uint8_t)(1u << e);
+  }
+  return (uint8_t)(up << _TLOD_UP_SHIFT);
+}
+
+/* Whether block [b0, b1) has a visible patch (a short tail byte by byte). */
+static bool block_visible(const uint8_t* visible, uint32_t b0, uint32_t b1) {
+  uint32_t whole = (b1 - b0) / 8 * 8;
+  bool any = any_visible(visible, b0, whole) != 0;
+  for (uint32_t f = b0 + whole; f < b1; f++)
+    any |= visible[f] != 0;
+  return any;
+}
+
+/* Chunk c reset: its visible blocks found, its culled ones' levels set
+ * to -1 and counted (nothing reads them again this frame). */
+static void scan_chunk(const _tlod_frame* fr, const list_arrays* a, uint32_t c, bool new_links) {
+  _tlod_list_chunk* ch = &fr->vs->chunks[c];
+  uint32_t f0, f1;
+  chunk_range(fr, c, &f0, &f1);
+  *ch = (_tlod_list_chunk){.e_max_min = INFINITY};
+  for (uint32_t f = f0; new_links && f < f1; f++)
+    a->edges[f] = up_edges(a, f);
+  for (uint32_t k = 0; f0 + k * FAST_BLOCK < f1; k++) {
+    uint32_t b0, b1;
+    block_range(f0, f1, k, &b0, &b1);
+    if (block_visible(a->visible, b0, b1)) {
+      ch->blocks |= 1u << k;
+    } else {
+      memset(a->levels + b0, -1, b1 - b0);
+      ch->culled += b1 - b0;
+    }
+  }
+}
+
+/* Pass 0 over chunks [begin, end): scan_chunk. */
+static void scan_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
+  (void)worker;
+  const _tlod_frame* fr = data;
+  list_arrays a = arrays_of(fr);
+  bool new_links = fr->vs->up_links != (const void*)fr->mesh.links;
+  for (uint32_t c = begin; c < end; c++)
+    scan_chunk(fr, &a, c, new_links);
+}
+
+/* Pass 1 over busy chunks [begin, end): count_block over their visible blocks. */
 static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   _tlod_frame* fr = data;
-  for (uint32_t c = begin; c < end; c++) {
+  list_arrays a = arrays_of(fr);
+  for (uint32_t i = begin; i < end; i++) {
+    uint32_t c = fr->vs->busy[i], f0, f1, b0, b1;
     _tlod_list_chunk* ch = &fr->vs->chunks[c];
-    *ch = (_tlod_list_chunk){0};
-    chunk_tally t = {.e_min = INFINITY};
-    uint32_t f0, f1;
+    chunk_tally t = {.e_min = INFINITY, .culled = ch->culled};
     chunk_range(fr, c, &f0, &f1);
-    count_patches(fr, ch, &t, f0, f1);
+    for (uint32_t k = 0; ch->blocks >> k; k++) {
+      block_range(f0, f1, k, &b0, &b1);
+      if (ch->blocks & (1u << k)) count_block(&a, ch->counts, &t, b0, b1);
+    }
+    ch->counts[t.run_bucket] += t.run_count;
     ch->e_max_min = t.e_min, ch->e_max_max = t.e_max;
     ch->strips = t.strips, ch->culled = t.culled;
-    ch->strip_triangles = t.strip_triangles;
   }
 }
 
-/* Pass 2 over chunks [begin, end): instances and strips at the chunk's
- * offsets (counts[] now holds each bucket's first slot of the chunk). */
+/* Where pass 2 writes a chunk: its next slot per bucket, the current
+ * bucket's kept as a pointer (see chunk_tally.run_bucket), the next strip. */
+typedef struct write_cursor {
+  uint32_t* slots;
+  tlod_draw_instance* base;
+  tlod_draw_instance* next; /* of bucket `bucket`; slots[bucket] is stale */
+  uint32_t bucket;
+  tlod_draw_strip* strip; /* NULL: no strips */
+} write_cursor;
+
+static write_cursor cursor_of(_tlod_view_state* vs, _tlod_list_chunk* ch) {
+  return (write_cursor){ch->counts, vs->instances, vs->instances + ch->counts[0], 0,
+                        ch->strips ? vs->strips + ch->strip_first : NULL};
+}
+
+/* Visible patch f's instance at its bucket's next slot and its strips
+ * (the edges counted in pass 1). */
+static void write_visible(const list_arrays* a, write_cursor* w, uint32_t f) {
+  uint32_t l = (uint32_t)a->levels[f], b = bucket_of(a, f, l);
+  if (b != w->bucket) {
+    w->slots[w->bucket] = (uint32_t)(w->next - w->base);
+    w->bucket = b, w->next = w->base + w->slots[b];
+  }
+  /* Edges blend with their patch (see _tlod_strip_needed). */
+  float m = _tlod_morph_of(a->cont[f], l);
+  *w->next++ = (tlod_draw_instance){.patch = f, .level = l, .morph = m};
+  uint32_t mask = a->edges[f] & ((1u << _TLOD_UP_SHIFT) - 1);
+  for (uint32_t e = 0; w->strip && mask >> e; e++)
+    if (mask & (1u << e)) strip_at(a, f, e, l, m, w->strip++);
+}
+
+/* Patches [f0, f1) of a visible block into the list. */
+static void write_block(const list_arrays* a, write_cursor* w, uint32_t f0, uint32_t f1) {
+  for (uint32_t f = f0; f < f1; f++) {
+    if (culled_8(a->visible, f, f1))
+      f += 7;
+    else if (a->visible[f])
+      write_visible(a, w, f);
+  }
+}
+
+/* Pass 2 over busy chunks [begin, end): instances and strips at the
+ * chunk's offsets (counts[] now holds each bucket's first slot of the chunk). */
 static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   _tlod_frame* fr = data;
-  _tlod_view_state* vs = fr->vs;
-  for (uint32_t c = begin; c < end; c++) {
-    _tlod_list_chunk* ch = &vs->chunks[c];
-    uint32_t f0, f1, st = ch->strip_first;
+  list_arrays a = arrays_of(fr);
+  for (uint32_t i = begin; i < end; i++) {
+    uint32_t c = fr->vs->busy[i], f0, f1, b0, b1;
+    _tlod_list_chunk* ch = &fr->vs->chunks[c];
+    write_cursor w = cursor_of(fr->vs, ch);
     chunk_range(fr, c, &f0, &f1);
-    if (ch->culled == f1 - f0) continue;
-    for (uint32_t f = f0; f < f1; f++) {
-      uint32_t run = culled_run(vs->visible, f, f1);
-      if (run) f += run - 1; /* culled: nothing to write */
-      if (run || !vs->visible[f]) continue;
-      uint32_t l = (uint32_t)vs->levels[f];
-      /* Edges blend with their patch (see _tlod_strip_needed). */
-      vs->instances[ch->counts[bucket_of(fr, f, l)]++] =
-          (tlod_draw_instance){.patch = f, .level = l, .morph = _tlod_morph_of(vs->cont[f], l)};
-      for (uint32_t e = 0; ch->strips && e < fr->mesh.face_corners[f]; e++)
-        if (vs->strip_edges[f] & (1u << e)) vs->strips[st++] = strip_of(fr, f, e, l);
+    for (uint32_t k = 0; ch->blocks >> k; k++) {
+      block_range(f0, f1, k, &b0, &b1);
+      if (ch->blocks & (1u << k)) write_block(&a, &w, b0, b1);
     }
+    for (const tlod_draw_strip* st = fr->vs->strips + ch->strip_first; w.strip && st < w.strip; st++)
+      ch->strip_triangles += strip_triangles(a.pat, st);
   }
+}
+
+/* The chunks with a visible block, in chunk order: the only ones passes 1
+ * and 2 visit, so the workers share the visible patches, not the culled. */
+static void list_busy(_tlod_view_state* vs, uint32_t chunks) {
+  vs->busy_count = 0;
+  for (uint32_t c = 0; c < chunks; c++)
+    if (vs->chunks[c].blocks) vs->busy[vs->busy_count++] = c;
 }
 
 /* Bucket b's count into the level histogram and the pattern triangles. */
@@ -206,7 +356,6 @@ static uint32_t lay_out_buckets(_tlod_frame* fr, uint32_t chunks) {
 static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
   _tlod_view_state* vs = fr->vs;
   tlod_draw_list* dl = &vs->list;
-  dl->strip_triangles = 0;
   dl->culled = dl->strip_count = 0;
   dl->e_max_min = INFINITY;
   dl->e_max_max = 0.0f;
@@ -214,12 +363,18 @@ static void sum_chunks(_tlod_frame* fr, uint32_t chunks) {
     _tlod_list_chunk* ch = &vs->chunks[c];
     ch->strip_first = dl->strip_count;
     dl->strip_count += ch->strips;
-    dl->strip_triangles += ch->strip_triangles;
     dl->culled += ch->culled;
     dl->e_max_min = ch->e_max_min < dl->e_max_min ? ch->e_max_min : dl->e_max_min;
     dl->e_max_max = ch->e_max_max > dl->e_max_max ? ch->e_max_max : dl->e_max_max;
   }
   if (dl->culled == fr->s->patch_count) dl->e_max_min = 0.0f;
+}
+
+/* The strips' triangles (counted by pass 2), summed in chunk order. */
+static void sum_strip_triangles(_tlod_view_state* vs, uint32_t chunks) {
+  vs->list.strip_triangles = 0;
+  for (uint32_t c = 0; c < chunks; c++)
+    vs->list.strip_triangles += vs->chunks[c].strip_triangles;
 }
 
 /* The strip array grown once to the counted size: it only grows, so a
@@ -244,9 +399,13 @@ static void drop_strips(_tlod_view_state* vs, uint32_t chunks) {
   vs->list.strip_triangles = 0;
 }
 
+/* The busy list lives after the chunks, in their block (freed with them). */
 tlod_result _tlod_list_alloc(tlod_scheduler* s, _tlod_view_state* vs) {
-  vs->chunks = tlod_context_calloc(s->ctx, chunk_count(s->patch_count) + 1, sizeof(_tlod_list_chunk));
+  size_t chunks = chunk_count(s->patch_count) + 1;
+  vs->chunks = tlod_context_calloc(s->ctx, 1, chunks * (sizeof(_tlod_list_chunk) + sizeof(uint32_t)));
+  vs->busy = vs->chunks ? (uint32_t*)(vs->chunks + chunks) : NULL;
   vs->strip_edges = tlod_context_calloc(s->ctx, (size_t)s->patch_count + 1, 1);
+  vs->up_links = NULL;
   return vs->chunks && vs->strip_edges ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
 }
 
@@ -262,14 +421,18 @@ tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   vs->list.instances = vs->instances;
   vs->list.buckets = vs->buckets;
   vs->key_valid = vs->settled_known = false;
-  tlod_context_parallel_for(fr->s->ctx, count_task, fr, chunks);
+  tlod_context_parallel_for(fr->s->ctx, scan_task, fr, chunks);
+  vs->up_links = fr->mesh.links;
+  list_busy(vs, chunks);
+  tlod_context_parallel_for(fr->s->ctx, count_task, fr, vs->busy_count);
   vs->list.pattern_triangles = 0;
   memset(vs->list.level_histogram, 0, sizeof(vs->list.level_histogram));
   vs->list.instance_count = lay_out_buckets(fr, chunks);
   sum_chunks(fr, chunks);
   tlod_result r = reserve_strips(fr->s, vs, vs->list.strip_count);
   if (r != TLOD_SUCCESS) drop_strips(vs, chunks);
-  tlod_context_parallel_for(fr->s->ctx, write_task, fr, chunks);
+  tlod_context_parallel_for(fr->s->ctx, write_task, fr, vs->busy_count);
+  sum_strip_triangles(vs, chunks);
   vs->list.strips = vs->strips;
   return r;
 }

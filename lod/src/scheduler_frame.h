@@ -30,7 +30,12 @@ typedef struct _tlod_camera {
 
 /* Patches per chunk of the draw-list build: fixed, so that the chunks (and
  * the order they are summed in) never depend on the thread count. */
-#define _TLOD_LIST_CHUNK 16384u
+#define _TLOD_LIST_CHUNK 4096u
+
+/* strip_edges of a patch: bits 0-3 the edges with a strip this frame,
+ * bits 4-7 (from _TLOD_UP_SHIFT) the edges that can have one at all: a
+ * neighbour of higher index (fixed by the mesh's links). */
+#define _TLOD_UP_SHIFT 4u
 
 /* One chunk's part of the draw list: counted in pass 1, summed in chunk
  * order, written in pass 2 (scheduler_draw_list.c). */
@@ -40,6 +45,9 @@ typedef struct _tlod_list_chunk {
   uint64_t strip_triangles;
   uint32_t culled;
   float e_max_min, e_max_max;
+  /* Bit k: block k (FAST_BLOCK patches from the chunk's first) has a
+   * visible patch; the other blocks are culled and never read again. */
+  uint32_t blocks;
 } _tlod_list_chunk;
 
 /* What the draw list of one view was made from (scheduler_coherence.c). */
@@ -75,6 +83,11 @@ typedef struct _tlod_view_state {
    * frame's key matches (a moving view never needs it), then kept. */
   bool settled, settled_known;
   bool has_history;
+  /* The chunks with a visible patch, this frame (in the chunks' block). */
+  uint32_t* busy;
+  uint32_t busy_count;
+  /* The mesh links the strip_edges' bits 4-7 were made from (NULL: none). */
+  const void* up_links;
 } _tlod_view_state;
 
 /* One view's frame: what every stage task reads. The mesh and surface views

@@ -103,7 +103,8 @@ static bool check_instances(const fixture* fx, const tlod_draw_list* dl) {
 }
 
 /* Strips: in patch order, from the lower patch, at the patches' levels,
- * and on every smooth edge between visible patches of different levels. */
+ * on exactly the edges between visible patches across a crease or of
+ * different levels or blends. */
 static bool check_strips(const fixture* fx, const tlod_draw_list* dl) {
   float* morph = calloc(dl->patch_count + 1, sizeof(float));
   for (uint32_t i = 0; i < dl->instance_count; ++i)
@@ -116,9 +117,11 @@ static bool check_strips(const fixture* fx, const tlod_draw_list* dl) {
     for (uint32_t e = 0; ok && e < n && dl->levels[p] >= 0; ++e) {
       tlod_edge_link l = tlod_mesh_edge_link(fx->mesh, p, e);
       bool here = k < dl->strip_count && dl->strips[k].patch_a == p && dl->strips[k].edge_a == e;
-      bool differ =
-          l.face != UINT32_MAX && l.face > p && dl->levels[l.face] >= 0 && dl->levels[l.face] != dl->levels[p];
-      ok = here || !differ;
+      /* Needed exactly towards a visible neighbour of higher index across a
+       * crease, at another level or at another blend (from the instances). */
+      bool needed = l.face != UINT32_MAX && l.face > p && dl->levels[l.face] >= 0 &&
+                    (!l.smooth || dl->levels[l.face] != dl->levels[p] || morph[l.face] != morph[p]);
+      ok = here == needed;
       if (!here || !ok) continue;
       const tlod_draw_strip* s = &dl->strips[k++];
       /* Exact: smooth, different levels, the coarser side at rest. */
@@ -166,7 +169,19 @@ static tlod_view_desc view_at(int k, double dist) {
   return make_view(&c);
 }
 
-enum { BUILDS = 4 };
+/* Frame f's first view: the cameras of view_at, then one looking away
+ * from the shape (every block culled) and one at its centre (the culled
+ * and visible blocks interleave round the eye). */
+static tlod_view_desc view_of_frame(int f, double radius) {
+  tlod_view_desc v = view_at(f, radius * (1.03 + 0.12 * f));
+  if (f < 8) return v;
+  camera c = {.up = {0, 0, 1}, .fovy = 1.0, .aspect = 1.5, .znear = 0.01, .zfar = 100, .width = 1200, .height = 800};
+  for (int a = 0; a < 3; ++a)
+    c.eye[a] = f == 8 ? 3.0 * radius : 0.0, c.target[a] = f == 8 ? 6.0 * radius : (a == 0 ? 1.0 : 0.1);
+  return make_view(&c);
+}
+
+enum { BUILDS = 4, FRAMES = 10 };
 
 static void run_builds(const shape* sh, double radius, tlod_surface_type type, tlod_scheduler_desc d) {
   tlod_context* ctx[BUILDS] = {new_context(1, NULL, NULL), new_context(2, NULL, NULL), new_context(3, NULL, NULL),
@@ -181,11 +196,18 @@ static void run_builds(const shape* sh, double radius, tlod_surface_type type, t
     CHECK(s[b]);
   }
   uint32_t vertices = tlod_mesh_vertex_count(fx[0].mesh), strips = 0, levels = 0;
-  for (int f = 0; f < 8; ++f) {
-    tlod_view_desc v[2] = {view_at(f, radius * (1.03 + 0.12 * f)), view_at(f + 2, radius * 1.8)};
+  for (int f = 0; f < FRAMES; ++f) {
+    tlod_view_desc v[2] = {view_of_frame(f, radius), view_at(f + 2, radius * 1.8)};
     v[1].lock_to_main = f % 2;
     const tlod_draw_list* ref = plan(&fx[0], s[0], v, 2, 40.0f);
-    CHECK(ref && check_instances(&fx[0], ref) && check_strips(&fx[0], ref) && check_stats(&fx[0], ref));
+    CHECK(ref);
+    for (uint32_t view = 0; ref && view < 2; ++view) {
+      const tlod_draw_list* r = tlod_scheduler_draw_list(s[0], view);
+      CHECK_MSG(check_instances(&fx[0], r) && check_strips(&fx[0], r) && check_stats(&fx[0], r),
+                "%s frame %d view %u: the reference list fails the oracle", sh->name, f, view);
+    }
+    if (f == 8)
+      CHECK_MSG(ref->culled == ref->patch_count, "%s: the camera looking away culled only %u", sh->name, ref->culled);
     for (int b = 1; b < BUILDS; ++b) {
       CHECK(plan(&fx[b], s[b], v, 2, 40.0f));
       for (uint32_t view = 0; view < 2; ++view)
