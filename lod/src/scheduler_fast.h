@@ -15,7 +15,12 @@
 
 #include "tesslod/lod.h"
 
-#define FAST_BLOCK 128  /* patches per block (cluster) of the fused patch pass */
+#define FAST_BLOCK 128 /* patches per block (cluster) of the fused patch pass */
+/* A partly culled block with fewer than COMPACT_NUM / COMPACT_DEN of its
+ * patches visible measures them gathered densely (the dense loops would
+ * spend more on the culled ones than the gather costs). */
+#define COMPACT_NUM 3
+#define COMPACT_DEN 4
 #define FAST_VCHUNK 256 /* vertices per chunk of the vertex pass */
 
 /* A block's frustum state this frame (scheduler_blocks.c). */
@@ -80,6 +85,20 @@ typedef struct _tlod_fast_frame {
   uint8_t* visible;
   uint8_t* held; /* this view's row of soa->held */
 } _tlod_fast_frame;
+
+/* A partly culled block's visible patches gathered densely (stride
+ * FAST_BLOCK), so that the kernels measure only them: soa and frame point
+ * at these arrays (scheduler_fast.inc, compact_block). */
+typedef struct _tlod_fast_local {
+  _tlod_soa soa;
+  _tlod_fast_frame k;
+  uint32_t idx[FAST_BLOCK];
+  float cx[FAST_BLOCK], cy[FAST_BLOCK], cz[FAST_BLOCK], radius[FAST_BLOCK];
+  float bound[(TLOD_MAX_LEVEL + 1) * FAST_BLOCK];
+  uint32_t corner[4 * FAST_BLOCK];
+  float e_max[FAST_BLOCK], target[FAST_BLOCK], cont[FAST_BLOCK];
+  uint8_t visible[FAST_BLOCK];
+} _tlod_fast_local;
 
 /* Both over ranges of clusters: vertex chunks and patch blocks. */
 typedef struct _tlod_fast_kernels {
