@@ -4,6 +4,7 @@
  * same results), and the choice among them. */
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
 #include "scheduler_fast.h"
 #include "scheduler_math.h"

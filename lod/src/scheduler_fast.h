@@ -15,7 +15,25 @@
 
 #include "tesslod/lod.h"
 
-#define FAST_BLOCK 256 /* patches per block of the fused patch pass */
+#define FAST_BLOCK 128 /* patches per block (cluster) of the fused patch pass */
+/* A partly culled block with fewer than COMPACT_NUM / COMPACT_DEN of its
+ * patches visible measures them gathered densely (the dense loops would
+ * spend more on the culled ones than the gather costs). */
+#define COMPACT_NUM 3
+#define COMPACT_DEN 4
+#define FAST_VCHUNK 256 /* vertices per chunk of the vertex pass */
+
+/* A block's frustum state this frame (scheduler_blocks.c). */
+enum { _TLOD_BLOCK_PARTIAL = 0, _TLOD_BLOCK_OUT = 1, _TLOD_BLOCK_IN = 2 };
+
+/* A block's bounding sphere, in double: |c_i - c| + r_i <= r for each of
+ * its patches i; l1 = sum over the axes of max_i |c_i|, for the rounding
+ * margin of the patches' float plane tests. valid: every patch sphere
+ * finite with r_i >= 0 (else the block is always tested patch by patch). */
+typedef struct _tlod_block {
+  double c[3], r, l1;
+  bool valid;
+} _tlod_block;
 
 /* cont of a culled patch: no morph history, it appears at its goal. */
 #define _TLOD_NO_HISTORY (-1.0f)
@@ -29,6 +47,17 @@ typedef struct _tlod_soa {
   float* bound;                                 /* bound[l * patch_count + f] = tlod_patch_error_bound(f, l) */
   uint32_t* corner;                             /* corner[c * patch_count + f]; a triangle repeats corner 0 */
   float *px, *py, *pz, *nx, *ny, *nz;           /* vertex positions and normals */
+  /* Clusters: FAST_BLOCK patches each; per chunk of FAST_VCHUNK vertices
+   * the blocks that use one of its vertices, chunk_blocks[chunk_first[j] ..
+   * chunk_first[j + 1]) (scheduler_blocks.c). */
+  uint32_t block_count, chunk_count, chunk_capacity;
+  _tlod_block* blocks;
+  uint32_t *chunk_first, *chunk_blocks; /* chunk_capacity entries */
+  uint8_t* block_state;                 /* this frame's, one view at a time */
+  /* held[v * block_count + b]: view v's visible, e_max, target and cont of
+   * block b hold a culled block's constants (written by a fused frame). */
+  uint8_t* held;
+  uint32_t held_views;
   /* Per vertex, this frame: the bits of d_i, the sign bit set where
    * n . (eye - p) > 0 (the normal faces the camera). */
   uint32_t* packed;
@@ -54,12 +83,39 @@ typedef struct _tlod_fast_frame {
   /* outputs, one view's arrays */
   float *depth, *scale, *e_max, *contour, *target, *cont;
   uint8_t* visible;
+  uint8_t* held; /* this view's row of soa->held */
 } _tlod_fast_frame;
 
+/* A partly culled block's visible patches gathered densely (stride
+ * FAST_BLOCK), so that the kernels measure only them: soa and frame point
+ * at these arrays (scheduler_fast.inc, compact_block). */
+typedef struct _tlod_fast_local {
+  _tlod_soa soa;
+  _tlod_fast_frame k;
+  uint32_t idx[FAST_BLOCK];
+  float cx[FAST_BLOCK], cy[FAST_BLOCK], cz[FAST_BLOCK], radius[FAST_BLOCK];
+  float bound[(TLOD_MAX_LEVEL + 1) * FAST_BLOCK];
+  uint32_t corner[4 * FAST_BLOCK];
+  float e_max[FAST_BLOCK], target[FAST_BLOCK], cont[FAST_BLOCK];
+  uint8_t visible[FAST_BLOCK];
+} _tlod_fast_local;
+
+/* Both over ranges of clusters: vertex chunks and patch blocks. */
 typedef struct _tlod_fast_kernels {
-  void (*vertices)(const _tlod_fast_frame* k, uint32_t begin, uint32_t end);
-  void (*patches)(const _tlod_fast_frame* k, uint32_t begin, uint32_t end);
+  void (*vertices)(const _tlod_fast_frame* k, uint32_t chunk_begin, uint32_t chunk_end);
+  void (*patches)(const _tlod_fast_frame* k, uint32_t block_begin, uint32_t block_end);
 } _tlod_fast_kernels;
+
+/* scheduler_blocks.c. The block spheres and chunk lists of a (just
+ * copied) a: false when out of memory. */
+bool _tlod_blocks_build(tlod_context* ctx, _tlod_soa* a);
+/* a->held for views views (new rows zero: nothing held). */
+bool _tlod_blocks_hold(tlod_context* ctx, _tlod_soa* a, uint32_t views);
+/* a->block_state of every block against planes; all IN unless cull. OUT
+ * only if every patch's own float test culls it, IN only if every
+ * patch's own test keeps it. */
+void _tlod_blocks_classify(_tlod_soa* a, const float planes[6][4], bool cull);
+void _tlod_blocks_free(tlod_context* ctx, _tlod_soa* a);
 
 /* The kernels of SIMD level simd (never DEFAULT): the best compiled one not above it. */
 _tlod_fast_kernels _tlod_fast_kernels_for(tlod_simd simd);

@@ -62,10 +62,11 @@ static void rule_constants(const _tlod_frame* fr, _tlod_fast_frame* k) {
   k->cull_skip = fr->cull_skip && k->cull;
 }
 
-static void view_arrays(_tlod_view_state* vs, _tlod_fast_frame* k) {
+static void view_arrays(const tlod_scheduler* s, _tlod_view_state* vs, _tlod_fast_frame* k) {
   k->depth = vs->depth, k->scale = vs->scale, k->e_max = vs->e_max;
   k->contour = vs->contour, k->target = vs->target, k->cont = vs->cont;
   k->visible = vs->visible;
+  k->held = s->soa.held + (size_t)(vs - s->views) * s->soa.block_count;
 }
 
 void _tlod_fast_begin(_tlod_frame* fr, bool may_fuse) {
@@ -75,9 +76,10 @@ void _tlod_fast_begin(_tlod_frame* fr, bool may_fuse) {
   projection_constants(fr->view, &t.k);
   camera_constants(&fr->vs->cam, &t.k);
   rule_constants(fr, &t.k);
-  view_arrays(fr->vs, &t.k);
+  view_arrays(s, fr->vs, &t.k);
   fr->fused = t.k.fuse = may_fuse && !fr->main && !fr->budget;
-  tlod_context_parallel_for(s->ctx, vertex_task, &t, s->vertex_count);
+  _tlod_blocks_classify(&s->soa, t.k.planes, t.k.cull);
+  tlod_context_parallel_for(s->ctx, vertex_task, &t, s->soa.chunk_count);
   fr->t[1] = tlod_now_ms();
-  tlod_context_parallel_for(s->ctx, patch_task, &t, s->patch_count);
+  tlod_context_parallel_for(s->ctx, patch_task, &t, s->soa.block_count);
 }

@@ -11,6 +11,7 @@ void _tlod_soa_free(tlod_context* ctx, _tlod_soa* a) {
                     a->py, a->pz, a->nx, a->ny,     a->nz,    a->packed};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(ctx, arrays[i]);
+  _tlod_blocks_free(ctx, a);
   memset(a, 0, sizeof(*a));
 }
 
@@ -28,6 +29,12 @@ static bool soa_alloc(tlod_context* ctx, _tlod_soa* a, uint32_t np, uint32_t nv,
   ok = (a->corner = tlod_context_alloc(ctx, sizeof(uint32_t) * p * 4)) && ok;
   ok = (a->packed = tlod_context_alloc(ctx, sizeof(uint32_t) * v)) && ok;
   return ok;
+}
+
+/* Frees every array (the next update starts again) and fails. */
+static tlod_result soa_out_of_memory(tlod_scheduler* s) {
+  _tlod_soa_free(s->ctx, &s->soa);
+  return tlod_context_fail(s->ctx, TLOD_ERROR_OUT_OF_MEMORY, "scheduler '%s': out of memory", s->label);
 }
 
 static void copy_patches(_tlod_soa* a, const tlod_surface_view* sv, const tlod_mesh_view* mv) {
@@ -50,18 +57,23 @@ static void copy_vertices(_tlod_soa* a, const tlod_mesh_view* mv) {
   }
 }
 
-tlod_result _tlod_soa_update(tlod_scheduler* s, const tlod_mesh_view* mv, const tlod_surface_view* sv) {
+static tlod_result soa_copy(tlod_scheduler* s, const tlod_mesh_view* mv, const tlod_surface_view* sv) {
   _tlod_soa* a = &s->soa;
-  if (a->mesh_generation == mv->generation && a->surface_generation == sv->generation) return TLOD_SUCCESS;
   if (!a->cx) {
     a->patch_count = s->patch_count, a->vertex_count = s->vertex_count, a->levels = s->desc.max_level + 1;
-    if (!soa_alloc(s->ctx, a, a->patch_count, a->vertex_count, a->levels)) {
-      _tlod_soa_free(s->ctx, a);
-      return tlod_context_fail(s->ctx, TLOD_ERROR_OUT_OF_MEMORY, "scheduler '%s': out of memory", s->label);
-    }
+    if (!soa_alloc(s->ctx, a, a->patch_count, a->vertex_count, a->levels)) return soa_out_of_memory(s);
   }
   copy_patches(a, sv, mv);
   copy_vertices(a, mv);
+  if (!_tlod_blocks_build(s->ctx, a)) return soa_out_of_memory(s);
   a->mesh_generation = mv->generation, a->surface_generation = sv->generation;
   return TLOD_SUCCESS;
+}
+
+tlod_result _tlod_soa_update(tlod_scheduler* s, const tlod_mesh_view* mv, const tlod_surface_view* sv) {
+  _tlod_soa* a = &s->soa;
+  bool fresh = a->mesh_generation == mv->generation && a->surface_generation == sv->generation;
+  tlod_result r = fresh ? TLOD_SUCCESS : soa_copy(s, mv, sv);
+  if (r == TLOD_SUCCESS && !_tlod_blocks_hold(s->ctx, a, s->view_count)) r = soa_out_of_memory(s);
+  return r;
 }

@@ -387,12 +387,141 @@ TEST(test_culled_blocks) {
   CHECK_MSG(blocks > 0 && entered > 0, "%u whole blocks culled, %u patches entered the view", blocks, entered);
 }
 
+/* ---- clusters: blocks all in, all out, half in view, the eye inside one ---- */
+
+/* A torus big enough for many blocks (FAST_BLOCK patches) and vertex chunks. */
+typedef struct big_world {
+  tlod_context* ctx;
+  shape s;
+  tlod_mesh* mesh;
+  tlod_surface* surf;
+  tlod_patterns* pat;
+} big_world;
+
+static bool big_make(big_world* w, tlod_simd simd, uint32_t threads) {
+  memset(w, 0, sizeof *w);
+  w->s = shape_torus(200, 60); /* 24000 triangles, 12000 vertices */
+  tlod_context_desc cd = {.thread_count = threads, .simd = simd};
+  tlod_mesh_desc md = shape_mesh_desc(&w->s);
+  tlod_result r = tlod_context_create(&cd, &w->ctx);
+  if (r == TLOD_SUCCESS) r = tlod_patterns_create(w->ctx, &(tlod_patterns_desc){.max_level = MAX_LEVEL}, &w->pat);
+  if (r == TLOD_SUCCESS) r = tlod_mesh_create(w->ctx, &md, &w->mesh);
+  if (r == TLOD_SUCCESS)
+    r = tlod_surface_create(w->ctx, w->mesh, &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &w->surf);
+  return r == TLOD_SUCCESS;
+}
+
+static void big_free(big_world* w) {
+  tlod_surface_destroy(w->surf);
+  tlod_mesh_destroy(w->mesh);
+  tlod_patterns_destroy(w->pat);
+  tlod_context_destroy(w->ctx);
+  shape_free(&w->s);
+}
+
+/* Frame k: far (every block in view), close and narrow over one side (blocks
+ * half in view and out), looking away (every block out), the eye on the
+ * tube (inside its blocks' spheres), the mesh deformed (SoA and spheres
+ * rebuilt), and again. */
+static tlod_view_desc cluster_view(int k) {
+  static const double eyes[6][3] = {{0, 0, 6}, {1, 0, 1.5}, {0, 0, 6}, {1.0, 0, 0.405}, {1, 0.2, 1.2}, {0, 0, 6}};
+  static const double targets[6][3] = {{0, 0, 0}, {1, 0, 0}, {0, 0, 12}, {0, 1, 0.405}, {1, 0.2, 0}, {0, 0, 0}};
+  camera c = {.up = {0, 1, 0},
+              .fovy = k == 1 || k == 4 ? 0.4 : 1.0,
+              .aspect = 4.0 / 3.0,
+              .znear = 0.01,
+              .zfar = 50,
+              .width = 640,
+              .height = 480};
+  memcpy(c.eye, eyes[k], sizeof c.eye);
+  memcpy(c.target, targets[k], sizeof c.target);
+  if (k == 3) c.up[0] = 0, c.up[1] = 0, c.up[2] = 1;
+  return make_view(&c);
+}
+
+static bool big_deform(big_world* w, float t) {
+  float* p = malloc(sizeof(float) * 3 * w->s.vertex_count);
+  for (uint32_t i = 0; i < 3 * w->s.vertex_count; ++i)
+    p[i] = w->s.positions[i] * (1.0f + t * (float)(i % 7) * 0.004f);
+  tlod_result r = tlod_mesh_update(w->mesh, p, 0, NULL, 0);
+  free(p);
+  return r == TLOD_SUCCESS && tlod_surface_refresh(w->surf, NULL) == TLOD_SUCCESS;
+}
+
+/* lod.h: vertex_depth holds d_i for every vertex of a visible patch (the
+ * others only culled patches use may be stale on the fast path): those,
+ * bitwise; the rest of the lists through draw_lists_equal. */
+static bool visible_depths_equal(const tlod_draw_list* a, const tlod_draw_list* b, const tlod_mesh* m) {
+  for (uint32_t q = 0; q < a->instance_count; q++) {
+    uint32_t c[4], n = tlod_mesh_face_corners(m, a->instances[q].patch, c);
+    for (uint32_t j = 0; j < n; j++)
+      if (memcmp(&a->vertex_depth[c[j]], &b->vertex_depth[c[j]], sizeof(float))) return false;
+  }
+  return true;
+}
+
+/* Counts of frames with every patch in view, every patch culled, and some of each. */
+static void count_culling(const tlod_draw_list* dl, uint32_t seen[3]) {
+  seen[dl->culled == 0 ? 0 : dl->culled == dl->patch_count ? 1 : 2]++;
+}
+
+static bool cluster_frame(big_world* w, tlod_scheduler** s, int worlds, int k, uint32_t seen[3], char* why, size_t n) {
+  bool ok = true;
+  for (int i = 0; ok && k == 4 && i < worlds; ++i)
+    ok = big_deform(&w[i], 1.0f);
+  tlod_view_desc v = cluster_view(k);
+  tlod_frame_desc f = {.views = &v, .view_count = 1, .dt_ms = 16.0f};
+  for (int i = 0; ok && i < worlds; ++i)
+    ok = tlod_scheduler_update(s[i], &f) == TLOD_SUCCESS;
+  const tlod_draw_list* ref = ok ? tlod_scheduler_draw_list(s[0], 0) : NULL;
+  if (ref) count_culling(ref, seen);
+  for (int i = 1; ok && i < worlds; ++i) {
+    const tlod_draw_list* dl = tlod_scheduler_draw_list(s[i], 0);
+    ok = draw_lists_equal(ref, dl, 0, why, n);
+    if (ok && !(ok = visible_depths_equal(ref, dl, w[0].mesh))) snprintf(why, n, "visible vertex depths differ");
+    if (!ok) snprintf(why + strlen(why), n - strlen(why), " (world %d)", i);
+  }
+  return ok;
+}
+
+/* Fast equals reference at every SIMD level, 1 and 2 threads, through the
+ * cluster cases, for the ERROR, HYBRID and SILHOUETTE policies. */
+TEST(test_cluster_views) {
+  big_world w[9];
+  int worlds = 0;
+  bool ok = big_make(&w[worlds++], TLOD_SIMD_SCALAR, 1);
+  for (tlod_simd simd = TLOD_SIMD_SCALAR; ok && simd <= best_simd(); simd++)
+    for (uint32_t threads = 1; ok && threads <= 2; ++threads)
+      ok = big_make(&w[worlds++], simd, threads);
+  static const int cases[] = {8, 9, 2};
+  uint32_t seen[3] = {0, 0, 0};
+  char why[128] = "create failed";
+  for (size_t c = 0; ok && c < sizeof cases / sizeof cases[0]; ++c) {
+    tlod_scheduler* s[9] = {0};
+    for (int i = 0; ok && i < worlds; ++i)
+      ok = (s[i] = scheduler_create(w[i].ctx, w[i].surf, w[i].pat, case_desc(cases[c], i == 0))) != NULL;
+    for (int k = 0; ok && k < 6; ++k)
+      if (!(ok = cluster_frame(w, s, worlds, k, seen, why, sizeof why)))
+        snprintf(why + strlen(why), sizeof why - strlen(why), ", case %d frame %d", cases[c], k);
+    for (int i = 0; i < worlds; ++i) {
+      tlod_scheduler_destroy(s[i]);
+      ok = big_deform(&w[i], 0.0f) && ok;
+    }
+  }
+  for (int i = 0; i < worlds; ++i)
+    big_free(&w[i]);
+  CHECK_MSG(ok, "%s", why);
+  CHECK_MSG(seen[0] && seen[1] && seen[2], "frames all in view %u, all culled %u, partly %u", seen[0], seen[1],
+            seen[2]);
+}
+
 int main(void) {
   sources_make();
   RUN(test_cases_refine);
   RUN(test_fast_equals_reference);
   RUN(test_group_budget);
   RUN(test_culled_blocks);
+  RUN(test_cluster_views);
   sources_free();
   TEST_END();
 }

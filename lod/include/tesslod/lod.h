@@ -225,7 +225,10 @@ typedef struct tlod_draw_list {
    * 0 for a culled patch, unless the frame has a view with lock_to_main
    * (then computed for every patch: the locked views use view 0's levels) */
   const float* e_max;
-  const float* vertex_depth;           /* per mesh vertex: d_i */
+  /* per mesh vertex: d_i, for every vertex of a patch in view (of every
+   * vertex with frustum culling off or a lock_to_main view); a vertex only
+   * culled patches use may keep an older frame's value on the fast path */
+  const float* vertex_depth;
   const tlod_draw_instance* instances; /* visible patches, bucket by bucket */
   uint32_t instance_count;
   const tlod_draw_bucket* buckets;

@@ -44,11 +44,47 @@ static void frame_bytes(uint32_t vertices, uint32_t patches, double* read, doubl
   *written = (double)vertices * 4.0 + (double)patches * (18.0 + 12.0);
 }
 
+/* The scheduler's clusters (lod/src/scheduler_fast.h FAST_BLOCK, FAST_VCHUNK):
+ * a culled block costs only its sphere test (40 B), a vertex chunk no
+ * visible block reads costs nothing. */
+#define SCHED_BLOCK 128u
+#define SCHED_VCHUNK 256u
+
+static bool block_visible(const tlod_draw_list* dl, uint32_t b) {
+  for (uint32_t f = b * SCHED_BLOCK; f < dl->patch_count && f < (b + 1) * SCHED_BLOCK; f++)
+    if (dl->levels[f] >= 0) return true;
+  return false;
+}
+
+/* frame_bytes over what the last frame dl read: the patches of blocks with a
+ * visible patch, the vertices of chunks such a block reads, the block tests. */
+static void visible_bytes(const tlod_mesh* m, const tlod_draw_list* dl, double* read, double* written) {
+  uint32_t nv = tlod_mesh_vertex_count(m), chunks = (nv + SCHED_VCHUNK - 1) / SCHED_VCHUNK;
+  uint32_t blocks = (dl->patch_count + SCHED_BLOCK - 1) / SCHED_BLOCK, seen = 0, patches = 0;
+  uint8_t* used = calloc(chunks + 1, 1);
+  for (uint32_t b = 0; used && b < blocks; b++) {
+    if (!block_visible(dl, b)) continue;
+    for (uint32_t f = b * SCHED_BLOCK; f < dl->patch_count && f < (b + 1) * SCHED_BLOCK; f++, patches++) {
+      uint32_t c[4], n = tlod_mesh_face_corners(m, f, c);
+      for (uint32_t j = 0; j < n; j++)
+        used[c[j] / SCHED_VCHUNK] = 1;
+    }
+  }
+  for (uint32_t j = 0; used && j < chunks; j++)
+    seen += used[j];
+  uint32_t vertices = seen * SCHED_VCHUNK < nv ? seen * SCHED_VCHUNK : nv;
+  free(used);
+  frame_bytes(vertices, patches, read, written);
+  *read += 40.0 * blocks;
+}
+
 typedef struct sched_figures {
   double wall[2], cpu[2];       /* min, median ms per frame */
   double caller[2];             /* the calling thread CPU, min and median ms */
   double stage[TLOD_STAGE_NUM]; /* median ms per stage */
   double bound_ms;
+  double visible_read, visible_written; /* bytes of the last frame (visible_bytes) */
+  double visible_bound_ms;
   uint32_t warmup;     /* frames before the timed ones */
   tlod_draw_list last; /* statistics of the last frame */
 } sched_figures;
@@ -106,6 +142,7 @@ static int run_case(const bench_scene* s, const sched_case* c, uint32_t frames, 
     f->stage[st] = mm[1];
   }
   f->last = *tlod_scheduler_draw_list(sch, 0);
+  visible_bytes(s->setup.mesh, &f->last, &f->visible_read, &f->visible_written);
   tlod_scheduler_destroy(sch);
   free(t);
   return CLI_OK;
@@ -118,9 +155,9 @@ static void print_case(const char* in, const sched_case* c, uint32_t threads, co
   char share[32] = "- (no-op frames)";
   if (f->cpu[1] > 0.01 * f->bound_ms) snprintf(share, sizeof(share), "%.0f%%", 100.0 * f->bound_ms / f->cpu[1]);
   printf("scheduler  %-20s %-13s T%-2u %8u patches  cpu min %8.3f median %8.3f ms | wall min %8.3f median %8.3f ms | "
-         "caller thread cpu median %8.3f ms | bound %.3f cpu ms = %s of cpu median\n",
+         "caller thread cpu median %8.3f ms | bound %.3f cpu ms = %s of cpu median (visible blocks' bytes %.3f)\n",
          in, c->name, threads, dl->patch_count, f->cpu[0], f->cpu[1], f->wall[0], f->wall[1], f->caller[1], f->bound_ms,
-         share);
+         share, f->visible_bound_ms);
   printf("scheduler    after %u warm-up frames; stages median ms (wall):", f->warmup);
   for (int st = 0; st < TLOD_STAGE_NUM; st++)
     printf(" %s %.3f", tlod_stage_name((tlod_stage)st), f->stage[st]);
@@ -159,6 +196,7 @@ static void write_json(json_writer* w, const char* in, const sched_case* c, uint
   json_number(w, "wall_median_ms", f->wall[1]);
   json_number(w, "caller_cpu_median_ms", f->caller[1]);
   json_number(w, "bound_ms", f->bound_ms);
+  json_number(w, "visible_bound_ms", f->visible_bound_ms);
   json_object_begin(w, "stage_median_ms");
   for (int st = 0; st < TLOD_STAGE_NUM; st++)
     json_number(w, tlod_stage_name((tlod_stage)st), f->stage[st]);
@@ -194,6 +232,7 @@ static int mesh_cases(const char* in, uint32_t threads, const bench_lod_options*
     rc = run_case(&s, &k_cases[k], o->frames, &f);
     if (rc != CLI_OK) break;
     f.bound_ms = bench_bound_ms(bench_bandwidth_rates(&rep->bw, threads), read, written);
+    f.visible_bound_ms = bench_bound_ms(bench_bandwidth_rates(&rep->bw, threads), f.visible_read, f.visible_written);
     print_case(in, &k_cases[k], threads, &f);
     if (csv) write_csv(csv, in, &k_cases[k], threads, &f);
     if (rep->json) write_json(rep->json, in, &k_cases[k], threads, &f);
