@@ -542,15 +542,17 @@ static bool grow_keep(const tlod_context* ctx, void** p, size_t elem, uint32_t c
  * growth (the strip vertices come after the pattern vertices are written). */
 static bool vertex_arrays(tess* t, uint32_t n, uint32_t keep) {
   tlod_cpu_mesh* o = t->out;
-  uint32_t cap = o->vertex_capacity;
-  bool ok = grow_keep(t->ctx, (void**)&o->positions, sizeof(float) * 3, n, cap, keep);
-  ok = grow_keep(t->ctx, (void**)&o->vertex_patch, sizeof(uint32_t), n, o->vertex_patch ? cap : 0, keep) && ok;
-  ok = grow_keep(t->ctx, (void**)&o->vertex_uv, sizeof(float) * 2, n, o->vertex_uv ? cap : 0, keep) && ok;
+  /* An array made afresh (normals after a no_normals call) gets the whole
+   * capacity: the next call may use up to it without growing. */
+  uint32_t cap = o->positions ? o->vertex_capacity : 0, full = n > cap ? n : cap;
+  bool ok = grow_keep(t->ctx, (void**)&o->positions, sizeof(float) * 3, full, cap, keep);
+  ok = grow_keep(t->ctx, (void**)&o->vertex_patch, sizeof(uint32_t), full, o->vertex_patch ? cap : 0, keep) && ok;
+  ok = grow_keep(t->ctx, (void**)&o->vertex_uv, sizeof(float) * 2, full, o->vertex_uv ? cap : 0, keep) && ok;
   if (t->d.no_normals) {
     tlod_context_free(t->ctx, o->normals);
     o->normals = NULL;
   } else {
-    ok = grow_keep(t->ctx, (void**)&o->normals, sizeof(float) * 3, n, o->normals ? cap : 0, keep) && ok;
+    ok = grow_keep(t->ctx, (void**)&o->normals, sizeof(float) * 3, full, o->normals ? cap : 0, keep) && ok;
   }
   /* The attribute array's capacity counts vectors of the last call's count. */
   uint32_t acap = o->attributes && o->attribute_count == t->na ? cap : 0;
@@ -558,10 +560,10 @@ static bool vertex_arrays(tess* t, uint32_t n, uint32_t keep) {
     tlod_context_free(t->ctx, o->attributes);
     o->attributes = NULL;
   } else {
-    ok = grow_keep(t->ctx, (void**)&o->attributes, sizeof(float[4]) * t->na, n, acap, keep) && ok;
+    ok = grow_keep(t->ctx, (void**)&o->attributes, sizeof(float[4]) * t->na, full, acap, keep) && ok;
   }
   o->attribute_count = t->na;
-  o->vertex_capacity = ok && n > cap ? n : (ok ? cap : 0);
+  o->vertex_capacity = ok ? full : 0;
   o->vertex_count = n;
   return ok;
 }
