@@ -97,7 +97,7 @@ typedef struct tess {
  * the last call's numbering and work arrays (t) and a copy of everything
  * of the mesh the topology was decided from, compared exactly. */
 typedef struct cpu_keep {
-  bool valid, no_weld;
+  bool valid, no_weld, morph; /* morph: the kept slots were decided with blends */
   uint32_t lmax, work_count, face_count, vertex_count;
   uint32_t (*faces)[4];
   uint8_t* face_corners;

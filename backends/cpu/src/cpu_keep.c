@@ -75,9 +75,12 @@ bool _tlod_cpu_keep_take(cpu_keep* k, tess* t) {
     return false;
   }
   tess call = *t;
+  bool kept_morph = k->morph;
   adopt(k, t);
-  bool same = levels_same(t) && (!t->d.draw_list || _tlod_cpu_take_draw_list(t) == TLOD_SUCCESS) && slots_same(t) &&
-              (t->d.no_weld || _tlod_cpu_corners_same(t));
+  /* Without blends on either side the slots follow from the levels and
+   * links alone, both already equal. */
+  bool same = levels_same(t) && (!t->d.draw_list || _tlod_cpu_take_draw_list(t) == TLOD_SUCCESS) &&
+              ((!kept_morph && !t->morph) || slots_same(t)) && (t->d.no_weld || _tlod_cpu_corners_same(t));
   if (same) return true;
   _tlod_cpu_tess_free(t);
   *t = call;
@@ -119,6 +122,7 @@ void _tlod_cpu_keep_store(cpu_keep* k, tess* t) {
   k->t = *t;
   k->valid = true;
   k->no_weld = t->d.no_weld;
+  k->morph = t->morph != NULL;
   k->lmax = t->lmax;
   k->work_count = t->work_count;
 }
