@@ -96,7 +96,7 @@ typedef struct tess {
 /* The state a tlod_cpu_mesh keeps beside its public struct (cpu_keep.c):
  * the last call's numbering and work arrays (t) and a copy of everything
  * of the mesh the topology was decided from, compared exactly. */
-typedef struct cpu_keep {
+typedef struct tlod_cpu_keep {
   bool valid, no_weld, morph; /* morph: the kept slots were decided with blends */
   uint32_t lmax, work_count, face_count, vertex_count;
   uint32_t (*faces)[4];
@@ -105,14 +105,6 @@ typedef struct cpu_keep {
   uint32_t* weld_id;
   tess t;
 } cpu_keep;
-
-/* A tlod_cpu_mesh as tlod_cpu_tessellate allocates it. */
-typedef struct cpu_mesh_full {
-  tlod_cpu_mesh pub;
-  cpu_keep keep;
-} cpu_mesh_full;
-
-static inline cpu_keep* keep_of(tlod_cpu_mesh* m) { return &((cpu_mesh_full*)m)->keep; }
 
 static inline tlod_pattern_shape shape_of(const tess* t, uint32_t f) {
   return t->m.face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
@@ -171,8 +163,8 @@ bool _tlod_cpu_corners_same(const tess* t);
 /* cpu_keep.c: adopts the kept arrays into t when the topology they encode
  * is still t's (exactly); false leaves t as it was. Stores t's arrays and
  * keys after a full call (or frees them when they cannot be kept). */
-bool _tlod_cpu_keep_take(cpu_keep* k, tess* t);
-void _tlod_cpu_keep_store(cpu_keep* k, tess* t);
+bool _tlod_cpu_keep_take(cpu_keep* k, tess* t); /* k may be NULL */
+bool _tlod_cpu_keep_store(cpu_keep* k, tess* t);
 void _tlod_cpu_keep_free(tlod_context* ctx, cpu_keep* k);
 /* cpu_strips.c: the connection strips, into t->strip_tris, after the
  * pattern vertices are written (folds compare output positions); with

@@ -70,6 +70,7 @@ static void adopt(cpu_keep* k, tess* t) {
 static void keep_drop(cpu_keep* k);
 
 bool _tlod_cpu_keep_take(cpu_keep* k, tess* t) {
+  if (!k) return false;
   if (t->d.reference || !keys_same(k, t)) {
     keep_drop(k); /* the full call about to run may move the mesh's arrays */
     return false;
@@ -94,11 +95,20 @@ static void keep_drop(cpu_keep* k) {
   k->valid = false;
 }
 
+static void free_keys(tlod_context* ctx, cpu_keep* k) {
+  tlod_context_free(ctx, k->faces);
+  tlod_context_free(ctx, k->face_corners);
+  tlod_context_free(ctx, k->links);
+  tlod_context_free(ctx, k->weld_id);
+  k->faces = NULL, k->face_corners = NULL, k->links = NULL, k->weld_id = NULL;
+  k->face_count = k->vertex_count = 0;
+}
+
 static bool copy_keys(cpu_keep* k, const tess* t) {
   const tlod_mesh_view* m = &t->m;
   tlod_context* ctx = t->ctx;
   if (k->face_count != m->face_count || k->vertex_count != m->vertex_count || !k->faces) {
-    _tlod_cpu_keep_free(ctx, k);
+    free_keys(ctx, k);
     k->faces = tlod_context_alloc(ctx, sizeof(*m->faces) * (m->face_count + 1u));
     k->face_corners = tlod_context_alloc(ctx, m->face_count + 1u);
     k->links = tlod_context_alloc(ctx, sizeof(*m->links) * (m->face_count + 1u));
@@ -113,11 +123,15 @@ static bool copy_keys(cpu_keep* k, const tess* t) {
   return true;
 }
 
-void _tlod_cpu_keep_store(cpu_keep* k, tess* t) {
+bool _tlod_cpu_keep_store(cpu_keep* k, tess* t) {
   keep_drop(k);
-  if (t->d.reference || t->na || !copy_keys(k, t)) {
+  if (t->d.reference || t->na) {
     _tlod_cpu_tess_free(t);
-    return;
+    return true;
+  }
+  if (!copy_keys(k, t)) {
+    _tlod_cpu_tess_free(t);
+    return false;
   }
   k->t = *t;
   k->valid = true;
@@ -125,13 +139,11 @@ void _tlod_cpu_keep_store(cpu_keep* k, tess* t) {
   k->morph = t->morph != NULL;
   k->lmax = t->lmax;
   k->work_count = t->work_count;
+  return true;
 }
 
 void _tlod_cpu_keep_free(tlod_context* ctx, cpu_keep* k) {
+  if (!k) return;
   keep_drop(k);
-  tlod_context_free(ctx, k->faces);
-  tlod_context_free(ctx, k->face_corners);
-  tlod_context_free(ctx, k->links);
-  tlod_context_free(ctx, k->weld_id);
-  *k = (cpu_keep){0};
+  free_keys(ctx, k);
 }

@@ -411,7 +411,8 @@ void tlod_cpu_mesh_destroy(tlod_context* ctx, tlod_cpu_mesh* mesh) {
   tlod_context_free(ctx, mesh->attributes);
   tlod_context_free(ctx, mesh->vertex_patch);
   tlod_context_free(ctx, mesh->vertex_uv);
-  _tlod_cpu_keep_free(ctx, keep_of(mesh));
+  _tlod_cpu_keep_free(ctx, mesh->keep);
+  tlod_context_free(ctx, mesh->keep);
   tlod_context_free(ctx, mesh);
 }
 
@@ -640,6 +641,16 @@ static tlod_result run_kept(tess* t) {
   return finish(t);
 }
 
+/* After a successful call: t's arrays kept for the next (made on first
+ * use), or freed where they cannot be kept. */
+static tlod_result keep_arrays(tlod_context* ctx, tlod_cpu_mesh* mesh, tess* t) {
+  if (!mesh->keep && !t->d.reference && t->na == 0) mesh->keep = tlod_context_calloc(ctx, 1, sizeof(cpu_keep));
+  if (!mesh->keep) _tlod_cpu_tess_free(t);
+  bool wanted = !t->d.reference && t->na == 0;
+  if (mesh->keep ? _tlod_cpu_keep_store(mesh->keep, t) : !wanted) return TLOD_SUCCESS;
+  return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
+}
+
 tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
                                      const tlod_cpu_tessellate_desc* desc, tlod_cpu_mesh* mesh) {
   if (!ctx) return TLOD_ERROR_INVALID_ARGUMENT;
@@ -659,14 +670,13 @@ tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surf
   t.na = t.m.attribute_count;
   mesh->vertex_count = mesh->triangle_count = 0;
   mesh->pattern_triangles = mesh->strip_triangles = mesh->strips = mesh->folds_skipped = 0;
-  bool kept = _tlod_cpu_keep_take(keep_of(mesh), &t);
+  bool kept = _tlod_cpu_keep_take(mesh->keep, &t);
   tlod_result r = kept ? run_kept(&t) : run(&t);
-  if (r == TLOD_SUCCESS) {
-    _tlod_cpu_keep_store(keep_of(mesh), &t);
-  } else {
+  if (r == TLOD_SUCCESS)
+    r = keep_arrays(ctx, mesh, &t);
+  else
     _tlod_cpu_tess_free(&t);
-    mesh->vertex_count = mesh->triangle_count = 0;
-  }
+  if (r != TLOD_SUCCESS) mesh->vertex_count = mesh->triangle_count = 0;
   return r;
 }
 
@@ -675,7 +685,7 @@ tlod_result tlod_cpu_tessellate(tlod_context* ctx, const tlod_surface* surface, 
   if (!ctx) return TLOD_ERROR_INVALID_ARGUMENT;
   if (!out) return tlod_context_fail(ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: NULL argument");
   *out = NULL;
-  tlod_cpu_mesh* mesh = tlod_context_calloc(ctx, 1, sizeof(cpu_mesh_full));
+  tlod_cpu_mesh* mesh = tlod_context_calloc(ctx, 1, sizeof(tlod_cpu_mesh));
   if (!mesh) return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
   tlod_result r = tlod_cpu_tessellate_into(ctx, surface, patterns, desc, mesh);
   if (r != TLOD_SUCCESS) {
