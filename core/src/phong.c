@@ -8,12 +8,8 @@
 #include "surface_eval.h"
 
 void _tlod_phong_edge(v3 pa, v3 na, float alpha_a, v3 pb, v3 nb, float alpha_b, float t, v3* pos, v3* nrm) {
-  float s = 1.0f - t;
-  v3 p = v3_mix2(pa, s, pb, t);
-  float alpha = alpha_a * s + alpha_b * t;
-  v3 proj = v3_mix2(v3_project(p, pa, na), s, v3_project(p, pb, nb), t);
-  *pos = v3_mix2(p, 1.0f - alpha, proj, alpha);
-  *nrm = v3_normalize_or(v3_mix2(na, s, nb, t), na);
+  *pos = _tlod_phong_edge_position(pa, na, alpha_a, pb, nb, alpha_b, t);
+  *nrm = v3_normalize_or(v3_mix2(na, 1.0f - t, nb, t), na);
 }
 
 void _tlod_flat_edge(v3 pa, v3 na, v3 pb, v3 nb, float t, v3* pos, v3* nrm) {

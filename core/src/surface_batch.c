@@ -130,6 +130,22 @@ static void pn_edge_points(const tlod_surface* s, uint32_t a, uint32_t b, bool f
   }
 }
 
+/* Positions only, Phong or flat: the edge's ends loaded once, each point
+ * as _tlod_phong_edge / _tlod_flat_edge place it (no normal). */
+static void edge_positions(const tlod_surface* s, uint32_t a, uint32_t b, bool forward, uint32_t count,
+                           const uint32_t* param, float nn, float* positions) {
+  const tlod_mesh* m = s->mesh;
+  v3 pa = v3_load(m->positions[a]), na = v3_load(m->normals[a]);
+  v3 pb = v3_load(m->positions[b]), nb = v3_load(m->normals[b]);
+  bool phong = s->desc.type == TLOD_SURFACE_PHONG;
+  float aa = phong ? s->alpha[a] : 0.0f, ab = phong ? s->alpha[b] : 0.0f;
+  for (uint32_t k = 0; k < count; k++) {
+    float t_end = (float)param[k] / nn, t = forward ? t_end : 1.0f - t_end;
+    v3 p = phong ? _tlod_phong_edge_position(pa, na, aa, pb, nb, ab, t) : v3_mix2(pa, 1.0f - t, pb, t);
+    v3_store(positions + 3 * (size_t)k, p);
+  }
+}
+
 tlod_result tlod_surface_eval_edge(const tlod_surface* s, uint32_t patch, uint32_t edge, uint32_t grid_log2,
                                    uint32_t count, const uint32_t* param, float* positions, float* normals) {
   if (!s || patch >= s->patch_count || grid_log2 > TLOD_GRID_MAX_LOG2) return TLOD_ERROR_INVALID_ARGUMENT;
@@ -144,6 +160,11 @@ tlod_result tlod_surface_eval_edge(const tlod_surface* s, uint32_t patch, uint32
   bool forward = m->weld_id[a] < m->weld_id[b];
   if (s->desc.type == TLOD_SURFACE_PN && !s->quad) {
     pn_edge_points(s, forward ? a : b, forward ? b : a, forward, count, param, (float)nn, positions, normals);
+    return TLOD_SUCCESS;
+  }
+  bool plain = s->desc.type == TLOD_SURFACE_PHONG || s->desc.type == TLOD_SURFACE_FLAT;
+  if (!normals && plain && !s->quad) {
+    edge_positions(s, forward ? a : b, forward ? b : a, forward, count, param, (float)nn, positions);
     return TLOD_SUCCESS;
   }
   float unused[3];

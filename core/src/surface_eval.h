@@ -19,6 +19,16 @@ enum { _TLOD_EVAL_DERIVS = 1, _TLOD_EVAL_TRUE_NORMAL = 2 };
 /* Phong (Boubekeur & Alexa 2008; quads: Dupuy). The edge function is shared by
  * triangles and quads: on an edge both reduce to it exactly. */
 void _tlod_phong_edge(v3 pa, v3 na, float alpha_a, v3 pb, v3 nb, float alpha_b, float t, v3* pos, v3* nrm);
+/* Its position alone (positions-only callers skip the normal's square root
+ * and division); _tlod_phong_edge takes its position from here, so both
+ * round alike. */
+static inline v3 _tlod_phong_edge_position(v3 pa, v3 na, float alpha_a, v3 pb, v3 nb, float alpha_b, float t) {
+  float s = 1.0f - t;
+  v3 p = v3_mix2(pa, s, pb, t);
+  float alpha = alpha_a * s + alpha_b * t;
+  v3 proj = v3_mix2(v3_project(p, pa, na), s, v3_project(p, pb, nb), t);
+  return v3_mix2(p, 1.0f - alpha, proj, alpha);
+}
 /* Triangle or quad by c->n. */
 void _tlod_phong_eval(const _tlod_corners* c, float u, float v, uint32_t flags, tlod_surface_point* out);
 /* Bound on |surface - flat patch| and the d_max it comes from. alpha_net:

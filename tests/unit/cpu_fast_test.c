@@ -7,6 +7,7 @@
  * no_normals, a mesh with attributes, every instruction set this processor
  * has and 1, 2, 3 threads. Public API only.
  */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -232,6 +233,94 @@ TEST(test_attributes) {
   free(uv);
 }
 
+/* Frame k of a deformation: positions scaled about the origin by a wobble,
+ * normals in one of three modes: the shape's (creases where it has them),
+ * the normalised position (vertices at one position agree: every crease
+ * becomes smooth), or the shape's shifted to the next vertex at the same
+ * position (a weld group's normals sorted in another order). */
+static void deform(const shape* s, uint32_t k, float* pos, float* nrm) {
+  uint32_t mode = (k / 3) % 3;
+  for (uint32_t v = 0; v < s->vertex_count; v++) {
+    float w = 1.0f + 0.05f * sinf(0.9f * (float)k + (float)v), *p = pos + 3 * v, *n = nrm + 3 * v;
+    for (int c = 0; c < 3; c++)
+      p[c] = s->positions[3 * v + c] * w;
+    const float* src = s->normals + 3 * v;
+    for (uint32_t x = 1; mode == 2 && x < s->vertex_count; x++) {
+      uint32_t o = (v + x) % s->vertex_count;
+      if (!memcmp(s->positions + 3 * o, s->positions + 3 * v, 12)) {
+        src = s->normals + 3 * o;
+        break;
+      }
+    }
+    float len = sqrtf(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    for (int c = 0; c < 3; c++)
+      n[c] = mode == 1 ? p[c] / len : src[c];
+  }
+}
+
+/* One reused mesh through tlod_cpu_tessellate_into over frames that move
+ * positions, change normals (creases made smooth and back, weld groups
+ * reordered), levels, draw lists and options: every frame bitwise equal to
+ * a fresh reference tessellation. Each desc is held for two frames, so the
+ * second reuses the kept topology unless the mesh update changed it. */
+static void check_kept(shape s, tlod_surface_desc sd, tlod_simd simd, uint32_t threads) {
+  scene sc;
+  CHECK_MSG(scene_make(&sc, &s, NULL, 0, sd), "%s", s.name);
+  tlod_context* ctx = context(simd, threads);
+  uint32_t nf = tlod_mesh_face_count(sc.mesh);
+  int8_t* levels = random_levels(nf, 5, 4);
+  crafted c = craft(&sc, 13);
+  const tlod_cpu_tessellate_desc descs[] = {
+      {.level = 2},
+      {.level = 2, .no_normals = true},
+      {.level = 3},
+      {.levels = levels},
+      {.draw_list = &c.dl},
+      {.draw_list = &c.dl, .no_weld = true},
+      {.level = 1, .no_stitch = true},
+      {.level = 2, .reference = true},
+      {.levels = levels, .no_normals = true},
+  };
+  uint32_t nd = sizeof descs / sizeof descs[0];
+  float* pos = malloc(12 * (size_t)s.vertex_count);
+  float* nrm = malloc(12 * (size_t)s.vertex_count);
+  tlod_cpu_mesh* kept = run(ctx, &sc, descs[0]);
+  for (uint32_t k = 0; sc.surf && kept && k < 4 * nd; k++) {
+    deform(&s, k, pos, nrm);
+    CHECK(tlod_mesh_update(sc.mesh, pos, 0, nrm, 0) == TLOD_SUCCESS);
+    CHECK(tlod_surface_refresh(sc.surf, NULL) == TLOD_SUCCESS);
+    tlod_cpu_tessellate_desc d = descs[(k / 2) % nd], rd = d;
+    rd.reference = true;
+    CHECK(tlod_cpu_tessellate_into(ctx, sc.surf, sc.pat, &d, kept) == TLOD_SUCCESS);
+    tlod_cpu_mesh* ref = run(sc.ctx, &sc, rd);
+    CHECK_MSG(ref && same_mesh(ref, kept), "%s %s %u threads: frame %u (desc %u) differs from a fresh tessellation",
+              s.name, tlod_simd_name(simd), threads, k, (k / 2) % nd);
+    tlod_cpu_mesh_destroy(sc.ctx, ref);
+  }
+  tlod_cpu_mesh_destroy(ctx, kept);
+  tlod_context_destroy(ctx);
+  free(pos);
+  free(nrm);
+  free(levels);
+  crafted_free(&c);
+  scene_free(&sc);
+  shape_free(&s);
+}
+
+TEST(test_kept_topology) {
+  tlod_context* probe = context(TLOD_SIMD_DEFAULT, 1);
+  tlod_simd best = tlod_context_simd(probe);
+  tlod_context_destroy(probe);
+  for (uint32_t v = 0; v < 2; v++) {
+    tlod_simd simd = v ? best : TLOD_SIMD_SCALAR;
+    uint32_t threads = v ? 2 : 1;
+    check_kept(shape_cube_split(), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, simd, threads);
+    check_kept(shape_cube_soft(), (tlod_surface_desc){.type = TLOD_SURFACE_PN}, simd, threads);
+    check_kept(shape_torus(8, 6), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, simd, threads);
+    check_kept(shape_quad_sphere(2), (tlod_surface_desc){.type = TLOD_SURFACE_FLAT}, simd, threads);
+  }
+}
+
 /* The batch evaluations refuse what tlod_surface_eval_grid() refuses, and
  * an edge batch gives the grid evaluation's values bitwise. */
 TEST(test_batch_arguments) {
@@ -261,6 +350,7 @@ int main(void) {
   RUN(test_pn);
   RUN(test_quadratic);
   RUN(test_attributes);
+  RUN(test_kept_topology);
   RUN(test_batch_arguments);
   TEST_END();
 }

@@ -91,8 +91,10 @@ static void eval_direct(tess* t, uint32_t f, const level_table* lt, scratch* w) 
   uint32_t ib = t->interior_base[f], ni = lt->interior;
   tlod_surface_eval_interior(t->s, f, t->simd, ni, lt->int_u, lt->int_v, o->positions + 3 * (size_t)ib,
                              o->normals ? o->normals + 3 * (size_t)ib : NULL);
-  fill(o->vertex_patch + ib, ni, f);
-  memcpy(o->vertex_uv + ib, lt->int_uv, sizeof(float[2]) * ni);
+  if (!t->positions_only) {
+    fill(o->vertex_patch + ib, ni, f);
+    memcpy(o->vertex_uv + ib, lt->int_uv, sizeof(float[2]) * ni);
+  }
   uint32_t count;
   const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape_of(t, f), &count);
   for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
@@ -105,6 +107,7 @@ static void eval_direct(tess* t, uint32_t f, const level_table* lt, scratch* w) 
       uint32_t x = lt->bnd_x[a + k], id = base + (lt->param[x] >> shift);
       memcpy(o->positions + 3 * (size_t)id, w->cpos[k], sizeof(float[3]));
       if (o->normals) memcpy(o->normals + 3 * (size_t)id, w->cnrm[k], sizeof(float[3]));
+      if (t->positions_only) continue;
       o->vertex_patch[id] = f;
       o->vertex_uv[id][0] = pv[x].u;
       o->vertex_uv[id][1] = pv[x].v;

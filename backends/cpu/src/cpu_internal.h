@@ -61,17 +61,27 @@ typedef struct tess {
   uint32_t lmax, n_grid;
   uint32_t na; /* the mesh's attribute count */
   int8_t* level;
-  float (*morph)[5]; /* per patch: interior blend, then per edge; NULL: no morph */
+  float (*morph)[5];     /* per patch: interior blend, then per edge; NULL: no morph */
+  float (*morph_buf)[5]; /* morph's array, kept when there is no draw list */
   level_table tables[2][TLOD_MAX_LEVEL + 1];
   uint32_t* corner_id;  /* welded: per mesh vertex */
   uint32_t* corner_src; /* welded: output corner -> mesh vertex */
   uint32_t corner_count;
+  /* Welded: the vertices of weld groups with more than one vertex (creases,
+   * seams) in their sorted order, and whether each has the key of the one
+   * before it (one corner): what the numbering took from normals and
+   * alphas, checked by a kept topology (cpu_keep.c). */
+  uint32_t* group;
+  uint8_t* group_same;
+  uint32_t group_count;
   uint32_t* slot_owner; /* per face * 4 + edge */
   uint8_t* slot_level;
   uint32_t* slot_base;
   uint32_t* interior_base; /* welded: per patch; no_weld: patch base */
   uint32_t* tri_base;
   uint32_t vertex_count, pattern_tris;
+  uint32_t pattern_verts; /* vertex_count before the strip vertices */
+  bool positions_only;    /* a kept topology: write positions and normals only */
   uint32_t (*strip_tris)[3];
   uint32_t strip_count, strip_cap;
   /* Strip vertices with side a's attributes, numbered from vertex_count. */
@@ -82,6 +92,19 @@ typedef struct tess {
   uint32_t work_count, work_stride;
   tlod_cpu_mesh* out;
 } tess;
+
+/* The state a tlod_cpu_mesh keeps beside its public struct (cpu_keep.c):
+ * the last call's numbering and work arrays (t) and a copy of everything
+ * of the mesh the topology was decided from, compared exactly. */
+typedef struct tlod_cpu_keep {
+  bool valid, no_weld, morph; /* morph: the kept slots were decided with blends */
+  uint32_t lmax, work_count, face_count, vertex_count;
+  uint32_t (*faces)[4];
+  uint8_t* face_corners;
+  tlod_edge_link (*links)[4];
+  uint32_t* weld_id;
+  tess t;
+} cpu_keep;
 
 static inline tlod_pattern_shape shape_of(const tess* t, uint32_t f) {
   return t->m.face_corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
@@ -129,6 +152,20 @@ void _tlod_cpu_fast_emit(void* data, uint32_t begin, uint32_t end, uint32_t work
 /* cpu_tessellate.c: both sides of edge e of f evaluate the same points
  * (smooth geometry, one level and blend, or a non-blending coarser side). */
 bool _tlod_cpu_edge_coincides(const tess* t, uint32_t f, uint32_t e, tlod_edge_link* link);
+/* cpu_tessellate.c: every array of t freed (t's fields left dangling). */
+void _tlod_cpu_tess_free(tess* t);
+/* cpu_tessellate.c: the draw list's blends into t->morph, checked. */
+tlod_result _tlod_cpu_take_draw_list(tess* t);
+/* cpu_tessellate.c: the slot patch f's edge e names (welded numbering). */
+uint32_t _tlod_cpu_slot_owner(const tess* t, uint32_t f, uint32_t e);
+/* cpu_tessellate.c: whether the weld groups still sort as t->group says. */
+bool _tlod_cpu_corners_same(const tess* t);
+/* cpu_keep.c: adopts the kept arrays into t when the topology they encode
+ * is still t's (exactly); false leaves t as it was. Stores t's arrays and
+ * keys after a full call (or frees them when they cannot be kept). */
+bool _tlod_cpu_keep_take(cpu_keep* k, tess* t); /* k may be NULL */
+bool _tlod_cpu_keep_store(cpu_keep* k, tess* t);
+void _tlod_cpu_keep_free(tlod_context* ctx, cpu_keep* k);
 /* cpu_strips.c: the connection strips, into t->strip_tris, after the
  * pattern vertices are written (folds compare output positions); with
  * attributes also the strip vertices carrying side a's (strip_verts). */

@@ -93,23 +93,52 @@ static bool sort_corners(tess* t, corner_key* keys) {
   return true;
 }
 
+static void key_of(const tess* t, uint32_t v, corner_key* key) {
+  const tlod_mesh_view* m = &t->m;
+  key->key[0] = m->weld_id[v];
+  memcpy(&key->key[1], m->normals[v], sizeof(float) * 3);
+  memcpy(&key->key[4], &t->sv.vertex_alpha[v], sizeof(float));
+  key->vertex = v;
+  key->attr = t->na ? m->attributes + (size_t)v * t->na : NULL;
+  key->na = t->na;
+}
+
+/* The sorted vertices sharing a weld id with a neighbour in that order. */
+static void record_groups(tess* t, const corner_key* keys) {
+  uint32_t nv = t->m.vertex_count;
+  t->group_count = 0;
+  for (uint32_t x = 0; x < nv; x++) {
+    bool before = x > 0 && keys[x - 1].key[0] == keys[x].key[0];
+    if (!before && !(x + 1 < nv && keys[x + 1].key[0] == keys[x].key[0])) continue;
+    t->group[t->group_count] = keys[x].vertex;
+    t->group_same[t->group_count++] = before && cmp_key(&keys[x - 1], &keys[x]) == 0;
+  }
+}
+
+bool _tlod_cpu_corners_same(const tess* t) {
+  for (uint32_t x = 1; x < t->group_count; x++) {
+    if (t->m.weld_id[t->group[x]] != t->m.weld_id[t->group[x - 1]]) continue;
+    corner_key a, b;
+    key_of(t, t->group[x - 1], &a);
+    key_of(t, t->group[x], &b);
+    if (cmp_corner(&a, &b) >= 0 || (cmp_key(&a, &b) == 0) != (t->group_same[x] != 0)) return false;
+  }
+  return true;
+}
+
 static tlod_result number_corners(tess* t) {
   const tlod_mesh_view* m = &t->m;
   corner_key* keys = tlod_context_alloc(t->ctx, sizeof(corner_key) * (m->vertex_count ? m->vertex_count : 1));
   t->corner_id = tlod_context_alloc(t->ctx, sizeof(uint32_t) * (m->vertex_count + 1));
   t->corner_src = tlod_context_alloc(t->ctx, sizeof(uint32_t) * (m->vertex_count + 1));
-  if (!keys || !t->corner_id || !t->corner_src) {
+  t->group = tlod_context_alloc(t->ctx, sizeof(uint32_t) * (m->vertex_count + 1));
+  t->group_same = tlod_context_alloc(t->ctx, m->vertex_count + 1);
+  if (!keys || !t->corner_id || !t->corner_src || !t->group || !t->group_same) {
     tlod_context_free(t->ctx, keys);
     return TLOD_ERROR_OUT_OF_MEMORY;
   }
-  for (uint32_t v = 0; v < m->vertex_count; v++) {
-    keys[v].key[0] = m->weld_id[v];
-    memcpy(&keys[v].key[1], m->normals[v], sizeof(float) * 3);
-    memcpy(&keys[v].key[4], &t->sv.vertex_alpha[v], sizeof(float));
-    keys[v].vertex = v;
-    keys[v].attr = t->na ? m->attributes + (size_t)v * t->na : NULL;
-    keys[v].na = t->na;
-  }
+  for (uint32_t v = 0; v < m->vertex_count; v++)
+    key_of(t, v, &keys[v]);
   if (!sort_corners(t, keys)) {
     tlod_context_free(t->ctx, keys);
     return TLOD_ERROR_OUT_OF_MEMORY;
@@ -120,6 +149,7 @@ static tlod_result number_corners(tess* t) {
     t->corner_id[keys[x].vertex] = id - 1;
   }
   t->corner_count = id;
+  record_groups(t, keys);
   tlod_context_free(t->ctx, keys);
   return TLOD_SUCCESS;
 }
@@ -144,6 +174,11 @@ static bool owns_edge(const tess* t, uint32_t f, tlod_edge_link link) {
   return lf != lg ? lf > lg : f < link.face;
 }
 
+uint32_t _tlod_cpu_slot_owner(const tess* t, uint32_t f, uint32_t e) {
+  tlod_edge_link link;
+  return edge_shared(t, f, e, &link) && !owns_edge(t, f, link) ? link.face * 4 + link.edge : f * 4 + e;
+}
+
 static void assign_slots(tess* t) {
   const tlod_mesh_view* m = &t->m;
   uint32_t base = t->corner_count;
@@ -151,12 +186,8 @@ static void assign_slots(tess* t) {
     if (level_of(t, f) < 0) continue;
     for (uint32_t e = 0; e < m->face_corners[f]; e++) {
       uint32_t slot = f * 4 + e;
-      tlod_edge_link link;
-      if (edge_shared(t, f, e, &link) && !owns_edge(t, f, link)) {
-        t->slot_owner[slot] = link.face * 4 + link.edge;
-        continue;
-      }
-      t->slot_owner[slot] = slot;
+      t->slot_owner[slot] = _tlod_cpu_slot_owner(t, f, e);
+      if (t->slot_owner[slot] != slot) continue;
       t->slot_level[slot] = (uint8_t)level_of(t, f);
       t->slot_base[slot] = base;
       base += (1u << level_of(t, f)) - 1;
@@ -305,6 +336,14 @@ static const float corner_uv[2][4][2] = {{{1, 0}, {0, 1}, {0, 0}, {0, 0}}, {{0, 
 static void eval_corners(tess* t) {
   if (t->d.no_weld) return;
   tlod_cpu_mesh* o = t->out;
+  if (t->positions_only) {
+    for (uint32_t c = 0; c < t->corner_count; c++) {
+      uint32_t v = t->corner_src[c];
+      memcpy(o->positions + 3 * (size_t)c, t->m.positions[v], sizeof(float[3]));
+      if (o->normals) memcpy(o->normals + 3 * (size_t)c, t->m.normals[v], sizeof(float[3]));
+    }
+    return;
+  }
   for (uint32_t c = 0; c < t->corner_count; c++) {
     uint32_t v = t->corner_src[c];
     put(t, c, t->m.positions[v], t->m.normals[v], UINT32_MAX, 0.0f, 0.0f, attr_at(t->m.attributes, v, t->na));
@@ -340,7 +379,7 @@ static void emit_patches(void* data, uint32_t begin, uint32_t end, uint32_t work
 
 /* ---- driver ---------------------------------------------------------------- */
 
-static void tess_free(tess* t) {
+void _tlod_cpu_tess_free(tess* t) {
   for (int sh = 0; sh < 2; sh++) {
     for (int l = 0; l <= TLOD_MAX_LEVEL; l++) {
       tlod_context_free(t->ctx, t->tables[sh][l].kind);
@@ -356,9 +395,9 @@ static void tess_free(tess* t) {
     tlod_context_free(t->ctx, t->work[w].cpos);
     tlod_context_free(t->ctx, t->work[w].cnrm);
   }
-  void* arrays[] = {t->level,      t->morph,       t->corner_id,     t->corner_src, t->slot_owner,
+  void* arrays[] = {t->level,      t->morph_buf,   t->corner_id,     t->corner_src, t->slot_owner,
                     t->slot_level, t->slot_base,   t->interior_base, t->tri_base,   t->strip_tris,
-                    t->work,       t->strip_verts, t->strip_attr};
+                    t->work,       t->strip_verts, t->strip_attr,    t->group,      t->group_same};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(t->ctx, arrays[i]);
 }
@@ -372,6 +411,8 @@ void tlod_cpu_mesh_destroy(tlod_context* ctx, tlod_cpu_mesh* mesh) {
   tlod_context_free(ctx, mesh->attributes);
   tlod_context_free(ctx, mesh->vertex_patch);
   tlod_context_free(ctx, mesh->vertex_uv);
+  _tlod_cpu_keep_free(ctx, mesh->keep);
+  tlod_context_free(ctx, mesh->keep);
   tlod_context_free(ctx, mesh);
 }
 
@@ -392,7 +433,7 @@ static tlod_result check_strips(const tess* t, const tlod_draw_list* dl) {
   return TLOD_SUCCESS;
 }
 
-static tlod_result take_draw_list(tess* t) {
+tlod_result _tlod_cpu_take_draw_list(tess* t) {
   const tlod_draw_list* dl = t->d.draw_list;
   if (dl->patch_count != t->m.face_count)
     return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT,
@@ -400,7 +441,8 @@ static tlod_result take_draw_list(tess* t) {
                              t->m.face_count);
   if (dl->instance_count > 0 && !dl->instances)
     return tlod_context_fail(t->ctx, TLOD_ERROR_INVALID_ARGUMENT, "tlod_cpu_tessellate: draw list instances is NULL");
-  t->morph = tlod_context_alloc(t->ctx, sizeof(*t->morph) * (t->m.face_count + 1u));
+  if (!t->morph_buf) t->morph_buf = tlod_context_alloc(t->ctx, sizeof(*t->morph) * (t->m.face_count + 1u));
+  t->morph = t->morph_buf;
   if (!t->morph) return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
   for (uint32_t f = 0; f < t->m.face_count; f++)
     for (int k = 0; k < 5; k++)
@@ -432,7 +474,7 @@ static tlod_result resolve_levels(tess* t) {
     if (lv >= 0 && build_table(t, shape_of(t, f), (uint32_t)lv) != TLOD_SUCCESS)
       return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
   }
-  return t->d.draw_list ? take_draw_list(t) : TLOD_SUCCESS;
+  return t->d.draw_list ? _tlod_cpu_take_draw_list(t) : TLOD_SUCCESS;
 }
 
 static tlod_result number_vertices(tess* t) {
@@ -497,23 +539,21 @@ static bool grow_keep(const tlod_context* ctx, void** p, size_t elem, uint32_t c
   return grown != NULL;
 }
 
-static bool ensure(const tlod_context* ctx, void** p, size_t elem, uint32_t count, uint32_t capacity) {
-  return grow_keep(ctx, p, elem, count, capacity, 0);
-}
-
 /* The per-vertex arrays for n vertices; keep: vertices [0, keep) survive a
  * growth (the strip vertices come after the pattern vertices are written). */
 static bool vertex_arrays(tess* t, uint32_t n, uint32_t keep) {
   tlod_cpu_mesh* o = t->out;
-  uint32_t cap = o->vertex_capacity;
-  bool ok = grow_keep(t->ctx, (void**)&o->positions, sizeof(float) * 3, n, cap, keep);
-  ok = grow_keep(t->ctx, (void**)&o->vertex_patch, sizeof(uint32_t), n, o->vertex_patch ? cap : 0, keep) && ok;
-  ok = grow_keep(t->ctx, (void**)&o->vertex_uv, sizeof(float) * 2, n, o->vertex_uv ? cap : 0, keep) && ok;
+  /* An array made afresh (normals after a no_normals call) gets the whole
+   * capacity: the next call may use up to it without growing. */
+  uint32_t cap = o->positions ? o->vertex_capacity : 0, full = n > cap ? n : cap;
+  bool ok = grow_keep(t->ctx, (void**)&o->positions, sizeof(float) * 3, full, cap, keep);
+  ok = grow_keep(t->ctx, (void**)&o->vertex_patch, sizeof(uint32_t), full, o->vertex_patch ? cap : 0, keep) && ok;
+  ok = grow_keep(t->ctx, (void**)&o->vertex_uv, sizeof(float) * 2, full, o->vertex_uv ? cap : 0, keep) && ok;
   if (t->d.no_normals) {
     tlod_context_free(t->ctx, o->normals);
     o->normals = NULL;
   } else {
-    ok = grow_keep(t->ctx, (void**)&o->normals, sizeof(float) * 3, n, o->normals ? cap : 0, keep) && ok;
+    ok = grow_keep(t->ctx, (void**)&o->normals, sizeof(float) * 3, full, o->normals ? cap : 0, keep) && ok;
   }
   /* The attribute array's capacity counts vectors of the last call's count. */
   uint32_t acap = o->attributes && o->attribute_count == t->na ? cap : 0;
@@ -521,10 +561,10 @@ static bool vertex_arrays(tess* t, uint32_t n, uint32_t keep) {
     tlod_context_free(t->ctx, o->attributes);
     o->attributes = NULL;
   } else {
-    ok = grow_keep(t->ctx, (void**)&o->attributes, sizeof(float[4]) * t->na, n, acap, keep) && ok;
+    ok = grow_keep(t->ctx, (void**)&o->attributes, sizeof(float[4]) * t->na, full, acap, keep) && ok;
   }
   o->attribute_count = t->na;
-  o->vertex_capacity = ok && n > cap ? n : (ok ? cap : 0);
+  o->vertex_capacity = ok ? full : 0;
   o->vertex_count = n;
   return ok;
 }
@@ -535,9 +575,9 @@ static tlod_result alloc_output(tess* t, bool indices) {
   o->pattern_triangles = t->pattern_tris;
   o->strip_triangles = t->strip_count;
   o->triangle_count = t->pattern_tris + t->strip_count;
-  uint32_t cap = o->triangle_capacity, n = o->triangle_count;
-  bool ok = ensure(t->ctx, (void**)&o->indices, sizeof(uint32_t) * 3, n, cap);
-  ok = ensure(t->ctx, (void**)&o->triangle_patch, sizeof(uint32_t), n, cap) && ok;
+  uint32_t cap = o->triangle_capacity, n = o->triangle_count, keep = t->positions_only ? t->pattern_tris : 0;
+  bool ok = grow_keep(t->ctx, (void**)&o->indices, sizeof(uint32_t) * 3, n, cap, keep);
+  ok = grow_keep(t->ctx, (void**)&o->triangle_patch, sizeof(uint32_t), n, cap, keep) && ok;
   o->triangle_capacity = ok && n > cap ? n : (ok ? cap : 0);
   return ok ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
 }
@@ -558,6 +598,22 @@ static tlod_result emit_strip_vertices(tess* t) {
   return TLOD_SUCCESS;
 }
 
+/* After the pattern vertices: the strips, and (topology not kept) the
+ * pattern triangles. */
+static tlod_result finish(tess* t) {
+  if (_tlod_cpu_stitch(t) != TLOD_SUCCESS || emit_strip_vertices(t) != TLOD_SUCCESS ||
+      alloc_output(t, true) != TLOD_SUCCESS)
+    return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for triangles");
+  if (!t->positions_only)
+    tlod_context_parallel_for(t->ctx, t->d.reference ? emit_patches : _tlod_cpu_fast_emit, t, t->m.face_count);
+  if (t->strip_count) {
+    memcpy(t->out->indices + 3 * (size_t)t->pattern_tris, t->strip_tris, sizeof(uint32_t) * 3 * t->strip_count);
+    for (uint32_t k = 0; k < t->strip_count; k++)
+      t->out->triangle_patch[t->pattern_tris + k] = UINT32_MAX;
+  }
+  return TLOD_SUCCESS;
+}
+
 static tlod_result run(tess* t) {
   tlod_result r = resolve_levels(t);
   if (r != TLOD_SUCCESS) return r;
@@ -566,18 +622,33 @@ static tlod_result run(tess* t) {
     return r == TLOD_ERROR_UNSUPPORTED
                ? tlod_context_fail(t->ctx, r, "tlod_cpu_tessellate: output would exceed 2^30 triangles")
                : tlod_context_fail(t->ctx, r, "tlod_cpu_tessellate: out of memory for %u vertices", t->vertex_count);
+  t->pattern_verts = t->vertex_count;
   eval_corners(t);
   tlod_context_parallel_for(t->ctx, t->d.reference ? eval_patches : _tlod_cpu_fast_eval, t, t->m.face_count);
-  if (_tlod_cpu_stitch(t) != TLOD_SUCCESS || emit_strip_vertices(t) != TLOD_SUCCESS ||
-      alloc_output(t, true) != TLOD_SUCCESS)
-    return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for triangles");
-  tlod_context_parallel_for(t->ctx, t->d.reference ? emit_patches : _tlod_cpu_fast_emit, t, t->m.face_count);
-  if (t->strip_count) {
-    memcpy(t->out->indices + 3 * (size_t)t->pattern_tris, t->strip_tris, sizeof(uint32_t) * 3 * t->strip_count);
-    for (uint32_t k = 0; k < t->strip_count; k++)
-      t->out->triangle_patch[t->pattern_tris + k] = UINT32_MAX;
-  }
-  return TLOD_SUCCESS;
+  return finish(t);
+}
+
+/* A kept topology (cpu_keep.c): the last call's numbering, indices and
+ * (patch, u, v) stand; positions and normals are rewritten and the strips
+ * redone. */
+static tlod_result run_kept(tess* t) {
+  t->positions_only = true;
+  if (!vertex_arrays(t, t->vertex_count, t->vertex_count))
+    return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for %u vertices",
+                             t->vertex_count);
+  eval_corners(t);
+  tlod_context_parallel_for(t->ctx, _tlod_cpu_fast_eval, t, t->m.face_count);
+  return finish(t);
+}
+
+/* After a successful call: t's arrays kept for the next (made on first
+ * use), or freed where they cannot be kept. */
+static tlod_result keep_arrays(tlod_context* ctx, tlod_cpu_mesh* mesh, tess* t) {
+  if (!mesh->keep && !t->d.reference && t->na == 0) mesh->keep = tlod_context_calloc(ctx, 1, sizeof(cpu_keep));
+  if (!mesh->keep) _tlod_cpu_tess_free(t);
+  bool wanted = !t->d.reference && t->na == 0;
+  if (mesh->keep ? _tlod_cpu_keep_store(mesh->keep, t) : !wanted) return TLOD_SUCCESS;
+  return tlod_context_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory");
 }
 
 tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
@@ -599,8 +670,12 @@ tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surf
   t.na = t.m.attribute_count;
   mesh->vertex_count = mesh->triangle_count = 0;
   mesh->pattern_triangles = mesh->strip_triangles = mesh->strips = mesh->folds_skipped = 0;
-  tlod_result r = run(&t);
-  tess_free(&t);
+  bool kept = _tlod_cpu_keep_take(mesh->keep, &t);
+  tlod_result r = kept ? run_kept(&t) : run(&t);
+  if (r == TLOD_SUCCESS)
+    r = keep_arrays(ctx, mesh, &t);
+  else
+    _tlod_cpu_tess_free(&t);
   if (r != TLOD_SUCCESS) mesh->vertex_count = mesh->triangle_count = 0;
   return r;
 }

@@ -55,6 +55,19 @@
  *   attributes, or no_weld takes the point-by-point write of the reference
  *   after the same vectorised evaluation.
  *
+ * KEPT TOPOLOGY (tlod_cpu_tessellate_into, fast path)
+ *   The mesh remembers the topology of its last call: when the levels (or
+ *   the draw list's levels, and the edges its blends make shared), the
+ *   surface mesh's faces, edge links (creases, seams, smooth flags), weld
+ *   ids and the order its split vertices' normals and alphas sort in, the
+ *   pattern grid, the thread count and no_weld are the same (compared
+ *   exactly, against copies), the indices, triangle_patch, vertex_patch and
+ *   vertex_uv are left as written and only positions and normals are
+ *   rewritten (strips are redone: their folds compare positions). The
+ *   result is bitwise what a fresh call gives. Hence the arrays of a mesh
+ *   passed to _into are read-only to the caller. Meshes with attributes and .reference calls always take the
+ *   full path.
+ *
  * VERTEX ATTRIBUTES AND (PATCH, U, V)
  *   Every output vertex carries the mesh's attributes (tesslod/core.h,
  *   "Vertex attributes"), evaluated with tlod_mesh_eval_attributes_grid() at
@@ -128,6 +141,9 @@ typedef struct tlod_cpu_mesh {
   float (*attributes)[4];
   uint32_t* vertex_patch; /* patch (kept face) of each output vertex, UINT32_MAX for an unused corner */
   float (*vertex_uv)[2];  /* (u, v) of each output vertex on vertex_patch */
+  /* Private: the kept topology (KEPT TOPOLOGY), made by the first _into
+   * call through the context's allocator; NULL in a zeroed struct. */
+  struct tlod_cpu_keep* keep;
 } tlod_cpu_mesh;
 
 /* Tessellates every patch of the surface. patterns must reach the largest
@@ -135,9 +151,10 @@ typedef struct tlod_cpu_mesh {
  * and freed with tlod_cpu_mesh_destroy(). */
 TLOD_API tlod_result tlod_cpu_tessellate(tlod_context* ctx, const tlod_surface* surface, const tlod_patterns* patterns,
                                          const tlod_cpu_tessellate_desc* desc, tlod_cpu_mesh** out);
-/* The same into a mesh from an earlier call, whose arrays are reused when
- * large enough and grown otherwise: a per-frame caller then pays no
- * allocation or page faults. On failure the mesh is left empty (counts 0). */
+/* The same into a mesh from an earlier call (or a zeroed struct), whose arrays are reused when large
+ * enough and grown otherwise: a per-frame caller then pays no allocation or
+ * page faults, and an unchanged topology is not rewritten (KEPT TOPOLOGY).
+ * On failure the mesh is left empty (counts 0). */
 TLOD_API tlod_result tlod_cpu_tessellate_into(tlod_context* ctx, const tlod_surface* surface,
                                               const tlod_patterns* patterns, const tlod_cpu_tessellate_desc* desc,
                                               tlod_cpu_mesh* mesh);
