@@ -790,10 +790,12 @@ static int lanes_case(const mesh_data* d, tlod_simd simd, uint32_t threads, tlod
   if (tlod_context_create(&cd, &ctx) != TLOD_SUCCESS) return 1;
   tlod_mesh* mesh = make_mesh(ctx, d);
   tlod_surface* s = NULL;
-  int bad = !mesh || tlod_surface_create(ctx, mesh,
-                                         &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha_mode = am,
-                                                              .alpha = 0.6f, .error_tables = tables},
-                                         &s) != TLOD_SUCCESS;
+  int bad =
+      !mesh ||
+      tlod_surface_create(
+          ctx, mesh,
+          &(tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha_mode = am, .alpha = 0.6f, .error_tables = tables},
+          &s) != TLOD_SUCCESS;
   for (uint32_t f = 0; !bad && f < tlod_surface_patch_count(s); f++) {
     tlod_patch_info got = tlod_surface_patch(s, f);
     if (got.corner_count != 4) continue;
