@@ -21,6 +21,9 @@
 
 #include "scheduler_frame.h"
 
+/* _tlod_list_chunk.blocks holds a bit per block of a chunk. */
+_Static_assert(_TLOD_LIST_CHUNK / FAST_BLOCK <= 64, "a chunk has at most 64 blocks");
+
 /* The frame's arrays as locals: the per-patch int8 level stores may alias
  * anything, and read through fr->vs every pointer would be reloaded after
  * each of them. */
@@ -218,7 +221,7 @@ static void scan_chunk(const _tlod_frame* fr, const list_arrays* a, uint32_t c, 
     uint32_t b0, b1;
     block_range(f0, f1, k, &b0, &b1);
     if (block_visible(a->visible, b0, b1)) {
-      ch->blocks |= 1u << k;
+      ch->blocks |= UINT64_C(1) << k;
     } else {
       memset(a->levels + b0, -1, b1 - b0);
       ch->culled += b1 - b0;
@@ -248,7 +251,7 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
     chunk_range(fr, c, &f0, &f1);
     for (uint32_t k = 0; ch->blocks >> k; k++) {
       block_range(f0, f1, k, &b0, &b1);
-      if (ch->blocks & (1u << k)) count_block(&a, ch->counts, &t, b0, b1);
+      if (ch->blocks & (UINT64_C(1) << k)) count_block(&a, ch->counts, &t, b0, b1);
     }
     ch->counts[t.run_bucket] += t.run_count;
     ch->e_max_min = t.e_min, ch->e_max_max = t.e_max;
@@ -310,7 +313,7 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
     chunk_range(fr, c, &f0, &f1);
     for (uint32_t k = 0; ch->blocks >> k; k++) {
       block_range(f0, f1, k, &b0, &b1);
-      if (ch->blocks & (1u << k)) write_block(&a, &w, b0, b1);
+      if (ch->blocks & (UINT64_C(1) << k)) write_block(&a, &w, b0, b1);
     }
     for (const tlod_draw_strip* st = fr->vs->strips + ch->strip_first; w.strip && st < w.strip; st++)
       ch->strip_triangles += strip_triangles(a.pat, st);

@@ -47,7 +47,7 @@ typedef struct _tlod_list_chunk {
   float e_max_min, e_max_max;
   /* Bit k: block k (FAST_BLOCK patches from the chunk's first) has a
    * visible patch; the other blocks are culled and never read again. */
-  uint32_t blocks;
+  uint64_t blocks; /* bit k: block k; _TLOD_LIST_CHUNK / FAST_BLOCK <= 64 (scheduler_draw_list.c) */
 } _tlod_list_chunk;
 
 /* What the draw list of one view was made from (scheduler_coherence.c). */

@@ -15,6 +15,7 @@
 #include "tesslod/lod.h"
 #include "test.h"
 #include "test_camera.h"
+#include "test_fixture.h"
 #include "test_lod.h"
 
 #define MAX_LEVEL 6
@@ -446,18 +447,6 @@ static bool big_deform(big_world* w, float t) {
   tlod_result r = tlod_mesh_update(w->mesh, p, 0, NULL, 0);
   free(p);
   return r == TLOD_SUCCESS && tlod_surface_refresh(w->surf, NULL) == TLOD_SUCCESS;
-}
-
-/* lod.h: vertex_depth holds d_i for every vertex of a visible patch (the
- * others only culled patches use may be stale on the fast path): those,
- * bitwise; the rest of the lists through draw_lists_equal. */
-static bool visible_depths_equal(const tlod_draw_list* a, const tlod_draw_list* b, const tlod_mesh* m) {
-  for (uint32_t q = 0; q < a->instance_count; q++) {
-    uint32_t c[4], n = tlod_mesh_face_corners(m, a->instances[q].patch, c);
-    for (uint32_t j = 0; j < n; j++)
-      if (memcmp(&a->vertex_depth[c[j]], &b->vertex_depth[c[j]], sizeof(float))) return false;
-  }
-  return true;
 }
 
 /* Counts of frames with every patch in view, every patch culled, and some of each. */

@@ -40,4 +40,16 @@ static inline bool fixture_make(fixture* fx, tlod_context* ctx, const shape* s, 
   return true;
 }
 
+/* lod.h: vertex_depth holds d_i for every vertex of a visible patch (the
+ * others only culled patches use may be stale on the fast path): those,
+ * bitwise. */
+static inline bool visible_depths_equal(const tlod_draw_list* a, const tlod_draw_list* b, const tlod_mesh* m) {
+  for (uint32_t q = 0; q < a->instance_count; q++) {
+    uint32_t c[4], n = tlod_mesh_face_corners(m, a->instances[q].patch, c);
+    for (uint32_t j = 0; j < n; j++)
+      if (memcmp(&a->vertex_depth[c[j]], &b->vertex_depth[c[j]], sizeof(float))) return false;
+  }
+  return true;
+}
+
 #endif
