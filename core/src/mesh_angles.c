@@ -37,27 +37,11 @@ typedef void (*face_kernel)(_tlod_face_lanes* lanes, uint32_t n);
 #include "simd_instances.inc"
 
 void _tlod_corner_angles(tlod_simd simd, const double* y2, const double* x, double* w, uint32_t n) {
-  angle_kernel k = angles_scalar;
-#if defined(__x86_64__)
-  if (simd == TLOD_SIMD_AVX512)
-    k = angles_avx512;
-  else if (simd == TLOD_SIMD_AVX2)
-    k = angles_avx2;
-  else if (simd == TLOD_SIMD_SSE2)
-    k = angles_sse2;
-#endif
+  angle_kernel k = KERNEL_FOR(angles, simd);
   k(y2, x, w, n);
 }
 
 void _tlod_face_normals(tlod_simd simd, _tlod_face_lanes* lanes, uint32_t n) {
-  face_kernel k = faces_scalar;
-#if defined(__x86_64__)
-  if (simd == TLOD_SIMD_AVX512)
-    k = faces_avx512;
-  else if (simd == TLOD_SIMD_AVX2)
-    k = faces_avx2;
-  else if (simd == TLOD_SIMD_SSE2)
-    k = faces_sse2;
-#endif
+  face_kernel k = KERNEL_FOR(faces, simd);
   k(lanes, n);
 }
