@@ -590,6 +590,25 @@ TEST(xml_array_header_past_the_file_refused) {
             "%s", g_err);
 }
 
+/* A compressed array whose header lists a billion blocks: VTK allocated its per-block tables
+ * (8 GB) before reading them (fuzz_vtk: tests/data/fuzz/fuzz_vtk/compressed_block_count_huge.vtp). */
+TEST(xml_compressed_block_count_past_the_file_refused) {
+  size_t size = 0;
+  char* text = test_read_file(TLOD_TEST_DATA_DIR "/vtk-data/cow.vtp", &size);
+  CHECK(text);
+  char* app = strstr(text, "<AppendedData");
+  char* u = app ? strchr(app, '_') : NULL;
+  /* Base64 of 1049048133 blocks of 0 bytes (little-endian UInt32 words): 0 bytes announced */
+  if (u) memcpy(u + 1, "RT6HPgAAAAAAAAAA", 16);
+  tlod_import_result* r = NULL;
+  const tlod_result res = u ? tlod_import_memory("blocks.vtp", text, size, NULL, &r, g_err, sizeof g_err) : TLOD_SUCCESS;
+  free(text);
+  CHECK(u);
+  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
+                strstr(g_err, "blocks.vtp: DataArray 0: its compression header lists 1049048133 blocks"),
+            "%s", g_err);
+}
+
 TEST(unsupported_cell_type_named) {
   char t[1024];
   snprintf(t, sizeof t,
@@ -823,6 +842,7 @@ int main(void) {
   RUN(truncated_file_refused);
   RUN(hostile_files_refused_naming_the_fault);
   RUN(xml_array_header_past_the_file_refused);
+  RUN(xml_compressed_block_count_past_the_file_refused);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);

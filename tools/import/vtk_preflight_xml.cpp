@@ -144,6 +144,16 @@ private:
     connectivity_ = UINT64_MAX;
   }
 
+  // A compressed array's header lists every block's compressed size after its first 3 words, and
+  // VTK allocates tables of that many blocks before reading them: the list must be in the file.
+  void block_table(uint64_t i, uint64_t blocks, const char* p, bool base64) const {
+    const uint64_t left = uint64_t(end_ - p), fits = (base64 ? left / 4 * 3 + 3 : left) / word_;
+    if (blocks > fits || 3 + blocks > fits)
+      fail(TLOD_ERROR_PARSE,
+           format("DataArray %llu: its compression header lists %llu blocks, more than the file holds",
+                  (unsigned long long)i, (unsigned long long)blocks));
+  }
+
   void check(uint64_t i, const std::string& h, const char* p, bool base64) {
     uint64_t bytes;
     if (!compressed_) {
@@ -154,8 +164,10 @@ private:
                     (unsigned long long)bytes, (unsigned long long)(end_ - p)));
     } else {
       const uint64_t blocks = word(h, 0), block = word(h, 1), last = word(h, 2);
-      if (blocks > (uint64_t(1) << 32) || (blocks && __builtin_mul_overflow(blocks - 1, block, &bytes)) ||
-          __builtin_add_overflow(blocks ? bytes : 0, last ? last : (blocks ? block : 0), &bytes))
+      block_table(i, blocks, p, base64);
+      if ((blocks && __builtin_mul_overflow(blocks - 1, block, &bytes)) ||
+          __builtin_add_overflow(blocks ? bytes : 0, last ? last : (blocks ? block : 0), &bytes) ||
+          __builtin_add_overflow(bytes, blocks * 16, &bytes)) // VTK's two per-block tables
         bytes = UINT64_MAX;
     }
     if (bytes > room_)
