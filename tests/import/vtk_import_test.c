@@ -598,14 +598,31 @@ TEST(xml_compressed_block_count_past_the_file_refused) {
   CHECK(text);
   char* app = strstr(text, "<AppendedData");
   char* u = app ? strchr(app, '_') : NULL;
-  /* Base64 of 1049048133 blocks of 0 bytes (little-endian UInt32 words): 0 bytes announced */
+  /* Base64 of 1049050693 blocks of 0 bytes (little-endian UInt32 words): 0 bytes announced */
   if (u) memcpy(u + 1, "RT6HPgAAAAAAAAAA", 16);
   tlod_import_result* r = NULL;
-  const tlod_result res = u ? tlod_import_memory("blocks.vtp", text, size, NULL, &r, g_err, sizeof g_err) : TLOD_SUCCESS;
+  const tlod_result res =
+      u ? tlod_import_memory("blocks.vtp", text, size, NULL, &r, g_err, sizeof g_err) : TLOD_SUCCESS;
   free(text);
   CHECK(u);
   CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
-                strstr(g_err, "blocks.vtp: DataArray 0: its compression header lists 1049048133 blocks"),
+                strstr(g_err, "blocks.vtp: DataArray 0: its compression header lists 1049050693 blocks"),
+            "%s", g_err);
+}
+
+/* Offsets past an empty connectivity array (UInt32 headers read from UInt64 data): the check
+ * skipped empty connectivity, and VTK asked for 2^54 bytes (fuzz_vtk reproducer; its first byte
+ * picks the format). */
+TEST(xml_offsets_past_empty_connectivity_refused) {
+  size_t size = 0;
+  char* text = test_read_file(TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/offsets_past_empty_connectivity.vtp", &size);
+  CHECK(text && size > 1);
+  tlod_import_result* r = NULL;
+  const tlod_result res = tlod_import_memory("offsets.vtp", text + 1, size - 1, NULL, &r, g_err, sizeof g_err);
+  free(text);
+  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
+                strstr(g_err, "offsets.vtp: DataArray 11 (offsets): the last offset ") &&
+                strstr(g_err, " is past the 0 connectivity ids"),
             "%s", g_err);
 }
 
@@ -843,6 +860,7 @@ int main(void) {
   RUN(hostile_files_refused_naming_the_fault);
   RUN(xml_array_header_past_the_file_refused);
   RUN(xml_compressed_block_count_past_the_file_refused);
+  RUN(xml_offsets_past_empty_connectivity_refused);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);

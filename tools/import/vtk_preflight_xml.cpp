@@ -127,11 +127,12 @@ private:
     if (!xml_attribute(b, e, "Name", &name) || (name != "offsets" && name != "connectivity")) return;
     xml_attribute(b, e, "type", &type);
     const size_t size = type == "Int64" || type == "UInt64" ? 8 : type == "Int32" || type == "UInt32" ? 4 : 0;
-    if (size == 0 || bytes < size) return;
-    if (name == "connectivity") {
+    if (size == 0) return;
+    if (name == "connectivity") { // an empty one too: then any offset past 0 is past it
       connectivity_ = bytes / size;
       return;
     }
+    if (bytes < size) return;
     const std::string all = base64 ? base64_prefix(p, end_, word_ + bytes) : std::string();
     const char* last = base64 ? all.data() + word_ + bytes - size : p + word_ + bytes - size;
     if ((base64 && all.size() < word_ + bytes) || connectivity_ == UINT64_MAX) return;
