@@ -626,6 +626,32 @@ TEST(xml_offsets_past_empty_connectivity_refused) {
             "%s", g_err);
 }
 
+/* Compressed cell offsets: the pre-flight inflates the offsets' last block (base64 and raw
+ * appended data, tests/data/vtk/write_compressed.py): the files with a last offset of 6 import,
+ * those with 2^31 - 1 over 6 connectivity ids are refused before VTK sizes the connectivity. */
+TEST(xml_compressed_offsets_checked) {
+  static const char* const enc[2] = {"base64", "raw"};
+  char path[512];
+  for (int k = 0; k < 2; ++k) {
+    snprintf(path, sizeof path, TLOD_TEST_DATA_DIR "/vtk/compressed_%s.vtp", enc[k]);
+    tlod_import_result* r = NULL;
+    CHECK_MSG(import_path(path, &r) == TLOD_SUCCESS, "%s", g_err);
+    const uint32_t faces = r->face_count;
+    tlod_import_free(r);
+    CHECK(faces == 2);
+    size_t size = 0;
+    snprintf(path, sizeof path, TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/compressed_offsets_past_connectivity_%s.vtp",
+             enc[k]);
+    char* text = test_read_file(path, &size);
+    CHECK(text && size > 1);
+    const tlod_result res = tlod_import_memory("c.vtp", text + 1, size - 1, NULL, &r, g_err, sizeof g_err);
+    free(text);
+    CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
+                  strstr(g_err, "c.vtp: DataArray 2 (offsets): the last offset 2147483647 is past the 6 connectivity"),
+              "%s: %s", enc[k], g_err);
+  }
+}
+
 TEST(unsupported_cell_type_named) {
   char t[1024];
   snprintf(t, sizeof t,
@@ -861,6 +887,7 @@ int main(void) {
   RUN(xml_array_header_past_the_file_refused);
   RUN(xml_compressed_block_count_past_the_file_refused);
   RUN(xml_offsets_past_empty_connectivity_refused);
+  RUN(xml_compressed_offsets_checked);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);

@@ -7,6 +7,12 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
+
+#include <vtkLZ4DataCompressor.h>
+#include <vtkLZMADataCompressor.h>
+#include <vtkSmartPointer.h>
+#include <vtkZLibDataCompressor.h>
 
 #include "import_error.hpp"
 #include "vtk_preflight.hpp"
@@ -42,6 +48,23 @@ std::string base64_prefix(const char* p, const char* end, size_t want) {
   return out;
 }
 
+// The first byte after n base64 characters (alphabet or '=') of [p, end), whitespace skipped.
+const char* skip_base64(const char* p, const char* end, uint64_t n) {
+  for (; p < end && n > 0; ++p)
+    if (base64_value(*p) >= 0 || *p == '=') --n;
+  return p;
+}
+
+// Inflates one block with the file's compressor (VTK's own classes, as its reader does); false
+// when the compressor is not one VTK knows or the block does not inflate to exactly raw bytes.
+bool inflate(const std::string& compressor, const unsigned char* src, size_t n, unsigned char* out, size_t raw) {
+  vtkSmartPointer<vtkDataCompressor> c;
+  if (compressor == "vtkZLibDataCompressor") c = vtkSmartPointer<vtkZLibDataCompressor>::New();
+  if (compressor == "vtkLZ4DataCompressor") c = vtkSmartPointer<vtkLZ4DataCompressor>::New();
+  if (compressor == "vtkLZMADataCompressor") c = vtkSmartPointer<vtkLZMADataCompressor>::New();
+  return c && c->Uncompress(src, n, out, raw) == raw;
+}
+
 class XmlHeaders {
 public:
   XmlHeaders(const char* data, size_t size, size_t room) : data_(data), end_(data + size), room_(room) {}
@@ -57,6 +80,7 @@ private:
   size_t room_;
   size_t word_ = 4;
   bool big_endian_ = false, compressed_ = false, appended_base64_ = false;
+  std::string compressor_;
   const char* appended_ = nullptr;     // first byte after the '_' of <AppendedData>
   uint64_t index_ = 0;                 // DataArray number, for messages
   uint64_t connectivity_ = UINT64_MAX; // ids of the last connectivity array (UINT64_MAX: none pending)
@@ -67,6 +91,7 @@ private:
       if (xml_attribute(b, e, "header_type", &v)) word_ = v == "UInt64" ? 8 : 4;
       if (xml_attribute(b, e, "byte_order", &v)) big_endian_ = v == "BigEndian";
       compressed_ = xml_attribute(b, e, "compressor", &v) && !v.empty();
+      compressor_ = compressed_ ? v : std::string();
     });
     const char* tag = static_cast<const char*>(memmem(data_, size_t(end_ - data_), "<AppendedData", 13));
     if (!tag) return;
@@ -115,13 +140,12 @@ private:
     const std::string h = header(p, base64, words);
     if (h.size() < words * word_)
       fail(TLOD_ERROR_PARSE, format("DataArray %llu: its data header runs past the file", (unsigned long long)i));
-    check(i, h, p, base64);
-    if (!compressed_) cells(i, b, e, word(h, 0), p, base64);
+    cells(i, b, e, check(i, h, p, base64), p, base64);
   }
 
   // VTK sizes a cell array's connectivity by its last offset before reading the connectivity: a
-  // last offset past the connectivity's own size (its header) would make VTK allocate it. Checked
-  // where the data is not compressed (the values can be read without inflating).
+  // last offset past the connectivity's own size (its header) would make VTK allocate it.
+  // Compressed data: the offsets' last block is inflated to read it.
   void cells(uint64_t i, const char* b, const char* e, uint64_t bytes, const char* p, bool base64) {
     std::string name, type;
     if (!xml_attribute(b, e, "Name", &name) || (name != "offsets" && name != "connectivity")) return;
@@ -132,17 +156,52 @@ private:
       connectivity_ = bytes / size;
       return;
     }
-    if (bytes < size) return;
-    const std::string all = base64 ? base64_prefix(p, end_, word_ + bytes) : std::string();
-    const char* last = base64 ? all.data() + word_ + bytes - size : p + word_ + bytes - size;
-    if ((base64 && all.size() < word_ + bytes) || connectivity_ == UINT64_MAX) return;
-    uint64_t v = 0;
-    for (size_t k = 0; k < size; ++k)
-      v = v << 8 | static_cast<unsigned char>(last[big_endian_ ? k : size - 1 - k]);
+    uint64_t v;
+    if (bytes < size || connectivity_ == UINT64_MAX) return;
+    if (!(compressed_ ? compressed_last(p, base64, size, &v) : raw_last(p, base64, bytes, size, &v))) return;
     if (v > connectivity_)
       fail(TLOD_ERROR_PARSE, format("DataArray %llu (offsets): the last offset %llu is past the %llu connectivity ids",
                                     (unsigned long long)i, (unsigned long long)v, (unsigned long long)connectivity_));
     connectivity_ = UINT64_MAX;
+  }
+
+  // The value of size bytes at q in the file's byte order.
+  uint64_t value(const char* q, size_t size) const {
+    uint64_t v = 0;
+    for (size_t k = 0; k < size; ++k)
+      v = v << 8 | static_cast<unsigned char>(q[big_endian_ ? k : size - 1 - k]);
+    return v;
+  }
+
+  // The last value of an uncompressed array of bytes at p (header first); false if cut short.
+  bool raw_last(const char* p, bool base64, uint64_t bytes, size_t size, uint64_t* v) const {
+    const std::string all = base64 ? base64_prefix(p, end_, word_ + bytes) : std::string();
+    if (base64 && all.size() < word_ + bytes) return false;
+    *v = value(base64 ? all.data() + word_ + bytes - size : p + word_ + bytes - size, size);
+    return true;
+  }
+
+  // The last value of a compressed array at p: its last block, found after the header (its own
+  // base64 run when encoded) and the blocks before it, inflated. False where VTK's read will
+  // fail anyway (short data, a block that does not inflate) or the value spans two blocks.
+  bool compressed_last(const char* p, bool base64, size_t size, uint64_t* v) const {
+    const std::string h3 = header(p, base64, 3);
+    const uint64_t blocks = word(h3, 0), raw = word(h3, 2) ? word(h3, 2) : word(h3, 1);
+    const std::string h = header(p, base64, 3 + blocks); // block_table(): in the file
+    if (blocks == 0 || raw < size || h.size() < (3 + blocks) * word_) return false;
+    uint64_t at = 0;
+    for (uint64_t k = 0; k + 1 < blocks; ++k)
+      if (__builtin_add_overflow(at, word(h, 3 + k), &at)) return false;
+    const uint64_t n = word(h, 2 + blocks), hb = (3 + blocks) * word_;
+    const char* d = base64 ? skip_base64(p, end_, (hb + 2) / 3 * 4) : p + hb;
+    const std::string dec = base64 ? base64_prefix(d, end_, at + n) : std::string();
+    const uint64_t have = base64 ? dec.size() : uint64_t(end_ - d);
+    if (at > have || n > have - at) return false;
+    std::vector<unsigned char> out(raw); // within the budget: check() counted it
+    const auto* src = reinterpret_cast<const unsigned char*>(base64 ? dec.data() : d) + at;
+    if (!inflate(compressor_, src, n, out.data(), raw)) return false;
+    *v = value(reinterpret_cast<const char*>(out.data()) + raw - size, size);
+    return true;
   }
 
   // A compressed array's header lists every block's compressed size after its first 3 words, and
@@ -155,8 +214,9 @@ private:
                   (unsigned long long)i, (unsigned long long)blocks));
   }
 
-  void check(uint64_t i, const std::string& h, const char* p, bool base64) {
-    uint64_t bytes;
+  // The uncompressed bytes the header at p announces, checked against the file and the budget.
+  uint64_t check(uint64_t i, const std::string& h, const char* p, bool base64) {
+    uint64_t bytes, tables = 0;
     if (!compressed_) {
       bytes = word(h, 0);
       if (!base64 && bytes > uint64_t(end_ - p) - word_)
@@ -166,16 +226,17 @@ private:
     } else {
       const uint64_t blocks = word(h, 0), block = word(h, 1), last = word(h, 2);
       block_table(i, blocks, p, base64);
+      tables = blocks * 16; // VTK's two per-block tables (blocks is at most the file's size)
       if ((blocks && __builtin_mul_overflow(blocks - 1, block, &bytes)) ||
-          __builtin_add_overflow(blocks ? bytes : 0, last ? last : (blocks ? block : 0), &bytes) ||
-          __builtin_add_overflow(bytes, blocks * 16, &bytes)) // VTK's two per-block tables
+          __builtin_add_overflow(blocks ? bytes : 0, last ? last : (blocks ? block : 0), &bytes))
         bytes = UINT64_MAX;
     }
-    if (bytes > room_)
+    if (bytes > room_ || tables > room_ - bytes)
       fail(TLOD_ERROR_OUT_OF_MEMORY,
            format("DataArray %llu: its header announces %llu bytes, more than the import's memory budget (%zu "
                   "bytes; tlod_import_desc.memory_limit)",
-                  (unsigned long long)i, (unsigned long long)bytes, room_));
+                  (unsigned long long)i, (unsigned long long)(bytes > room_ ? bytes : bytes + tables), room_));
+    return bytes;
   }
 };
 
