@@ -551,6 +551,13 @@ static const struct hostile_case {
      * its buffer (fuzz_vtk, tests/data/fuzz/fuzz_vtk/cell_count_past_size.vtk). */
     {"count.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 2 5\n3 0 1 2\n900 0\nCELL_TYPES 2\n5\n5\n",
      TLOD_ERROR_PARSE, "CELLS: cell 1: its point count runs past the 5 values declared"},
+    /* A count with bytes after its digits: a C++ stream reads "9q" as 9, our walk of the cells
+     * stopped at the word, and VTK read past its buffer (fuzz_vtk:
+     * tests/data/fuzz/fuzz_vtk/cells_size_with_trailing_bytes.vtk). */
+    {"size9q.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 9q\n3 0 1 2\nCELL_TYPES 1\n5\n", TLOD_ERROR_PARSE,
+     "CELLS: expected a count (a non-negative integer)"},
+    {"pd.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\nPOINT_DATA x3\n",
+     TLOD_ERROR_PARSE, "POINT_DATA: expected a count (a non-negative integer)"},
     {"ids.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 7\nCELL_TYPES 1\n5\n", TLOD_ERROR_INVALID_MESH,
      "cell 0: point id 7 out of range (3 points)"},
 };

@@ -51,6 +51,14 @@ struct Words {
     return true;
   }
 
+  // The next word as a count VTK will allocate by: a C++ stream would take the digits of "9q" and
+  // go on, so a word that is not wholly a non-negative integer ends the file here.
+  uint64_t count(const char* what) {
+    uint64_t v;
+    if (!number(&v)) fail(TLOD_ERROR_PARSE, format("%s: expected a count (a non-negative integer)", what));
+    return v;
+  }
+
   // The next word, lower-case (its first 24 characters); "" at the end. Words that cannot be
   // keywords (not starting with a letter: numbers, binary data) come back as "0" unread.
   std::string word() {
@@ -165,8 +173,7 @@ private:
   }
 
   void counted(const std::string& upper, uint64_t per, bool typed) {
-    uint64_t n;
-    if (!words_.number(&n)) return;
+    const uint64_t n = words_.count(upper.c_str());
     if (upper == "POINTS") points_ = n;
     if (upper == "CELL_TYPES") agree("CELL_TYPES", n, "the cell count of CELLS", cells_);
     const size_t width = typed ? type(words_.word()) : (integer_ = true, 4);
@@ -175,8 +182,7 @@ private:
   }
 
   void cells(const std::string& upper) {
-    uint64_t n, size;
-    if (!words_.number(&n) || !words_.number(&size)) return;
+    const uint64_t n = words_.count(upper.c_str()), size = words_.count(upper.c_str());
     if (upper == "CELLS") cells_ = offsets_layout_ && n > 0 ? n - 1 : n;
     if (offsets_layout_) offsets_ = n, connectivity_ = size;
     need(upper, size, 1, 4);
@@ -354,8 +360,7 @@ private:
   }
 
   void dimensions() {
-    uint64_t d[3];
-    if (!words_.number(&d[0]) || !words_.number(&d[1]) || !words_.number(&d[2])) return;
+    const uint64_t d[3] = {words_.count("DIMENSIONS"), words_.count("DIMENSIONS"), words_.count("DIMENSIONS")};
     uint64_t pts, mem;
     if (__builtin_mul_overflow(d[0], d[1], &pts) || __builtin_mul_overflow(pts, d[2], &pts) ||
         __builtin_mul_overflow(pts, uint64_t(64), &mem) || mem > room_ || pts > (uint64_t(1) << 31))
@@ -404,7 +409,7 @@ private:
   }
 
   void data_section(const std::string& w) {
-    if (!words_.number(&tuples_)) tuples_ = 0;
+    tuples_ = words_.count(w[0] == 'p' ? "POINT_DATA" : "CELL_DATA");
     if (w[0] == 'p')
       agree("POINT_DATA", tuples_, "POINTS", points_);
     else
@@ -414,16 +419,14 @@ private:
   void color_scalars() {
     integer_ = false; // floats 0..1 in ASCII
     words_.word();
-    uint64_t n;
-    if (!words_.number(&n)) return;
+    const uint64_t n = words_.count("COLOR_SCALARS");
     need("COLOR_SCALARS", tuples_, n, 1);
     consume("COLOR_SCALARS", tuples_ * n, binary_ ? 1 : 4);
   }
 
   void texture_coordinates() {
     words_.word();
-    uint64_t dim;
-    if (!words_.number(&dim)) return;
+    const uint64_t dim = words_.count("TEXTURE_COORDINATES");
     const size_t width = type(words_.word());
     need("TEXTURE_COORDINATES", tuples_, dim, width);
     consume("TEXTURE_COORDINATES", tuples_ * dim, width);
@@ -433,8 +436,7 @@ private:
   void lookup_table() {
     integer_ = false;
     words_.word();
-    uint64_t n;
-    if (!words_.number(&n)) return;
+    const uint64_t n = words_.count("LOOKUP_TABLE");
     need("LOOKUP_TABLE", n, 4, 1);
     consume("LOOKUP_TABLE", 4 * n, binary_ ? 1 : 4);
   }
