@@ -118,14 +118,17 @@ static uint32_t strip_bit(const list_arrays* a, uint32_t f, uint32_t e, float ke
   return (uint32_t)(a->visible[link.face] != 0) & ((uint32_t)!link.smooth | other);
 }
 
+/* The lowest set bit of each 4-bit mask (0 for none). */
+static const uint8_t k_lowest_edge[16] = {0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0};
+
 /* The edges of visible patch f that have a strip into the low bits of
- * edges[f] (for the second pass, which makes the strips); returns how many. */
+ * edges[f] (for the second pass, which makes the strips); returns how
+ * many. Only the edges that can have one are visited. */
 static uint32_t count_strips(const list_arrays* a, uint32_t f) {
   uint32_t up = a->edges[f] >> _TLOD_UP_SHIFT, mask = 0, n = 0;
   float key = drawn_key(a->cont[f]);
-  for (uint32_t e = 0; e < 4; e++) {
-    if (!(up & (1u << e))) continue;
-    uint32_t bit = strip_bit(a, f, e, key);
+  for (uint32_t m = up; m; m &= m - 1) {
+    uint32_t e = k_lowest_edge[m], bit = strip_bit(a, f, e, key);
     mask |= bit << e;
     n += bit;
   }

@@ -84,6 +84,15 @@ typedef struct _tlod_fast_frame {
   float *depth, *scale, *e_max, *contour, *target, *cont;
   uint8_t* visible;
   uint8_t* held; /* this view's row of soa->held */
+  /* A block measured gathered (_tlod_fast_local): soa->bound holds its
+   * level 0 only, and the ladder gathers a level above it into
+   * gather_into (stride FAST_BLOCK) from gather_bound (the whole table,
+   * gather_n patches a level) at gather_idx when it first reads the level,
+   * so a block stopped at level l reads l + 1 levels. NULL: not gathered. */
+  const uint32_t* gather_idx;
+  const float* gather_bound;
+  float* gather_into;
+  uint32_t gather_n;
 } _tlod_fast_frame;
 
 /* A partly culled block's visible patches gathered densely (stride
