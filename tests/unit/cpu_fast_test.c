@@ -344,6 +344,72 @@ TEST(test_batch_arguments) {
   shape_free(&s);
 }
 
+/* tlod_surface_eval_edges() against tlod_surface_eval_edge() edge by edge,
+ * bitwise: every edge of every patch (more than one block of lanes), both
+ * directions of every shared edge, at each instruction set this processor
+ * has; PN and quadratic surfaces through its fallback. */
+static void check_edges(shape s, tlod_surface_desc sd, uint32_t* edge_count) {
+  scene sc;
+  CHECK_MSG(scene_make(&sc, &s, NULL, 0, sd), "%s", s.name);
+  uint32_t nf = sc.surf ? tlod_mesh_face_count(sc.mesh) : 0, ne = 0, param[3] = {1, 6, 15};
+  uint32_t* patches = malloc(sizeof(uint32_t) * 4 * (nf + 1));
+  uint32_t* first = malloc(sizeof(uint32_t) * 4 * (nf + 1));
+  uint8_t* edges = malloc(4 * (nf + 1));
+  float* ref = calloc(3 * 3 * 4 * (size_t)(nf + 1), sizeof(float));
+  float* got = calloc(3 * 3 * 4 * (size_t)(nf + 1), sizeof(float));
+  tlod_mesh_view mv = tlod_mesh_query_view(sc.mesh);
+  for (uint32_t f = 0; f < nf; f++) {
+    for (uint32_t e = 0; e < mv.face_corners[f]; e++, ne++) {
+      patches[ne] = f, edges[ne] = (uint8_t)e, first[ne] = 3 * (ne ^ 1); /* written out of order */
+      CHECK(tlod_surface_eval_edge(sc.surf, f, e, 4, 3, param, ref + 9 * (size_t)(ne ^ 1), NULL) == TLOD_SUCCESS);
+    }
+  }
+  for (tlod_simd simd = TLOD_SIMD_SCALAR; sc.surf && simd < TLOD_SIMD_NUM; simd++) {
+    tlod_context* ctx = context(simd, 1);
+    if (tlod_context_simd(ctx) == simd) {
+      memset(got, 0, 3 * 3 * 4 * (size_t)(nf + 1) * sizeof(float));
+      CHECK(tlod_surface_eval_edges(sc.surf, simd, 4, ne & ~1u, patches, edges, 3, param, first, got) == TLOD_SUCCESS);
+      CHECK_MSG(!memcmp(got, ref, sizeof(float) * 9 * (ne & ~1u)), "%s %s: edges differ from tlod_surface_eval_edge",
+                s.name, tlod_simd_name(simd));
+    }
+    tlod_context_destroy(ctx);
+  }
+  uint32_t bad_param = 16, bad_patch = nf;
+  uint8_t bad_edge = 4;
+  CHECK(tlod_surface_eval_edges(NULL, TLOD_SIMD_SCALAR, 4, 1, patches, edges, 3, param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 16, 1, patches, edges, 3, param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 4, 1, patches, edges, 1, &bad_param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 4, 1, &bad_patch, edges, 3, param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 4, 1, patches, &bad_edge, 3, param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 4, 1, patches, edges, 3, param, NULL, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  free(patches);
+  free(first);
+  free(edges);
+  free(ref);
+  free(got);
+  scene_free(&sc);
+  shape_free(&s);
+  *edge_count = ne;
+}
+
+TEST(test_edge_batch) {
+  uint32_t ne = 0;
+  check_edges(shape_torus(8, 6), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &ne);
+  CHECK(ne > 64); /* more than one block of lanes */
+  check_edges(shape_cube_split(),
+              (tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha_mode = TLOD_ALPHA_GLOBAL, .alpha = 0.4f}, &ne);
+  check_edges(shape_icosphere(1), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &ne);
+  check_edges(shape_quad_sphere(2), (tlod_surface_desc){.type = TLOD_SURFACE_FLAT}, &ne);
+  check_edges(shape_icosphere(1), (tlod_surface_desc){.type = TLOD_SURFACE_PN}, &ne);
+  check_edges(shape_quad_cube(), (tlod_surface_desc){.type = TLOD_SURFACE_QUADRATIC}, &ne);
+}
+
 int main(void) {
   RUN(test_flat);
   RUN(test_phong);
@@ -352,5 +418,6 @@ int main(void) {
   RUN(test_attributes);
   RUN(test_kept_topology);
   RUN(test_batch_arguments);
+  RUN(test_edge_batch);
   TEST_END();
 }

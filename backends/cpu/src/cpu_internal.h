@@ -32,6 +32,16 @@ typedef struct level_table {
   uint32_t *tmpl, *slot_k, nslot;
 } level_table;
 
+/* Per worker, the fast path's positions-only edges waiting for one
+ * tlod_surface_eval_edges() call per level (cpu_fast.c): patch, edge and
+ * the output id of the edge's first point. */
+enum { EDGE_QUEUE = 128 };
+typedef struct edge_queue {
+  uint32_t n[TLOD_MAX_LEVEL + 1];
+  uint32_t patch[TLOD_MAX_LEVEL + 1][EDGE_QUEUE], first[TLOD_MAX_LEVEL + 1][EDGE_QUEUE];
+  uint8_t edge[TLOD_MAX_LEVEL + 1][EDGE_QUEUE];
+} edge_queue;
+
 /* Per worker: pattern vertex -> output id, the patch's evaluated points and
  * (with attributes) their attribute vec4s; worker 0's attr also serves the
  * strips (one edge polyline). */
@@ -41,6 +51,7 @@ typedef struct scratch {
   float (*nrm)[3];
   float (*cpos)[3], (*cnrm)[3]; /* fast path: points in evaluation order */
   float (*attr)[4];             /* NULL without attributes */
+  edge_queue* edges;            /* fast path */
 } scratch;
 
 /* A strip vertex of b's polyline carrying a's attributes (cpu_strips.c):
