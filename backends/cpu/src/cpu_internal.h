@@ -32,15 +32,19 @@ typedef struct level_table {
   uint32_t *tmpl, *slot_k, nslot;
 } level_table;
 
-/* Per worker, the fast path's positions-only edges waiting for one
- * tlod_surface_eval_edges() call per level (cpu_fast.c): patch, edge and
- * the output id of the edge's first point. */
-enum { EDGE_QUEUE = 128 };
-typedef struct edge_queue {
-  uint32_t n[TLOD_MAX_LEVEL + 1];
-  uint32_t patch[TLOD_MAX_LEVEL + 1][EDGE_QUEUE], first[TLOD_MAX_LEVEL + 1][EDGE_QUEUE];
-  uint8_t edge[TLOD_MAX_LEVEL + 1][EDGE_QUEUE];
-} edge_queue;
+/* Per worker, the fast path's positions-only points waiting for one call
+ * per level (cpu_fast.c): edges for tlod_surface_eval_edges() (patch, edge,
+ * output id of the first point) and, per shape, patches for
+ * tlod_surface_eval_interiors() (patch, output id of the first interior
+ * point). */
+enum { LANE_QUEUE = 128 };
+typedef struct lane_queue {
+  uint32_t edges[TLOD_MAX_LEVEL + 1];
+  uint32_t edge_patch[TLOD_MAX_LEVEL + 1][LANE_QUEUE], edge_first[TLOD_MAX_LEVEL + 1][LANE_QUEUE];
+  uint8_t edge[TLOD_MAX_LEVEL + 1][LANE_QUEUE];
+  uint32_t patches[2][TLOD_MAX_LEVEL + 1];
+  uint32_t patch[2][TLOD_MAX_LEVEL + 1][LANE_QUEUE], patch_first[2][TLOD_MAX_LEVEL + 1][LANE_QUEUE];
+} lane_queue;
 
 /* Per worker: pattern vertex -> output id, the patch's evaluated points and
  * (with attributes) their attribute vec4s; worker 0's attr also serves the
@@ -51,7 +55,7 @@ typedef struct scratch {
   float (*nrm)[3];
   float (*cpos)[3], (*cnrm)[3]; /* fast path: points in evaluation order */
   float (*attr)[4];             /* NULL without attributes */
-  edge_queue* edges;            /* fast path */
+  lane_queue* queue;            /* fast path */
 } scratch;
 
 /* A strip vertex of b's polyline carrying a's attributes (cpu_strips.c):

@@ -394,7 +394,7 @@ void _tlod_cpu_tess_free(tess* t) {
     tlod_context_free(t->ctx, t->work[w].attr);
     tlod_context_free(t->ctx, t->work[w].cpos);
     tlod_context_free(t->ctx, t->work[w].cnrm);
-    tlod_context_free(t->ctx, t->work[w].edges);
+    tlod_context_free(t->ctx, t->work[w].queue);
   }
   void* arrays[] = {t->level,      t->morph_buf,   t->corner_id,     t->corner_src, t->slot_owner,
                     t->slot_level, t->slot_base,   t->interior_base, t->tri_base,   t->strip_tris,
@@ -520,7 +520,7 @@ static tlod_result alloc_work(tess* t) {
     if (!t->work[w].map || !t->work[w].pos || !t->work[w].nrm) return TLOD_ERROR_OUT_OF_MEMORY;
     if (!t->d.reference && (!(t->work[w].cpos = tlod_context_alloc(t->ctx, sizeof(float[3]) * n)) ||
                             !(t->work[w].cnrm = tlod_context_alloc(t->ctx, sizeof(float[3]) * n)) ||
-                            !(t->work[w].edges = tlod_context_calloc(t->ctx, 1, sizeof(edge_queue)))))
+                            !(t->work[w].queue = tlod_context_calloc(t->ctx, 1, sizeof(lane_queue)))))
       return TLOD_ERROR_OUT_OF_MEMORY;
     if (t->na && !(t->work[w].attr = tlod_context_alloc(t->ctx, sizeof(float[4]) * t->na * n)))
       return TLOD_ERROR_OUT_OF_MEMORY;
