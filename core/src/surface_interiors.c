@@ -6,17 +6,7 @@
  * (surface_interiors.inc, compiled per instruction set). Bitwise
  * tlod_surface_eval_interior() with normals NULL (no contraction:
  * -ffp-contract=off). */
-#include "surface_eval.h"
-
-enum { PATCH_LANES = 64 };
-
-/* A block of patches of one corner count, structure of arrays per corner. */
-typedef struct _tlod_patch_lanes {
-  uint32_t corners;
-  float px[4][PATCH_LANES], py[4][PATCH_LANES], pz[4][PATCH_LANES];
-  float nx[4][PATCH_LANES], ny[4][PATCH_LANES], nz[4][PATCH_LANES];
-  float alpha[4][PATCH_LANES];
-} _tlod_patch_lanes;
+#include "patch_lanes.h"
 
 typedef void (*patch_kernel)(const _tlod_patch_lanes* L, uint32_t n, const float w[4], float* restrict ox,
                              float* restrict oy, float* restrict oz);
@@ -24,17 +14,6 @@ typedef void (*patch_kernel)(const _tlod_patch_lanes* L, uint32_t n, const float
 #define KERNEL_FILE "surface_interiors.inc"
 #include "simd_instances.inc"
 #undef KERNEL_FILE
-
-/* Lane r: the corners of a patch as _tlod_patch_corners() gathers them. */
-static void gather_patch(const tlod_surface* s, _tlod_patch_lanes* L, uint32_t r, uint32_t patch) {
-  _tlod_corners c;
-  _tlod_patch_corners(s, patch, &c);
-  for (uint32_t i = 0; i < c.n; i++) {
-    L->px[i][r] = c.p[i].x, L->py[i][r] = c.p[i].y, L->pz[i][r] = c.p[i].z;
-    L->nx[i][r] = c.nrm[i].x, L->ny[i][r] = c.nrm[i].y, L->nz[i][r] = c.nrm[i].z;
-    L->alpha[i][r] = c.alpha[i];
-  }
-}
 
 /* The corner weights of (u, v) as phong.c's corner_weights forms them. */
 static void corner_weights(uint32_t n, float u, float v, float w[4]) {
@@ -87,7 +66,7 @@ tlod_result tlod_surface_eval_interiors(const tlod_surface* s, tlod_simd simd, u
     /* A block: up to PATCH_LANES patches with the first one's corner count. */
     L.corners = corners[patches[at]];
     for (n = 0; at + n < patch_count && n < PATCH_LANES && corners[patches[at + n]] == L.corners; n++)
-      gather_patch(s, &L, n, patches[at + n]);
+      _tlod_lanes_gather(s, &L, n, patches[at + n]);
     eval_block(k, &L, n, count, u, v, first + at, positions);
   }
   return TLOD_SUCCESS;
