@@ -1,6 +1,7 @@
 /* Private to tesslod::core: a block of patches of one corner count as
  * structure-of-arrays lanes per corner (positions, normals, alphas as the
- * surface's corner gather gives them), shared by the kernels in lanes of
+ * surface's corner gather gives them; L->corners is the block's corner
+ * count, set before the gather), shared by the kernels in lanes of
  * patches (surface_interiors.c, surface_spheres.c). */
 #ifndef TESSLOD_PATCH_LANES_H
 #define TESSLOD_PATCH_LANES_H
@@ -16,14 +17,16 @@ typedef struct _tlod_patch_lanes {
   float alpha[4][PATCH_LANES];
 } _tlod_patch_lanes;
 
-/* Lane r: the corners of a patch as _tlod_patch_corners() gathers them. */
+/* Lane r: the corners of a patch as _tlod_patch_corners() gathers them,
+ * read straight from the mesh into the lanes (no _tlod_corners between). */
 static inline void _tlod_lanes_gather(const tlod_surface* s, _tlod_patch_lanes* L, uint32_t r, uint32_t patch) {
-  _tlod_corners c;
-  _tlod_patch_corners(s, patch, &c);
-  for (uint32_t i = 0; i < c.n; i++) {
-    L->px[i][r] = c.p[i].x, L->py[i][r] = c.p[i].y, L->pz[i][r] = c.p[i].z;
-    L->nx[i][r] = c.nrm[i].x, L->ny[i][r] = c.nrm[i].y, L->nz[i][r] = c.nrm[i].z;
-    L->alpha[i][r] = c.alpha[i];
+  const tlod_mesh* m = s->mesh;
+  for (uint32_t i = 0; i < L->corners; i++) {
+    uint32_t v = m->faces[patch][i];
+    const float *p = m->positions[v], *n = m->normals[v];
+    L->px[i][r] = p[0], L->py[i][r] = p[1], L->pz[i][r] = p[2];
+    L->nx[i][r] = n[0], L->ny[i][r] = n[1], L->nz[i][r] = n[2];
+    L->alpha[i][r] = s->alpha[v];
   }
 }
 

@@ -42,8 +42,8 @@ static void put_end(_tlod_edge_lanes* e, uint32_t r, bool end_b, const tlod_mesh
 /* Lane r: edge `edge` of patch `patch`, in canonical direction. */
 static void gather_edge(const tlod_surface* s, _tlod_edge_lanes* e, uint32_t r, uint32_t patch, uint32_t edge) {
   const tlod_mesh* m = s->mesh;
-  uint32_t n = m->face_corners[patch];
-  uint32_t a = m->faces[patch][edge], b = m->faces[patch][(edge + 1) % n];
+  uint32_t next = edge + 1 == m->face_corners[patch] ? 0 : edge + 1; /* no division per edge */
+  uint32_t a = m->faces[patch][edge], b = m->faces[patch][next];
   bool forward = m->weld_id[a] < m->weld_id[b];
   const float* alpha = s->desc.type == TLOD_SURFACE_PHONG ? s->alpha : NULL;
   put_end(e, r, false, m, alpha, forward ? a : b);

@@ -97,6 +97,9 @@ typedef struct tess {
   uint32_t vertex_count, pattern_tris;
   uint32_t pattern_verts; /* vertex_count before the strip vertices */
   bool positions_only;    /* a kept topology: write positions and normals only */
+  /* The walk over all edges (no draw list) found none to stitch: a kept
+   * topology (same levels and links, no blends) finds none again. */
+  bool walk_found_none;
   uint32_t (*strip_tris)[3];
   uint32_t strip_count, strip_cap;
   /* Strip vertices with side a's attributes, numbered from vertex_count. */
