@@ -27,7 +27,8 @@ typedef void (*edge_kernel)(const _tlod_edge_lanes* e, uint32_t n, float t_end, 
 #include "simd_instances.inc"
 #undef KERNEL_FILE
 
-static void put_end(_tlod_edge_lanes* e, uint32_t r, bool end_b, const tlod_mesh* m, const float* alpha, uint32_t v) {
+static inline void put_end(_tlod_edge_lanes* e, uint32_t r, bool end_b, const tlod_mesh* m, const float* alpha,
+                           uint32_t v) {
   const float *p = m->positions[v], *n = m->normals[v];
   float a = alpha ? alpha[v] : 0.0f;
   if (end_b) {
@@ -52,15 +53,22 @@ static void gather_edge(const tlod_surface* s, _tlod_edge_lanes* e, uint32_t r, 
 }
 
 /* Edges [0, n) of the block, every point: lane r's point k goes to vertex
- * first[r] + k of positions. */
+ * first[r] + k of positions. Up to POINT_GROUP points are evaluated for
+ * all lanes before any is stored, then each edge's are written together
+ * (the kernel's lane stores have landed by the time they are read back,
+ * and an edge's points are consecutive in the output). */
+enum { POINT_GROUP = 16 };
 static void eval_block(edge_kernel k, const _tlod_edge_lanes* e, uint32_t n, uint32_t count, const uint32_t* param,
                        float nn, const uint32_t* first, float* positions) {
-  float ox[EDGE_LANES], oy[EDGE_LANES], oz[EDGE_LANES];
-  for (uint32_t j = 0; j < count; j++) {
-    k(e, n, (float)param[j] / nn, ox, oy, oz);
+  float ox[POINT_GROUP][EDGE_LANES], oy[POINT_GROUP][EDGE_LANES], oz[POINT_GROUP][EDGE_LANES];
+  for (uint32_t j0 = 0; j0 < count; j0 += POINT_GROUP) {
+    uint32_t jn = count - j0 < POINT_GROUP ? count - j0 : POINT_GROUP;
+    for (uint32_t j = 0; j < jn; j++)
+      k(e, n, (float)param[j0 + j] / nn, ox[j], oy[j], oz[j]);
     for (uint32_t r = 0; r < n; r++) {
-      float* p = positions + 3 * ((size_t)first[r] + j);
-      p[0] = ox[r], p[1] = oy[r], p[2] = oz[r];
+      float* p = positions + 3 * ((size_t)first[r] + j0);
+      for (uint32_t j = 0; j < jn; j++)
+        p[3 * j] = ox[j][r], p[3 * j + 1] = oy[j][r], p[3 * j + 2] = oz[j][r];
     }
   }
 }

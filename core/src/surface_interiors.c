@@ -25,16 +25,23 @@ static void corner_weights(uint32_t n, float u, float v, float w[4]) {
   w[0] = su * sv, w[1] = u * sv, w[2] = u * v, w[3] = su * v;
 }
 
-/* Lanes [0, n), every point: lane r's point k goes to vertex first[r] + k. */
+/* Lanes [0, n), every point: lane r's point k goes to vertex first[r] + k.
+ * Up to POINT_GROUP points are evaluated for all lanes before any is
+ * stored, then each patch's are written together (as surface_edges.c). */
+enum { POINT_GROUP = 16 };
 static void eval_block(patch_kernel k, const _tlod_patch_lanes* L, uint32_t n, uint32_t count, const float* u,
                        const float* v, const uint32_t* first, float* positions) {
-  float ox[PATCH_LANES], oy[PATCH_LANES], oz[PATCH_LANES], w[4];
-  for (uint32_t j = 0; j < count; j++) {
-    corner_weights(L->corners, u[j], v[j], w);
-    k(L, n, w, ox, oy, oz);
+  float ox[POINT_GROUP][PATCH_LANES], oy[POINT_GROUP][PATCH_LANES], oz[POINT_GROUP][PATCH_LANES], w[4];
+  for (uint32_t j0 = 0; j0 < count; j0 += POINT_GROUP) {
+    uint32_t jn = count - j0 < POINT_GROUP ? count - j0 : POINT_GROUP;
+    for (uint32_t j = 0; j < jn; j++) {
+      corner_weights(L->corners, u[j0 + j], v[j0 + j], w);
+      k(L, n, w, ox[j], oy[j], oz[j]);
+    }
     for (uint32_t r = 0; r < n; r++) {
-      float* p = positions + 3 * ((size_t)first[r] + j);
-      p[0] = ox[r], p[1] = oy[r], p[2] = oz[r];
+      float* p = positions + 3 * ((size_t)first[r] + j0);
+      for (uint32_t j = 0; j < jn; j++)
+        p[3 * j] = ox[j][r], p[3 * j + 1] = oy[j][r], p[3 * j + 2] = oz[j][r];
     }
   }
 }
