@@ -87,10 +87,14 @@ static void fill(uint32_t* restrict dst, uint32_t count, uint32_t value) {
 /* Positions only: the queued edges of level l in one
  * tlod_surface_eval_edges() call, point k of an edge at param k << (lmax -
  * l), id first + k - 1 (an owner's slot has its own level). */
+void _tlod_cpu_edge_params(const tess* t, uint32_t l, uint32_t* param) {
+  for (uint32_t k = 0; k + 1 < (1u << l); k++)
+    param[k] = (k + 1) << (t->lmax - l);
+}
+
 static void flush_edges(tess* t, lane_queue* q, uint32_t l) {
   uint32_t count = (1u << l) - 1, param[1u << TLOD_MAX_LEVEL];
-  for (uint32_t k = 0; k < count; k++)
-    param[k] = (k + 1) << (t->lmax - l);
+  _tlod_cpu_edge_params(t, l, param);
   tlod_surface_eval_edges(t->s, t->simd, t->lmax, q->edges[l], q->edge_patch[l], q->edge[l], count, param,
                           q->edge_first[l], t->out->positions);
   q->edges[l] = 0;

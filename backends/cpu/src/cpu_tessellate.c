@@ -380,6 +380,7 @@ static void emit_patches(void* data, uint32_t begin, uint32_t end, uint32_t work
 /* ---- driver ---------------------------------------------------------------- */
 
 void _tlod_cpu_tess_free(tess* t) {
+  _tlod_cpu_lists_free(t);
   for (int sh = 0; sh < 2; sh++) {
     for (int l = 0; l <= TLOD_MAX_LEVEL; l++) {
       tlod_context_free(t->ctx, t->tables[sh][l].kind);
@@ -639,7 +640,7 @@ static tlod_result run_kept(tess* t) {
     return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for %u vertices",
                              t->vertex_count);
   eval_corners(t);
-  tlod_context_parallel_for(t->ctx, _tlod_cpu_fast_eval, t, t->m.face_count);
+  if (!_tlod_cpu_lists_eval(t)) tlod_context_parallel_for(t->ctx, _tlod_cpu_fast_eval, t, t->m.face_count);
   return finish(t);
 }
 
