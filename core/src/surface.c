@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "error_table_lanes.h"
+#include "patch_lanes.h"
 
 static tlod_surface_desc surface_desc_defaults(const tlod_surface_desc* in) {
   tlod_surface_desc d = in ? *in : (tlod_surface_desc){0};
@@ -338,17 +339,42 @@ static bool face_changed(const tlod_surface* s, uint32_t f) {
   return false;
 }
 
+/* Phong without tables: a changed patch's sphere is all that moves, made
+ * in lanes of patches of one corner count (surface_spheres.c). */
+typedef struct sphere_queue {
+  uint32_t n[2], face[2][PATCH_LANES];
+} sphere_queue;
+
+static void flush_spheres(const tlod_surface* s, sphere_queue* q, uint32_t k) {
+  _tlod_phong_spheres(s, s->ctx->desc.simd, q->face[k], q->n[k]);
+  q->n[k] = 0;
+}
+
+static void queue_sphere(const tlod_surface* s, sphere_queue* q, uint32_t f) {
+  uint32_t k = s->mesh->face_corners[f] == 4;
+  q->face[k][q->n[k]++] = f;
+  if (q->n[k] == PATCH_LANES) flush_spheres(s, q, k);
+}
+
 /* Rebuilds the patches some vertex of which changed; flags them. */
 static void rebuild_range(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   tlod_surface* s = data;
   uint8_t* dirty = s->changed + s->mesh->vertex_count;
+  bool spheres = s->desc.type == TLOD_SURFACE_PHONG && s->desc.error_tables == TLOD_ERROR_TABLES_NONE;
   quad_lanes q = {0};
+  sphere_queue sq = {.n = {0}};
   for (uint32_t f = begin; f < end; f++) {
     dirty[f] = face_changed(s, f);
-    if (dirty[f]) build_or_queue(s, f, &q);
+    if (!dirty[f]) continue;
+    if (spheres)
+      queue_sphere(s, &sq, f);
+    else
+      build_or_queue(s, f, &q);
   }
   flush_quads(s, &q);
+  for (uint32_t k = 0; k < 2; k++)
+    if (sq.n[k]) flush_spheres(s, &sq, k);
 }
 
 /* Flags are kept between calls: a refresh allocates only the first time. */

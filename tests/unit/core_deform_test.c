@@ -367,6 +367,48 @@ TEST(refresh_none_equals_fresh) { check_refresh_equals_fresh(TLOD_ERROR_TABLES_N
 TEST(refresh_closed_form_equals_fresh) { check_refresh_equals_fresh(TLOD_ERROR_TABLES_CLOSED_FORM); }
 TEST(refresh_measured_equals_fresh) { check_refresh_equals_fresh(TLOD_ERROR_TABLES_MEASURED); }
 
+/* The NONE refresh's spheres in lanes of patches (surface_spheres.c)
+ * against a fresh surface's scalar ones, bitwise, at every instruction set
+ * this processor has: one thread, so a block holds all of the grid's
+ * triangles or quads (the lanes and their remainder), three alphas. */
+TEST(refresh_none_spheres_bitwise_at_every_simd_level) {
+  const float alphas[] = {0.75f, 1.0f, 0.0f};
+  for (int level = TLOD_SIMD_SCALAR; level < TLOD_SIMD_NUM; level++) {
+    tlod_context* ctx = NULL;
+    tlod_context_desc cd = {.thread_count = 1, .simd = (tlod_simd)level};
+    CHECK(tlod_context_create(&cd, &ctx) == TLOD_SUCCESS);
+    if (tlod_context_simd(ctx) != (tlod_simd)level) { /* this processor lacks it */
+      tlod_context_destroy(ctx);
+      break;
+    }
+    for (int a = 0; a < 3; a++) {
+      grid g;
+      grid_make(&g);
+      tlod_mesh_desc d = grid_desc(&g, TLOD_NORMALS_ANGLE);
+      tlod_mesh* m = NULL;
+      CHECK(tlod_mesh_create(ctx, &d, &m) == TLOD_SUCCESS);
+      tlod_surface* s = make_surface(ctx, m, TLOD_ERROR_TABLES_NONE, alphas[a]);
+      CHECK(s != NULL);
+      grid_shape(&g, 1.1f);
+      uint32_t updated = 0;
+      CHECK(tlod_mesh_update(m, &g.pos[0][0], 0, NULL, 0) == TLOD_SUCCESS);
+      CHECK(tlod_surface_refresh(s, &updated) == TLOD_SUCCESS);
+      CHECK(updated == tlod_surface_patch_count(s)); /* the wave moves every vertex */
+      tlod_surface* fresh = make_surface(ctx, m, TLOD_ERROR_TABLES_NONE, alphas[a]);
+      CHECK(fresh != NULL);
+      for (uint32_t p = 0; p < tlod_surface_patch_count(s); p++) {
+        tlod_patch_info x = tlod_surface_patch(s, p), y = tlod_surface_patch(fresh, p);
+        CHECK_MSG(memcmp(&x, &y, sizeof(x)) == 0, "%s alpha %g: patch %u", tlod_simd_name(tlod_context_simd(ctx)),
+                  (double)alphas[a], p);
+      }
+      tlod_surface_destroy(fresh);
+      tlod_surface_destroy(s);
+      tlod_mesh_destroy(m);
+    }
+    tlod_context_destroy(ctx);
+  }
+}
+
 TEST(scheduler_refuses_none_for_error_policies) {
   tlod_context* ctx = new_context(1, NULL, NULL);
   grid g;
@@ -407,6 +449,7 @@ int main(void) {
   RUN(first_update_out_of_memory_leaves_mesh);
   RUN(none_tables_unknown_bounds_valid_sphere);
   RUN(refresh_none_equals_fresh);
+  RUN(refresh_none_spheres_bitwise_at_every_simd_level);
   RUN(refresh_closed_form_equals_fresh);
   RUN(refresh_measured_equals_fresh);
   RUN(scheduler_refuses_none_for_error_policies);

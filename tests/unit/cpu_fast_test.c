@@ -33,21 +33,26 @@ static tlod_context* context(tlod_simd simd, uint32_t threads) {
   return r == TLOD_SUCCESS ? ctx : NULL;
 }
 
-static bool scene_make(scene* sc, const shape* s, const tlod_attribute_desc* attrs, uint32_t attr_count,
-                       tlod_surface_desc sd) {
+static bool scene_make_desc(scene* sc, const char* name, const tlod_mesh_desc* mesh_desc, tlod_surface_desc sd) {
   memset(sc, 0, sizeof *sc);
   sc->ctx = context(TLOD_SIMD_SCALAR, 1);
-  sc->name = s->name;
-  tlod_mesh_desc md = shape_mesh_desc(s);
-  md.attributes = attrs;
-  md.attribute_count = attr_count;
+  sc->name = name;
+  tlod_mesh_desc md = *mesh_desc;
   tlod_result r = sc->ctx ? tlod_mesh_create(sc->ctx, &md, &sc->mesh) : TLOD_ERROR_OUT_OF_MEMORY;
   if (r == TLOD_SUCCESS) r = tlod_surface_create(sc->ctx, sc->mesh, &sd, &sc->surf);
   if (r == TLOD_SUCCESS) r = tlod_patterns_create(sc->ctx, &(tlod_patterns_desc){.max_level = MAX_LEVEL}, &sc->pat);
   if (r != TLOD_SUCCESS)
-    fprintf(stderr, "scene %s %s: %s: %s\n", s->name, type_name(sd.type), tlod_result_string(r),
+    fprintf(stderr, "scene %s %s: %s: %s\n", name, type_name(sd.type), tlod_result_string(r),
             sc->ctx ? tlod_context_last_error(sc->ctx) : "no context");
   return r == TLOD_SUCCESS;
+}
+
+static bool scene_make(scene* sc, const shape* s, const tlod_attribute_desc* attrs, uint32_t attr_count,
+                       tlod_surface_desc sd) {
+  tlod_mesh_desc md = shape_mesh_desc(s);
+  md.attributes = attrs;
+  md.attribute_count = attr_count;
+  return scene_make_desc(sc, s->name, &md, sd);
 }
 
 static void scene_free(scene* sc) {
@@ -168,6 +173,8 @@ static void check_scene(const scene* sc, uint32_t top) {
   for (uint32_t l = 0; l <= top; l++) {
     snprintf(what, sizeof what, "level %u", l);
     check_case(sc, (tlod_cpu_tessellate_desc){.level = l}, what);
+    snprintf(what, sizeof what, "level %u no_normals", l);
+    check_case(sc, (tlod_cpu_tessellate_desc){.level = l, .no_normals = true}, what);
   }
   uint32_t nf = tlod_mesh_face_count(sc->mesh);
   int8_t* levels = random_levels(nf, 7, 5);
@@ -344,6 +351,182 @@ TEST(test_batch_arguments) {
   shape_free(&s);
 }
 
+/* tlod_surface_eval_edges() against tlod_surface_eval_edge() edge by edge,
+ * bitwise: every edge of every patch (more than one block of lanes), both
+ * directions of every shared edge, at each instruction set this processor
+ * has; PN and quadratic surfaces through its fallback. */
+static void check_edges(shape s, tlod_surface_desc sd, uint32_t* edge_count) {
+  scene sc;
+  CHECK_MSG(scene_make(&sc, &s, NULL, 0, sd), "%s", s.name);
+  uint32_t nf = sc.surf ? tlod_mesh_face_count(sc.mesh) : 0, ne = 0, param[3] = {1, 6, 15};
+  uint32_t* patches = malloc(sizeof(uint32_t) * 4 * (nf + 1));
+  uint32_t* first = malloc(sizeof(uint32_t) * 4 * (nf + 1));
+  uint8_t* edges = malloc(4 * (nf + 1));
+  float* ref = calloc(3 * 3 * 4 * (size_t)(nf + 1), sizeof(float));
+  float* got = calloc(3 * 3 * 4 * (size_t)(nf + 1), sizeof(float));
+  tlod_mesh_view mv = tlod_mesh_query_view(sc.mesh);
+  for (uint32_t f = 0; f < nf; f++) {
+    for (uint32_t e = 0; e < mv.face_corners[f]; e++, ne++) {
+      patches[ne] = f, edges[ne] = (uint8_t)e, first[ne] = 3 * (ne ^ 1); /* written out of order */
+      CHECK(tlod_surface_eval_edge(sc.surf, f, e, 4, 3, param, ref + 9 * (size_t)(ne ^ 1), NULL) == TLOD_SUCCESS);
+    }
+  }
+  for (tlod_simd simd = TLOD_SIMD_SCALAR; sc.surf && simd < TLOD_SIMD_NUM; simd++) {
+    tlod_context* ctx = context(simd, 1);
+    if (tlod_context_simd(ctx) == simd) {
+      memset(got, 0, 3 * 3 * 4 * (size_t)(nf + 1) * sizeof(float));
+      CHECK(tlod_surface_eval_edges(sc.surf, simd, 4, ne & ~1u, patches, edges, 3, param, first, got) == TLOD_SUCCESS);
+      CHECK_MSG(!memcmp(got, ref, sizeof(float) * 9 * (ne & ~1u)), "%s %s: edges differ from tlod_surface_eval_edge",
+                s.name, tlod_simd_name(simd));
+    }
+    tlod_context_destroy(ctx);
+  }
+  uint32_t bad_param = 16, bad_patch = nf;
+  uint8_t bad_edge = 4;
+  CHECK(tlod_surface_eval_edges(NULL, TLOD_SIMD_SCALAR, 4, 1, patches, edges, 3, param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 16, 1, patches, edges, 3, param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 4, 1, patches, edges, 1, &bad_param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 4, 1, &bad_patch, edges, 3, param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 4, 1, patches, &bad_edge, 3, param, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_edges(sc.surf, TLOD_SIMD_SCALAR, 4, 1, patches, edges, 3, param, NULL, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  free(patches);
+  free(first);
+  free(edges);
+  free(ref);
+  free(got);
+  scene_free(&sc);
+  shape_free(&s);
+  *edge_count = ne;
+}
+
+TEST(test_edge_batch) {
+  uint32_t ne = 0;
+  check_edges(shape_torus(8, 6), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &ne);
+  CHECK(ne > 64); /* more than one block of lanes */
+  check_edges(shape_cube_split(),
+              (tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha_mode = TLOD_ALPHA_GLOBAL, .alpha = 0.4f}, &ne);
+  check_edges(shape_icosphere(1), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG}, &ne);
+  check_edges(shape_quad_sphere(2), (tlod_surface_desc){.type = TLOD_SURFACE_FLAT}, &ne);
+  check_edges(shape_icosphere(1), (tlod_surface_desc){.type = TLOD_SURFACE_PN}, &ne);
+  check_edges(shape_quad_cube(), (tlod_surface_desc){.type = TLOD_SURFACE_QUADRATIC}, &ne);
+}
+
+/* The torus's triangle pairs, every other one merged back into its quad:
+ * triangles and quads alternate along the face order (a mixed mesh). */
+typedef struct mixed_faces {
+  uint32_t* indices;
+  uint8_t* sizes;
+  uint32_t index_count, face_count;
+} mixed_faces;
+
+static mixed_faces mixed_of(const shape* s) {
+  uint32_t pairs = s->index_count / 6;
+  mixed_faces m = {malloc(sizeof(uint32_t) * 6 * pairs), malloc(2 * (size_t)pairs), 0, 0};
+  for (uint32_t q = 0; q < pairs; q++) {
+    const uint32_t* t = s->indices + 6 * q; /* a b c, a c d */
+    uint32_t quad[4] = {t[0], t[1], t[2], t[5]};
+    bool merge = q % 2 == 1;
+    memcpy(m.indices + m.index_count, merge ? quad : t, sizeof(uint32_t) * (merge ? 4 : 6));
+    m.index_count += merge ? 4 : 6;
+    if (merge)
+      m.sizes[m.face_count++] = 4;
+    else
+      m.sizes[m.face_count++] = 3, m.sizes[m.face_count++] = 3;
+  }
+  return m;
+}
+
+static bool mixed_scene(scene* sc, const shape* s, mixed_faces* m, tlod_surface_desc sd) {
+  *m = mixed_of(s);
+  tlod_mesh_desc md = shape_mesh_desc(s);
+  md.indices = m->indices, md.index_count = m->index_count;
+  md.face_type = TLOD_FACE_MIXED, md.face_sizes = m->sizes, md.face_count = m->face_count;
+  return scene_make_desc(sc, "mixed torus", &md, sd);
+}
+
+/* tlod_surface_eval_interiors() against tlod_surface_eval_interior() patch
+ * by patch, bitwise, with the patches in reverse order (triangles and
+ * quads alternating on a mixed mesh) and written out of order. */
+static void check_interiors(const scene* sc) {
+  uint32_t nf = tlod_mesh_face_count(sc->mesh);
+  float u[3] = {0.25f, 0.125f, 0.5f}, v[3] = {0.25f, 0.625f, 0.375f};
+  uint32_t* patches = malloc(sizeof(uint32_t) * (nf + 1));
+  uint32_t* first = malloc(sizeof(uint32_t) * (nf + 1));
+  float* ref = calloc(9 * (size_t)(nf + 1), sizeof(float));
+  float* got = calloc(9 * (size_t)(nf + 1), sizeof(float));
+  for (uint32_t r = 0; r < nf; r++) {
+    patches[r] = nf - 1 - r, first[r] = 3 * (r ^ 1);
+    CHECK(tlod_surface_eval_interior(sc->surf, patches[r], TLOD_SIMD_SCALAR, 3, u, v, ref + 9 * (size_t)(r ^ 1),
+                                     NULL) == TLOD_SUCCESS);
+  }
+  uint32_t n = nf & ~1u;
+  for (tlod_simd simd = TLOD_SIMD_SCALAR; simd < TLOD_SIMD_NUM; simd++) {
+    tlod_context* ctx = context(simd, 1);
+    if (tlod_context_simd(ctx) == simd) {
+      memset(got, 0, 9 * (size_t)(nf + 1) * sizeof(float));
+      CHECK(tlod_surface_eval_interiors(sc->surf, simd, n, patches, 3, u, v, first, got) == TLOD_SUCCESS);
+      CHECK_MSG(!memcmp(got, ref, sizeof(float) * 9 * n), "%s %s: interiors differ from tlod_surface_eval_interior",
+                sc->name, tlod_simd_name(simd));
+    }
+    tlod_context_destroy(ctx);
+  }
+  uint32_t bad_patch = nf;
+  CHECK(tlod_surface_eval_interiors(NULL, TLOD_SIMD_SCALAR, 1, patches, 3, u, v, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_interiors(sc->surf, TLOD_SIMD_SCALAR, 1, &bad_patch, 3, u, v, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  CHECK(tlod_surface_eval_interiors(sc->surf, TLOD_SIMD_SCALAR, 1, patches, 3, u, NULL, first, got) ==
+        TLOD_ERROR_INVALID_ARGUMENT);
+  free(patches);
+  free(first);
+  free(ref);
+  free(got);
+}
+
+static void check_interiors_of(shape s, tlod_surface_desc sd) {
+  scene sc;
+  CHECK_MSG(scene_make(&sc, &s, NULL, 0, sd), "%s", s.name);
+  if (sc.surf) check_interiors(&sc);
+  scene_free(&sc);
+  shape_free(&s);
+}
+
+TEST(test_interior_batch) {
+  check_interiors_of(shape_torus(8, 6), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG});
+  check_interiors_of(shape_quad_sphere(3), (tlod_surface_desc){.type = TLOD_SURFACE_PHONG});
+  check_interiors_of(shape_cube_split(),
+                     (tlod_surface_desc){.type = TLOD_SURFACE_PHONG, .alpha_mode = TLOD_ALPHA_GLOBAL, .alpha = 0.4f});
+  check_interiors_of(shape_quad_sphere(2), (tlod_surface_desc){.type = TLOD_SURFACE_FLAT});
+  check_interiors_of(shape_icosphere(1), (tlod_surface_desc){.type = TLOD_SURFACE_PN});
+  check_interiors_of(shape_quad_cube(), (tlod_surface_desc){.type = TLOD_SURFACE_QUADRATIC});
+}
+
+/* Triangles and quads alternating: the fast path's lanes per shape, and
+ * the batch evaluation over both, against the reference. */
+TEST(test_mixed) {
+  shape s = shape_torus(12, 8);
+  tlod_surface_type types[2] = {TLOD_SURFACE_PHONG, TLOD_SURFACE_FLAT};
+  for (int k = 0; k < 2; k++) {
+    scene sc;
+    mixed_faces m;
+    CHECK(mixed_scene(&sc, &s, &m, (tlod_surface_desc){.type = types[k]}));
+    if (sc.surf) {
+      check_scene(&sc, 4);
+      check_interiors(&sc);
+    }
+    scene_free(&sc);
+    free(m.indices);
+    free(m.sizes);
+  }
+  shape_free(&s);
+}
+
 int main(void) {
   RUN(test_flat);
   RUN(test_phong);
@@ -352,5 +535,8 @@ int main(void) {
   RUN(test_attributes);
   RUN(test_kept_topology);
   RUN(test_batch_arguments);
+  RUN(test_edge_batch);
+  RUN(test_interior_batch);
+  RUN(test_mixed);
   TEST_END();
 }

@@ -84,34 +84,101 @@ static void fill(uint32_t* restrict dst, uint32_t count, uint32_t value) {
     dst[k] = value;
 }
 
+/* Positions only: the queued edges of level l in one
+ * tlod_surface_eval_edges() call, point k of an edge at param k << (lmax -
+ * l), id first + k - 1 (an owner's slot has its own level). */
+void _tlod_cpu_edge_params(const tess* t, uint32_t l, uint32_t* param) {
+  for (uint32_t k = 0; k + 1 < (1u << l); k++)
+    param[k] = (k + 1) << (t->lmax - l);
+}
+
+static void flush_edges(tess* t, lane_queue* q, uint32_t l) {
+  uint32_t count = (1u << l) - 1, param[1u << TLOD_MAX_LEVEL];
+  _tlod_cpu_edge_params(t, l, param);
+  tlod_surface_eval_edges(t->s, t->simd, t->lmax, q->edges[l], q->edge_patch[l], q->edge[l], count, param,
+                          q->edge_first[l], t->out->positions);
+  q->edges[l] = 0;
+}
+
+/* ... and the queued patches of shape sh and level l: their interior
+ * points in ordinal order from interior_base. */
+static void flush_patches(tess* t, lane_queue* q, uint32_t sh, uint32_t l) {
+  const level_table* lt = &t->tables[sh][l];
+  tlod_surface_eval_interiors(t->s, t->simd, q->patches[sh][l], q->patch[sh][l], lt->interior, lt->int_u, lt->int_v,
+                              q->patch_first[sh][l], t->out->positions);
+  q->patches[sh][l] = 0;
+}
+
+static void flush_queue(tess* t, lane_queue* q) {
+  for (uint32_t l = 0; l <= TLOD_MAX_LEVEL; l++) {
+    if (q->edges[l]) flush_edges(t, q, l);
+    for (uint32_t sh = 0; sh < 2; sh++)
+      if (q->patches[sh][l]) flush_patches(t, q, sh, l);
+  }
+}
+
+static void queue_edge(tess* t, lane_queue* q, uint32_t f, uint32_t e, uint32_t slot) {
+  uint32_t l = (uint32_t)level_of(t, f), at = q->edges[l]++;
+  q->edge_patch[l][at] = f, q->edge[l][at] = (uint8_t)e, q->edge_first[l][at] = t->slot_base[slot];
+  if (q->edges[l] == LANE_QUEUE) flush_edges(t, q, l);
+}
+
+static void queue_patch(tess* t, lane_queue* q, uint32_t f) {
+  uint32_t sh = shape_of(t, f), l = (uint32_t)level_of(t, f), at = q->patches[sh][l]++;
+  q->patch[sh][l][at] = f, q->patch_first[sh][l][at] = t->interior_base[f];
+  if (q->patches[sh][l] == LANE_QUEUE) flush_patches(t, q, sh, l);
+}
+
+/* Edge e's points with normals, through w's compact arrays. */
+static void eval_edge_normals(tess* t, uint32_t f, uint32_t e, const level_table* lt, scratch* w) {
+  tlod_cpu_mesh* o = t->out;
+  uint32_t slot = f * 4 + e, a = lt->edge_at[e], n = lt->edge_at[e + 1] - a;
+  tlod_surface_eval_edge(t->s, f, e, t->lmax, n, lt->bnd_param + a, &w->cpos[0][0], &w->cnrm[0][0]);
+  uint32_t base = t->slot_base[slot] - 1, shift = t->lmax - t->slot_level[slot];
+  for (uint32_t k = 0; k < n; k++) {
+    uint32_t id = base + (lt->bnd_param[a + k] >> shift);
+    memcpy(o->positions + 3 * (size_t)id, w->cpos[k], sizeof(float[3]));
+    memcpy(o->normals + 3 * (size_t)id, w->cnrm[k], sizeof(float[3]));
+  }
+}
+
+/* Where edge e's points lie: patch f, the pattern's (u, v). */
+static void edge_places(tess* t, uint32_t f, uint32_t e, const level_table* lt) {
+  tlod_cpu_mesh* o = t->out;
+  uint32_t count;
+  const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape_of(t, f), &count);
+  uint32_t slot = f * 4 + e, a = lt->edge_at[e], n = lt->edge_at[e + 1] - a;
+  uint32_t base = t->slot_base[slot] - 1, shift = t->lmax - t->slot_level[slot];
+  for (uint32_t k = 0; k < n; k++) {
+    uint32_t x = lt->bnd_x[a + k], id = base + (lt->param[x] >> shift);
+    o->vertex_patch[id] = f;
+    o->vertex_uv[id][0] = pv[x].u;
+    o->vertex_uv[id][1] = pv[x].v;
+  }
+}
+
 /* Welded, no geomorph, no attributes: interior points straight into the
- * output, then the edges this patch owns. */
+ * output, then the edges this patch owns (positions only: both queued). */
 static void eval_direct(tess* t, uint32_t f, const level_table* lt, scratch* w) {
   tlod_cpu_mesh* o = t->out;
   uint32_t ib = t->interior_base[f], ni = lt->interior;
-  tlod_surface_eval_interior(t->s, f, t->simd, ni, lt->int_u, lt->int_v, o->positions + 3 * (size_t)ib,
-                             o->normals ? o->normals + 3 * (size_t)ib : NULL);
+  if (o->normals)
+    tlod_surface_eval_interior(t->s, f, t->simd, ni, lt->int_u, lt->int_v, o->positions + 3 * (size_t)ib,
+                               o->normals + 3 * (size_t)ib);
+  else if (ni)
+    queue_patch(t, w->queue, f);
   if (!t->positions_only) {
     fill(o->vertex_patch + ib, ni, f);
     memcpy(o->vertex_uv + ib, lt->int_uv, sizeof(float[2]) * ni);
   }
-  uint32_t count;
-  const tlod_pattern_vertex* pv = tlod_patterns_vertices(t->pat, shape_of(t, f), &count);
   for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
-    uint32_t slot = f * 4 + e, a = lt->edge_at[e], n = lt->edge_at[e + 1] - a;
-    if (t->slot_owner[slot] != slot || n == 0) continue;
-    tlod_surface_eval_edge(t->s, f, e, t->lmax, n, lt->bnd_param + a, &w->cpos[0][0],
-                           o->normals ? &w->cnrm[0][0] : NULL);
-    uint32_t base = t->slot_base[slot] - 1, shift = t->lmax - t->slot_level[slot];
-    for (uint32_t k = 0; k < n; k++) {
-      uint32_t x = lt->bnd_x[a + k], id = base + (lt->param[x] >> shift);
-      memcpy(o->positions + 3 * (size_t)id, w->cpos[k], sizeof(float[3]));
-      if (o->normals) memcpy(o->normals + 3 * (size_t)id, w->cnrm[k], sizeof(float[3]));
-      if (t->positions_only) continue;
-      o->vertex_patch[id] = f;
-      o->vertex_uv[id][0] = pv[x].u;
-      o->vertex_uv[id][1] = pv[x].v;
-    }
+    uint32_t slot = f * 4 + e;
+    if (t->slot_owner[slot] != slot || lt->edge_at[e + 1] == lt->edge_at[e]) continue;
+    if (o->normals)
+      eval_edge_normals(t, f, e, lt, w);
+    else
+      queue_edge(t, w->queue, f, e, slot);
+    if (!t->positions_only) edge_places(t, f, e, lt);
   }
 }
 
@@ -143,6 +210,7 @@ void _tlod_cpu_fast_eval(void* data, uint32_t begin, uint32_t end, uint32_t work
     else
       eval_direct(t, f, lt, w);
   }
+  flush_queue(t, w->queue);
 }
 
 /* The pattern's indices plus the patch's offset; welded, the template holds

@@ -32,6 +32,32 @@ typedef struct level_table {
   uint32_t *tmpl, *slot_k, nslot;
 } level_table;
 
+/* Per worker, the fast path's positions-only points waiting for one call
+ * per level (cpu_fast.c): edges for tlod_surface_eval_edges() (patch, edge,
+ * output id of the first point) and, per shape, patches for
+ * tlod_surface_eval_interiors() (patch, output id of the first interior
+ * point). */
+enum { LANE_QUEUE = 128 };
+typedef struct lane_queue {
+  uint32_t edges[TLOD_MAX_LEVEL + 1];
+  uint32_t edge_patch[TLOD_MAX_LEVEL + 1][LANE_QUEUE], edge_first[TLOD_MAX_LEVEL + 1][LANE_QUEUE];
+  uint8_t edge[TLOD_MAX_LEVEL + 1][LANE_QUEUE];
+  uint32_t patches[2][TLOD_MAX_LEVEL + 1];
+  uint32_t patch[2][TLOD_MAX_LEVEL + 1][LANE_QUEUE], patch_first[2][TLOD_MAX_LEVEL + 1][LANE_QUEUE];
+} lane_queue;
+
+/* A kept frame's positions-only work as two flat lists (cpu_lists.c): the
+ * owned edges by level and the patches with interior points by shape and
+ * level (key shape * (TLOD_MAX_LEVEL + 1) + level), each entry with the
+ * output id of its first point. Built at the first kept frame that can use
+ * them; the topology they follow is the kept one. */
+typedef struct work_lists {
+  bool built;
+  uint32_t edge_at[TLOD_MAX_LEVEL + 2], patch_at[2 * (TLOD_MAX_LEVEL + 1) + 1];
+  uint32_t *edge_patch, *edge_first, *patch, *patch_first;
+  uint8_t* edge;
+} work_lists;
+
 /* Per worker: pattern vertex -> output id, the patch's evaluated points and
  * (with attributes) their attribute vec4s; worker 0's attr also serves the
  * strips (one edge polyline). */
@@ -41,6 +67,7 @@ typedef struct scratch {
   float (*nrm)[3];
   float (*cpos)[3], (*cnrm)[3]; /* fast path: points in evaluation order */
   float (*attr)[4];             /* NULL without attributes */
+  lane_queue* queue;            /* fast path */
 } scratch;
 
 /* A strip vertex of b's polyline carrying a's attributes (cpu_strips.c):
@@ -82,6 +109,10 @@ typedef struct tess {
   uint32_t vertex_count, pattern_tris;
   uint32_t pattern_verts; /* vertex_count before the strip vertices */
   bool positions_only;    /* a kept topology: write positions and normals only */
+  /* The walk over all edges (no draw list) found none to stitch: a kept
+   * topology (same levels and links, no blends) finds none again. */
+  bool walk_found_none;
+  work_lists lists;
   uint32_t (*strip_tris)[3];
   uint32_t strip_count, strip_cap;
   /* Strip vertices with side a's attributes, numbered from vertex_count. */
@@ -144,6 +175,13 @@ void _tlod_cpu_patch_map(const tess* t, uint32_t f, uint32_t* map);
 void _tlod_cpu_finish_patch(tess* t, uint32_t f, scratch* w);
 /* Whether patch f has a geomorph blend below 1 (it needs its parents). */
 bool _tlod_cpu_morphs(const tess* t, uint32_t f);
+/* cpu_fast.c: the params of a level-l edge's points, k << (lmax - l). */
+void _tlod_cpu_edge_params(const tess* t, uint32_t l, uint32_t* param);
+/* cpu_lists.c: a kept frame's positions through the work lists, when it
+ * can (positions only, welded, no draw list, no attributes); false: the
+ * caller runs the patch pass. */
+bool _tlod_cpu_lists_eval(tess* t);
+void _tlod_cpu_lists_free(tess* t);
 /* cpu_fast.c: the fast path's tables, patch pass and index pass. */
 tlod_result _tlod_cpu_fast_table(tess* t, tlod_pattern_shape shape, uint32_t level);
 void _tlod_cpu_fast_free(tess* t, level_table* lt);

@@ -154,6 +154,8 @@ tlod_result _tlod_cpu_stitch(tess* t) {
     }
     return TLOD_SUCCESS;
   }
+  if (t->positions_only && t->walk_found_none) return TLOD_SUCCESS;
+  bool found = false;
   for (uint32_t f = 0; f < t->m.face_count; f++) {
     if (level_of(t, f) < 0) continue;
     for (uint32_t e = 0; e < t->m.face_corners[f]; e++) {
@@ -162,9 +164,11 @@ tlod_result _tlod_cpu_stitch(tess* t) {
       /* Equal levels on one curve with one blend: the polylines coincide
        * (on a seam too: there each side keeps its own vertices). */
       if (level_of(t, f) == level_of(t, link.face) && _tlod_cpu_edge_coincides(t, f, e, &link)) continue;
+      found = true;
       tlod_result r = stitch_edge(t, f, e, link.face, link.edge, NULL);
       if (r != TLOD_SUCCESS) return r;
     }
   }
+  t->walk_found_none = !found;
   return TLOD_SUCCESS;
 }

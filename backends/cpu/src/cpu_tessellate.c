@@ -380,6 +380,7 @@ static void emit_patches(void* data, uint32_t begin, uint32_t end, uint32_t work
 /* ---- driver ---------------------------------------------------------------- */
 
 void _tlod_cpu_tess_free(tess* t) {
+  _tlod_cpu_lists_free(t);
   for (int sh = 0; sh < 2; sh++) {
     for (int l = 0; l <= TLOD_MAX_LEVEL; l++) {
       tlod_context_free(t->ctx, t->tables[sh][l].kind);
@@ -394,6 +395,7 @@ void _tlod_cpu_tess_free(tess* t) {
     tlod_context_free(t->ctx, t->work[w].attr);
     tlod_context_free(t->ctx, t->work[w].cpos);
     tlod_context_free(t->ctx, t->work[w].cnrm);
+    tlod_context_free(t->ctx, t->work[w].queue);
   }
   void* arrays[] = {t->level,      t->morph_buf,   t->corner_id,     t->corner_src, t->slot_owner,
                     t->slot_level, t->slot_base,   t->interior_base, t->tri_base,   t->strip_tris,
@@ -518,7 +520,8 @@ static tlod_result alloc_work(tess* t) {
     t->work[w].nrm = tlod_context_alloc(t->ctx, sizeof(float[3]) * n);
     if (!t->work[w].map || !t->work[w].pos || !t->work[w].nrm) return TLOD_ERROR_OUT_OF_MEMORY;
     if (!t->d.reference && (!(t->work[w].cpos = tlod_context_alloc(t->ctx, sizeof(float[3]) * n)) ||
-                            !(t->work[w].cnrm = tlod_context_alloc(t->ctx, sizeof(float[3]) * n))))
+                            !(t->work[w].cnrm = tlod_context_alloc(t->ctx, sizeof(float[3]) * n)) ||
+                            !(t->work[w].queue = tlod_context_calloc(t->ctx, 1, sizeof(lane_queue)))))
       return TLOD_ERROR_OUT_OF_MEMORY;
     if (t->na && !(t->work[w].attr = tlod_context_alloc(t->ctx, sizeof(float[4]) * t->na * n)))
       return TLOD_ERROR_OUT_OF_MEMORY;
@@ -637,7 +640,7 @@ static tlod_result run_kept(tess* t) {
     return tlod_context_fail(t->ctx, TLOD_ERROR_OUT_OF_MEMORY, "tlod_cpu_tessellate: out of memory for %u vertices",
                              t->vertex_count);
   eval_corners(t);
-  tlod_context_parallel_for(t->ctx, _tlod_cpu_fast_eval, t, t->m.face_count);
+  if (!_tlod_cpu_lists_eval(t)) tlod_context_parallel_for(t->ctx, _tlod_cpu_fast_eval, t, t->m.face_count);
   return finish(t);
 }
 

@@ -791,6 +791,19 @@ TLOD_API tlod_result tlod_surface_eval_interior(const tlod_surface* surface, uin
                                                 uint32_t count, const float* u, const float* v, float* positions,
                                                 float* normals);
 
+/* tlod_surface_eval_interior() with normals NULL for many patches at once,
+ * in lanes of patches (a coarse level has few interior points per patch):
+ * point k (k < count) of every patch patches[r] (r < patch_count) is at
+ * (u[k], v[k]) and goes to positions + 3 * (first[r] + k). The positions
+ * are bitwise tlod_surface_eval_interior()'s at every simd level; triangles
+ * and quads may mix (consecutive patches of one corner count share lanes).
+ * Thread-safe. TLOD_ERROR_INVALID_ARGUMENT, nothing written: NULL surface,
+ * a NULL array with patch_count and count > 0, a patch >= the patch count.
+ * UNDEFINED as tlod_surface_eval_interior(): points on or off the boundary. */
+TLOD_API tlod_result tlod_surface_eval_interiors(const tlod_surface* surface, tlod_simd simd, uint32_t patch_count,
+                                                 const uint32_t* patches, uint32_t count, const float* u,
+                                                 const float* v, const uint32_t* first, float* positions);
+
 /* The batch form of tlod_surface_eval_grid() for points on one edge of a
  * patch: point k at param[k] / 2^grid_log2, the weight of the edge's end
  * corner ((edge + 1) % n), as tlod_grid_point_kind() gives it. Bitwise the
@@ -805,6 +818,20 @@ TLOD_API tlod_result tlod_surface_eval_interior(const tlod_surface* surface, uin
 TLOD_API tlod_result tlod_surface_eval_edge(const tlod_surface* surface, uint32_t patch, uint32_t edge,
                                             uint32_t grid_log2, uint32_t count, const uint32_t* param, float* positions,
                                             float* normals);
+
+/* tlod_surface_eval_edge() with normals NULL for many edges at once, in
+ * lanes of edges (a coarse level has few points per edge): edge r is edge
+ * edges[r] of patch patches[r], r < edge_count; every edge's point k is at
+ * param[k] / 2^grid_log2 (k < count) and goes to positions + 3 * (first[r]
+ * + k). The positions are bitwise tlod_surface_eval_edge()'s at every simd
+ * level (the instruction set, as tlod_surface_eval_interior() takes it).
+ * Thread-safe. TLOD_ERROR_INVALID_ARGUMENT, nothing written: NULL surface,
+ * grid_log2 > 15, a NULL array with edge_count and count > 0, a patch or
+ * edge out of range, a param 0 or >= 2^grid_log2. */
+TLOD_API tlod_result tlod_surface_eval_edges(const tlod_surface* surface, tlod_simd simd, uint32_t grid_log2,
+                                             uint32_t edge_count, const uint32_t* patches, const uint8_t* edges,
+                                             uint32_t count, const uint32_t* param, const uint32_t* first,
+                                             float* positions);
 
 /* Attributes at count grid points of one patch, with the grid and ij
  * arguments of tlod_surface_eval_grid(): corners are the vertex's values

@@ -53,7 +53,11 @@
  *   pattern's template plus the patch's offset, remapped only where they
  *   name a corner or edge point. A patch with a geomorph blend below 1,
  *   attributes, or no_weld takes the point-by-point write of the reference
- *   after the same vectorised evaluation.
+ *   after the same vectorised evaluation. With no_normals the positions of
+ *   many patches go in lanes across patches and across edges
+ *   (tlod_surface_eval_interiors(), tlod_surface_eval_edges(): a coarse
+ *   level has too few points per patch or edge to fill lanes), bitwise the
+ *   per-patch calls.
  *
  * KEPT TOPOLOGY (tlod_cpu_tessellate_into, fast path)
  *   The mesh remembers the topology of its last call: when the levels (or
@@ -66,7 +70,9 @@
  *   rewritten (strips are redone: their folds compare positions). The
  *   result is bitwise what a fresh call gives. Hence the arrays of a mesh
  *   passed to _into are read-only to the caller. Meshes with attributes and .reference calls always take the
- *   full path.
+ *   full path. A kept no_normals call without a draw list evaluates from
+ *   two lists made at the first such call (the owned edges and the patches
+ *   with interior points, with their output ids).
  *
  * VERTEX ATTRIBUTES AND (PATCH, U, V)
  *   Every output vertex carries the mesh's attributes (tesslod/core.h,

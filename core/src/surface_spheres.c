@@ -1,0 +1,34 @@
+/* tesslod::core -- the refresh of Phong surfaces without error tables
+ * (TLOD_ERROR_TABLES_NONE) in lanes of patches: their only per-patch
+ * values that move with the mesh are the bounding spheres (surface.c's
+ * build_phong_untabled: phong_grow, then _tlod_sphere_of), computed here
+ * for a block of patches at once by the kernel of surface_spheres.inc
+ * (per instruction set). Bitwise the scalar spheres. */
+#include <math.h>
+
+#include "patch_lanes.h"
+
+typedef void (*sphere_kernel)(const _tlod_patch_lanes* L, uint32_t n, float* restrict center_x,
+                              float* restrict center_y, float* restrict center_z, float* restrict radius);
+
+#define KERNEL_FILE "surface_spheres.inc"
+#include "simd_instances.inc"
+#undef KERNEL_FILE
+
+void _tlod_phong_spheres(const tlod_surface* s, tlod_simd simd, const uint32_t* patches, uint32_t count) {
+  sphere_kernel k = KERNEL_FOR(spheres, simd);
+  const uint8_t* corners = s->mesh->face_corners;
+  _tlod_patch_lanes L;
+  float cx[PATCH_LANES], cy[PATCH_LANES], cz[PATCH_LANES], radius[PATCH_LANES];
+  for (uint32_t at = 0, n; at < count; at += n) {
+    L.corners = corners[patches[at]];
+    for (n = 0; at + n < count && n < PATCH_LANES && corners[patches[at + n]] == L.corners; n++)
+      _tlod_lanes_gather(s, &L, n, patches[at + n]);
+    k(&L, n, cx, cy, cz, radius);
+    for (uint32_t r = 0; r < n; r++) {
+      tlod_patch_info* info = &s->info[patches[at + r]];
+      info->center[0] = cx[r], info->center[1] = cy[r], info->center[2] = cz[r];
+      info->radius = radius[r];
+    }
+  }
+}
