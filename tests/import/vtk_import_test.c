@@ -659,6 +659,37 @@ TEST(xml_compressed_offsets_checked) {
   }
 }
 
+/* ASCII cell arrays (and any format VTK does not know, which it reads as ASCII): the
+ * connectivity's size is its word count, the offsets' last value is checked against it in either
+ * order (VTK asked for 8 GB: fuzz_vtk, tests/data/fuzz/fuzz_vtk/offsets_past_ascii_connectivity.vtp). */
+TEST(xml_ascii_offsets_checked) {
+  static const char* const kFmt =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "<PolyData><Piece NumberOfPoints=\"4\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+      "NumberOfPolys=\"2\">\n<Points><DataArray type=\"Float32\" Name=\"Points\" NumberOfComponents=\"3\" "
+      "format=\"ascii\">0 0 0 1 0 0 0 1 0 1 1 0</DataArray></Points>\n<Polys>%s%s</Polys>\n</Piece></PolyData>\n"
+      "</VTKFile>\n";
+  static const char* const kConn =
+      "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"%s\">0 1 2 1 3 2</DataArray>";
+  static const char* const kOffs = "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3 %s</DataArray>";
+  char t[2048], conn[256], offs[256];
+  for (int order = 0; order < 2; ++order)
+    for (int bad = 0; bad < 2; ++bad) {
+      snprintf(conn, sizeof conn, kConn, bad && order ? "asc!i" : "ascii");
+      snprintf(offs, sizeof offs, kOffs, bad ? "2147483647" : "6");
+      snprintf(t, sizeof t, kFmt, order ? offs : conn, order ? conn : offs);
+      tlod_import_result* r = NULL;
+      const tlod_result res = import_text("a.vtp", t, &r);
+      const uint32_t faces = r ? r->face_count : 0;
+      tlod_import_free(r);
+      if (!bad) CHECK_MSG(res == TLOD_SUCCESS && faces == 2, "order %d: %s", order, g_err);
+      if (bad)
+        CHECK_MSG(res == TLOD_ERROR_PARSE && strstr(g_err, "a.vtp: DataArray ") &&
+                      strstr(g_err, " (offsets): the last offset 2147483647 is past the 6 connectivity ids"),
+                  "order %d: %s", order, g_err);
+    }
+}
+
 TEST(unsupported_cell_type_named) {
   char t[1024];
   snprintf(t, sizeof t,
@@ -895,6 +926,7 @@ int main(void) {
   RUN(xml_compressed_block_count_past_the_file_refused);
   RUN(xml_offsets_past_empty_connectivity_refused);
   RUN(xml_compressed_offsets_checked);
+  RUN(xml_ascii_offsets_checked);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);

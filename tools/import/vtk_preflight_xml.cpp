@@ -48,6 +48,8 @@ std::string base64_prefix(const char* p, const char* end, size_t want) {
   return out;
 }
 
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+
 // The first byte after n base64 characters (alphabet or '=') of [p, end), whitespace skipped.
 const char* skip_base64(const char* p, const char* end, uint64_t n) {
   for (; p < end && n > 0; ++p)
@@ -84,6 +86,8 @@ private:
   const char* appended_ = nullptr;     // first byte after the '_' of <AppendedData>
   uint64_t index_ = 0;                 // DataArray number, for messages
   uint64_t connectivity_ = UINT64_MAX; // ids of the last connectivity array (UINT64_MAX: none pending)
+  uint64_t last_offset_ = UINT64_MAX;  // last value of the last offsets array (UINT64_MAX: none pending)
+  uint64_t offsets_index_ = 0;         // its DataArray number
 
   void file_attributes() {
     xml_tags(data_, size_t(end_ - data_), "VTKFile", [this](const char* b, const char* e) {
@@ -123,7 +127,8 @@ private:
   void array(const char* b, const char* e) {
     const uint64_t i = index_++;
     std::string fmt, off;
-    if (!xml_attribute(b, e, "format", &fmt) || (fmt != "binary" && fmt != "appended")) return;
+    xml_attribute(b, e, "format", &fmt);
+    if (fmt != "binary" && fmt != "appended") return ascii_cells(i, b, e); // VTK reads any other format as ASCII
     const char* p = e + 1;
     bool base64 = true;
     if (fmt == "appended") {
@@ -144,25 +149,60 @@ private:
   }
 
   // VTK sizes a cell array's connectivity by its last offset before reading the connectivity: a
-  // last offset past the connectivity's own size (its header) would make VTK allocate it.
-  // Compressed data: the offsets' last block is inflated to read it.
+  // last offset past the connectivity's own size (its header) would make VTK allocate it. The two
+  // arrays of a block may come in either order; compressed data: the offsets' last block is
+  // inflated to read it.
   void cells(uint64_t i, const char* b, const char* e, uint64_t bytes, const char* p, bool base64) {
-    std::string name, type;
-    if (!xml_attribute(b, e, "Name", &name) || (name != "offsets" && name != "connectivity")) return;
-    xml_attribute(b, e, "type", &type);
-    const size_t size = type == "Int64" || type == "UInt64" ? 8 : type == "Int32" || type == "UInt32" ? 4 : 0;
-    if (size == 0) return;
-    if (name == "connectivity") { // an empty one too: then any offset past 0 is past it
-      connectivity_ = bytes / size;
-      return;
-    }
+    size_t size;
+    const int role = cell_role(b, e, &size);
     uint64_t v;
-    if (bytes < size || connectivity_ == UINT64_MAX) return;
-    if (!(compressed_ ? compressed_last(p, base64, size, &v) : raw_last(p, base64, bytes, size, &v))) return;
-    if (v > connectivity_)
+    if (role == kConnectivity) return pair(i, bytes / size, UINT64_MAX); // an empty one too
+    if (role != kOffsets || bytes < size) return;
+    if (compressed_ ? compressed_last(p, base64, size, &v) : raw_last(p, base64, bytes, size, &v))
+      pair(i, UINT64_MAX, v);
+  }
+
+  // The same for ASCII arrays: the connectivity's size is its word count, the offsets' last
+  // value its last word's digits (as a C++ stream reads them).
+  void ascii_cells(uint64_t i, const char* b, const char* e) {
+    size_t size;
+    const int role = cell_role(b, e, &size);
+    if (role == kNone || e[-1] == '/') return role == kConnectivity ? pair(i, 0, UINT64_MAX) : void();
+    const char* q = e + 1;
+    const char* stop = static_cast<const char*>(memchr(q, '<', size_t(end_ - q)));
+    const char* word = nullptr;
+    uint64_t count = 0, v = 0;
+    for (const char* end = stop ? stop : end_; q < end; ++q)
+      if (!is_space(*q) && (q == e + 1 || is_space(q[-1]))) ++count, word = q;
+    for (size_t k = 0; word && word + k < end_ && k < 19 && word[k] >= '0' && word[k] <= '9'; ++k)
+      v = v * 10 + uint64_t(word[k] - '0');
+    if (role == kConnectivity) return pair(i, count, UINT64_MAX);
+    if (count > 0) pair(i, UINT64_MAX, v);
+  }
+
+  enum { kNone, kConnectivity, kOffsets };
+
+  // Whether a DataArray is a cell block's connectivity or offsets (an integer array of 4 or 8
+  // bytes a value: size), or neither.
+  static int cell_role(const char* b, const char* e, size_t* size) {
+    std::string name, type;
+    if (!xml_attribute(b, e, "Name", &name) || (name != "offsets" && name != "connectivity")) return kNone;
+    xml_attribute(b, e, "type", &type);
+    *size = type == "Int64" || type == "UInt64" ? 8 : type == "Int32" || type == "UInt32" ? 4 : 0;
+    if (*size == 0) return kNone;
+    return name == "offsets" ? kOffsets : kConnectivity;
+  }
+
+  // One half of a block's pair (UINT64_MAX: the other half); checked once both are known.
+  void pair(uint64_t i, uint64_t ids, uint64_t last) {
+    if (ids != UINT64_MAX) connectivity_ = ids;
+    if (last != UINT64_MAX) last_offset_ = last, offsets_index_ = i;
+    if (connectivity_ == UINT64_MAX || last_offset_ == UINT64_MAX) return;
+    if (last_offset_ > connectivity_)
       fail(TLOD_ERROR_PARSE, format("DataArray %llu (offsets): the last offset %llu is past the %llu connectivity ids",
-                                    (unsigned long long)i, (unsigned long long)v, (unsigned long long)connectivity_));
-    connectivity_ = UINT64_MAX;
+                                    (unsigned long long)offsets_index_, (unsigned long long)last_offset_,
+                                    (unsigned long long)connectivity_));
+    connectivity_ = last_offset_ = UINT64_MAX;
   }
 
   // The value of size bytes at q in the file's byte order.
