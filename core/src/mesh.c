@@ -297,7 +297,9 @@ static bool triangle_degenerate(const float* a, const float* b, const float* c) 
   double l0 = e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2];
   double l1 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
   double l2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
-  double longest = fmax(l0, fmax(l1, l2));
+  /* Sums of squares of finite differences (positions are checked): never
+   * NaN, so plain compares give fmax's result without its library call. */
+  double l01 = l0 > l1 ? l0 : l1, longest = l01 > l2 ? l01 : l2;
   return sqrt(cx * cx + cy * cy + cz * cz) <= 1e-12 * longest;
 }
 
