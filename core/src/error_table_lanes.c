@@ -24,6 +24,13 @@ typedef struct lanes_out {
 
 typedef void (*quads_kernel)(const lanes_in* in, bool measured, lanes_out* out);
 
+/* Inlined, so that the levels' constant steps unroll the sample loops. */
+#if defined(__GNUC__)
+#define INLINE inline __attribute__((always_inline))
+#else
+#define INLINE inline
+#endif
+
 #define KERNEL_FILE "error_table_lanes.inc"
 #include "simd_instances.inc"
 #undef KERNEL_FILE

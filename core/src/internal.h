@@ -107,12 +107,16 @@ void _tlod_corner_angles(tlod_simd simd, const double* y2, const double* x, doub
  * to _TLOD_FACE_LANES faces in lanes, as mesh_normals.c face_cross: quads
  * the diagonals' cross product, triangles (corner 0 repeated as corner 3)
  * the edges'; redo = 1 where a quad's diagonals are near parallel (the
- * scalar code's two-triangle case). Bitwise the same at every level. */
+ * scalar code's two-triangle case); and the flat corners' y2 and x.
+ * Bitwise the same at every level. */
 enum { _TLOD_FACE_LANES = 64 };
 typedef struct _tlod_face_lanes {
   double p[12][_TLOD_FACE_LANES]; /* corner c's x, y, z at rows 3c .. 3c + 2 */
   double quad[_TLOD_FACE_LANES];  /* 1 for a quad, 0 for a triangle */
   double n[3][_TLOD_FACE_LANES], len[_TLOD_FACE_LANES], redo[_TLOD_FACE_LANES];
+  /* Flat corner c's tangents a = e_c, b = -e_prev (e_i = p_{i+1} - p_i):
+   * |a x b|^2 and a . b, as mesh_normals.c's corner angles need them. */
+  double y2[4][_TLOD_FACE_LANES], x[4][_TLOD_FACE_LANES];
 } _tlod_face_lanes;
 void _tlod_face_normals(tlod_simd simd, _tlod_face_lanes* lanes, uint32_t n);
 /* Makes mesh->normal_sum (no creases): _tlod_mesh_compute_normals then

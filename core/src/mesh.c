@@ -297,7 +297,9 @@ static bool triangle_degenerate(const float* a, const float* b, const float* c) 
   double l0 = e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2];
   double l1 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
   double l2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
-  double longest = fmax(l0, fmax(l1, l2));
+  /* Sums of squares of finite differences (positions are checked): never
+   * NaN, so plain compares give fmax's result without its library call. */
+  double l01 = l0 > l1 ? l0 : l1, longest = l01 > l2 ? l01 : l2;
   return sqrt(cx * cx + cy * cy + cz * cz) <= 1e-12 * longest;
 }
 
@@ -388,6 +390,11 @@ static void bbox_add(const float* x, float lo[3], float hi[3]) {
   }
 }
 
+static void store_bbox(tlod_mesh* m, const float lo[3], const float hi[3]) {
+  memcpy(m->info.bbox_min, lo, 3 * sizeof(float));
+  memcpy(m->info.bbox_max, hi, 3 * sizeof(float));
+}
+
 /* Over the corners and nodes of kept faces, so unused vertices do not count. */
 static void compute_bbox(tlod_mesh* m) {
   float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -397,8 +404,40 @@ static void compute_bbox(tlod_mesh* m) {
     for (uint32_t s = 0; m->face_nodes && s < TLOD_FACE_NODES; s++)
       if (m->face_nodes[f][s] != _TLOD_NONE) bbox_add(m->positions[m->face_nodes[f][s]], lo, hi);
   }
-  memcpy(m->info.bbox_min, lo, sizeof(lo));
-  memcpy(m->info.bbox_max, hi, sizeof(hi));
+  store_bbox(m, lo, hi);
+}
+
+/* The box of all vertices, when that is the box of the face corners (every
+ * vertex is one: no unused vertices, no nodes; else false), in four
+ * independent chains. The same values as compute_bbox; the bits too,
+ * except for the sign of a zero bound (-0 and +0 compare equal, and the
+ * first one seen stays). */
+static bool vertex_bbox(const tlod_mesh* m, float lo[3], float hi[3]) {
+  if (m->face_nodes || m->info.unused_vertices || m->vertex_count == 0) return false;
+  float l[4][3], h[4][3];
+  for (int k = 0; k < 4; k++)
+    memcpy(l[k], m->positions[0], sizeof(l[k])), memcpy(h[k], m->positions[0], sizeof(h[k]));
+  uint32_t n = m->vertex_count;
+  for (uint32_t v = 0; v < n; v++)
+    bbox_add(m->positions[v], l[v & 3], h[v & 3]);
+  for (int k = 1; k < 4; k++)
+    bbox_add(l[k], l[0], h[0]), bbox_add(h[k], l[0], h[0]);
+  memcpy(lo, l[0], sizeof(l[0]));
+  memcpy(hi, h[0], sizeof(h[0]));
+  return true;
+}
+
+/* At creation, compute_bbox's bits: the vertices' box unless a bound is
+ * zero (whose sign depends on the order), at a third of the cost. */
+static void create_bbox(tlod_mesh* m) {
+  float lo[3], hi[3];
+  bool ok = vertex_bbox(m, lo, hi);
+  for (int c = 0; ok && c < 3; c++)
+    ok = lo[c] != 0.0f && hi[c] != 0.0f;
+  if (ok)
+    store_bbox(m, lo, hi);
+  else
+    compute_bbox(m);
 }
 
 static void log_summary(const tlod_mesh* m) {
@@ -424,7 +463,7 @@ static void finish_info(tlod_mesh* m) {
   for (uint32_t v = 0; v < m->info.input_vertex_count; v++)
     welded += m->weld_id[v] == v;
   m->info.welded_vertex_count = welded;
-  compute_bbox(m);
+  create_bbox(m);
 }
 
 /* The desc as the mesh keeps it: defaults resolved, caller arrays dropped. */
@@ -677,24 +716,16 @@ static bool smooth_flags_can_change(const tlod_mesh* m) {
   return false;
 }
 
-/* compute_bbox, over all vertices when every one is a face corner (no
- * unused vertices, no nodes): the same minima and maxima without the
- * faces' indirection, in independent chains (a float per lane). */
+/* compute_bbox when every vertex is a face corner (no unused vertices, no
+ * nodes): the same minima and maxima over the vertices, without the faces'
+ * indirection, in independent chains (a float per lane). */
 static void update_bbox(tlod_mesh* m) {
-  if (m->face_nodes || m->info.unused_vertices || m->vertex_count == 0) {
+  float lo[3], hi[3];
+  if (!vertex_bbox(m, lo, hi)) {
     compute_bbox(m);
     return;
   }
-  float lo[4][3], hi[4][3];
-  for (int k = 0; k < 4; k++)
-    memcpy(lo[k], m->positions[0], sizeof(lo[k])), memcpy(hi[k], m->positions[0], sizeof(hi[k]));
-  uint32_t n = m->vertex_count;
-  for (uint32_t v = 0; v < n; v++)
-    bbox_add(m->positions[v], lo[v & 3], hi[v & 3]);
-  for (int k = 1; k < 4; k++)
-    bbox_add(lo[k], lo[0], hi[0]), bbox_add(hi[k], lo[0], hi[0]);
-  memcpy(m->info.bbox_min, lo[0], sizeof(lo[0]));
-  memcpy(m->info.bbox_max, hi[0], sizeof(hi[0]));
+  store_bbox(m, lo, hi);
 }
 
 tlod_result tlod_mesh_update(tlod_mesh* mesh, const float* positions, uint32_t position_stride, const float* normals,

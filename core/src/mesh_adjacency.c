@@ -201,8 +201,9 @@ static bool same_vertex_data(const tlod_mesh* m, uint32_t a, uint32_t b) {
 
 static uint32_t edge_start(const tlod_mesh* m, uint32_t f, uint32_t e) { return m->faces[f][e]; }
 
+/* A compare, not a modulo: a division per edge showed in the profile. */
 static uint32_t edge_end(const tlod_mesh* m, uint32_t f, uint32_t e) {
-  return m->faces[f][(e + 1) % m->face_corners[f]];
+  return m->faces[f][e + 1 < m->face_corners[f] ? e + 1 : 0];
 }
 
 /* Edge e of f meets edge ge of g in the opposite direction: smooth when
@@ -255,14 +256,18 @@ typedef struct edge_buckets {
   half_edge* half;
 } edge_buckets;
 
-static uint32_t edge_lo(const tlod_mesh* m, uint32_t f, uint32_t e) {
-  uint32_t a = m->weld_id[edge_start(m, f, e)], b = m->weld_id[edge_end(m, f, e)];
-  return a < b ? a : b;
-}
-
-static uint32_t edge_hi(const tlod_mesh* m, uint32_t f, uint32_t e) {
-  uint32_t a = m->weld_id[edge_start(m, f, e)], b = m->weld_id[edge_end(m, f, e)];
-  return a < b ? b : a;
+/* The smaller and larger welded ends of face f's edges; returns their
+ * count. Each corner's weld id is loaded once, not twice per edge. */
+static uint32_t face_edge_ends(const tlod_mesh* m, uint32_t f, uint32_t lo[4], uint32_t hi[4]) {
+  uint32_t k = m->face_corners[f], w[4];
+  for (uint32_t i = 0; i < k; i++)
+    w[i] = m->weld_id[m->faces[f][i]];
+  for (uint32_t e = 0; e < k; e++) {
+    uint32_t a = w[e], b = w[e + 1 < k ? e + 1 : 0];
+    lo[e] = a < b ? a : b;
+    hi[e] = a < b ? b : a;
+  }
+  return k;
 }
 
 static int half_edge_cmp(const void* pa, const void* pb) {
@@ -297,9 +302,10 @@ static tlod_result buckets_build(tlod_mesh* m, edge_buckets* b) {
     _tlod_free(ctx, b->half);
     return fail_oom(m, "edge buckets");
   }
+  uint32_t lo[4], hi[4];
   for (uint32_t f = 0; f < m->face_count; f++)
-    for (uint32_t e = 0; e < m->face_corners[f]; e++)
-      b->first[edge_lo(m, f, e)]++;
+    for (uint32_t e = 0, k = face_edge_ends(m, f, lo, hi); e < k; e++)
+      b->first[lo[e]]++;
   uint32_t total = 0;
   for (uint32_t w = 0; w < m->vertex_count; w++) {
     total += b->first[w];
@@ -307,8 +313,8 @@ static tlod_result buckets_build(tlod_mesh* m, edge_buckets* b) {
   }
   b->first[m->vertex_count] = total;
   for (uint32_t f = m->face_count; f-- > 0;)
-    for (uint32_t e = m->face_corners[f]; e-- > 0;)
-      b->half[--b->first[edge_lo(m, f, e)]] = (half_edge){edge_hi(m, f, e), f * 4 + e};
+    for (uint32_t e = face_edge_ends(m, f, lo, hi); e-- > 0;)
+      b->half[--b->first[lo[e]]] = (half_edge){hi[e], f * 4 + e};
   for (uint32_t w = 0; w < m->vertex_count; w++)
     sort_bucket(b->half + b->first[w], b->first[w + 1] - b->first[w]);
   return TLOD_SUCCESS;

@@ -42,6 +42,7 @@ void _tlod_corner_angles(tlod_simd simd, const double* y2, const double* x, doub
 }
 
 void _tlod_face_normals(tlod_simd simd, _tlod_face_lanes* lanes, uint32_t n) {
-  face_kernel k = KERNEL_FOR(faces, simd);
+  face_kernel k = KERNEL_FOR(faces, simd), c = KERNEL_FOR(corners, simd);
   k(lanes, n);
+  c(lanes, n);
 }

@@ -364,24 +364,6 @@ typedef struct corner_batch {
   uint32_t count;
 } corner_batch;
 
-/* A flat face's corners from its edge vectors e_i = p_{i+1} - p_i: at
- * corner i the tangents are e_i and -e_{i-1} (the doubles corner_tangents
- * gives, without its per-corner loads and divisions). */
-static void flat_corners(const tlod_mesh* m, uint32_t f, uint32_t k, corner_batch* b) {
-  static const uint8_t next[5][4] = {[3] = {1, 2, 0, 0}, [4] = {1, 2, 3, 0}};
-  static const uint8_t prev[5][4] = {[3] = {2, 0, 1, 0}, [4] = {3, 0, 1, 2}};
-  double e[4][3];
-  for (uint32_t i = 0; i < k; i++)
-    sub3(m->positions[m->faces[f][next[k][i]]], m->positions[m->faces[f][i]], e[i]);
-  for (uint32_t i = 0; i < k; i++) {
-    const double* q = e[prev[k][i]];
-    double t[3] = {-q[0], -q[1], -q[2]}, c[3];
-    cross3(e[i], t, c);
-    b->y2[b->count + i] = dot3(c, c);
-    b->x[b->count + i] = dot3(e[i], t);
-  }
-}
-
 /* Face f as lane l of the face kernel. */
 static void face_lane(const tlod_mesh* m, uint32_t f, uint32_t l, _tlod_face_lanes* lanes) {
   uint32_t k = m->face_corners[f];
@@ -401,17 +383,21 @@ static double lane_normal(const tlod_mesh* m, uint32_t f, uint32_t l, const _tlo
   return lanes->len[l];
 }
 
-/* Face f's corners into the batch: vertex, normal, and the weight (area) or
- * what its angle needs. */
-static void batch_face(const tlod_mesh* m, bool area, uint32_t f, const double n[3], double area2, corner_batch* b) {
+/* Face f (lane l of the face kernel) into the batch: its corners' vertex,
+ * normal, and the weight (area) or what its angle needs (the lanes' flat
+ * corners, else the curved tangents). */
+static void batch_face(const tlod_mesh* m, bool area, uint32_t f, const _tlod_face_lanes* lanes, uint32_t l,
+                       corner_batch* b) {
   uint32_t k = m->face_corners[f], at = b->count;
   bool curved = curved_face(m, f);
+  double n[3], area2 = lane_normal(m, f, l, lanes, n);
   for (uint32_t i = 0; i < k; i++) {
     b->v[at + i] = m->faces[f][i];
     memcpy(b->n[at + i], n, 3 * sizeof(double));
     b->w[at + i] = 0.5 * area2;
   }
-  if (!curved && !area) flat_corners(m, f, k, b);
+  for (uint32_t i = 0; !curved && !area && i < k; i++)
+    b->y2[at + i] = lanes->y2[i][l], b->x[at + i] = lanes->x[i][l];
   for (uint32_t i = 0; curved && i < k; i++)
     corner_data(m, f, i, &b->y2[at + i], &b->x[at + i], b->n[at + i]);
   b->count += k;
@@ -440,10 +426,8 @@ static void sum_faces(const tlod_mesh* m, bool area, double (*sum)[4]) {
       face_lane(m, f, f - f0, &lanes);
     _tlod_face_normals(simd, &lanes, f1 - f0);
     b.count = 0;
-    for (uint32_t f = f0; f < f1; f++) {
-      double n[3], area2 = lane_normal(m, f, f - f0, &lanes, n);
-      batch_face(m, area, f, n, area2, &b);
-    }
+    for (uint32_t f = f0; f < f1; f++)
+      batch_face(m, area, f, &lanes, f - f0, &b);
     if (!area) _tlod_corner_angles(simd, b.y2, b.x, b.w, b.count);
     batch_sum(&b, m, sum);
   }

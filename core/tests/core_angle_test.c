@@ -58,7 +58,50 @@ TEST(angles_match_atan2) {
   }
 }
 
+/* Random triangles and quads (float corners) in the lanes of the face kernel. */
+static void make_faces(_tlod_face_lanes* l) {
+  uint64_t r = 0x2545F4914F6CDD1Dull;
+  for (int i = 0; i < _TLOD_FACE_LANES; i++) {
+    for (int c = 0; c < 4; c++)
+      for (int d = 0; d < 3; d++) {
+        r = r * 6364136223846793005ull + 1442695040888963407ull;
+        l->p[3 * c + d][i] = (double)(float)(ldexp((double)(r >> 11), -53) * 8.0 - 4.0);
+      }
+    l->quad[i] = i % 3 == 0 ? 0.0 : 1.0;
+    for (int d = 0; l->quad[i] == 0.0 && d < 3; d++) /* a triangle repeats corner 0 */
+      l->p[9 + d][i] = l->p[d][i];
+  }
+}
+
+/* The flat corners' |a x b|^2 and a . b (a = e_c, b = -e_prev, e_i = p_next
+ * - p_i) written out per face, against the lanes at every level, bitwise. */
+TEST(flat_corners_match_their_tangents) {
+  static _tlod_face_lanes l;
+  make_faces(&l);
+  tlod_context* ctx = NULL;
+  CHECK(tlod_context_create(&(tlod_context_desc){.thread_count = 1}, &ctx) == TLOD_SUCCESS);
+  int best = (int)tlod_context_simd(ctx), bad = 0;
+  tlod_context_destroy(ctx);
+  for (int level = TLOD_SIMD_SCALAR; level <= best; level++) {
+    _tlod_face_normals((tlod_simd)level, &l, _TLOD_FACE_LANES - 3);
+    for (int i = 0; i < _TLOD_FACE_LANES - 3; i++) {
+      int k = l.quad[i] != 0.0 ? 4 : 3;
+      for (int c = 0; c < k; c++) {
+        int next = (c + 1) % k, prev = (c + k - 1) % k, pp = (prev + 1) % k;
+        double a[3], b[3];
+        for (int d = 0; d < 3; d++)
+          a[d] = l.p[3 * next + d][i] - l.p[3 * c + d][i], b[d] = -(l.p[3 * pp + d][i] - l.p[3 * prev + d][i]);
+        double x0 = a[1] * b[2] - a[2] * b[1], x1 = a[2] * b[0] - a[0] * b[2], x2 = a[0] * b[1] - a[1] * b[0];
+        double y2 = x0 * x0 + x1 * x1 + x2 * x2, x = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        bad += memcmp(&y2, &l.y2[c][i], sizeof y2) != 0 || memcmp(&x, &l.x[c][i], sizeof x) != 0;
+      }
+    }
+  }
+  CHECK_MSG(bad == 0, "%d corners differ", bad);
+}
+
 int main(void) {
   RUN(angles_match_atan2);
+  RUN(flat_corners_match_their_tangents);
   TEST_END();
 }

@@ -2,6 +2,7 @@
  * normals, creases, updates, allocation failures.
  * Public API only: a mesh's alphas are read through a PER_VERTEX surface's
  * view (tlod_surface_query_view().vertex_alpha). */
+#include <math.h>
 #include <stdint.h>
 
 #include "tesslod/core.h"
@@ -590,6 +591,49 @@ TEST(unused_vertex_counted) {
   float n[3];
   tlod_mesh_vertex(m, 3, NULL, n);
   CHECK_NEAR(length3f(n), 1.0, 1e-6);
+  tlod_mesh_destroy(m);
+  tlod_context_destroy(ctx);
+}
+
+/* The box as the face corners give it, in face order, the first of equal
+ * values kept (the sign of a zero bound depends on it). */
+static bool bbox_is_corners_box(const tlod_mesh* m) {
+  tlod_mesh_view v = tlod_mesh_query_view(m);
+  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (uint32_t f = 0; f < v.face_count; f++)
+    for (uint32_t i = 0; i < v.face_corners[f]; i++)
+      for (int c = 0; c < 3; c++) {
+        float x = v.positions[v.faces[f][i]][c];
+        lo[c] = x < lo[c] ? x : lo[c], hi[c] = x > hi[c] ? x : hi[c];
+      }
+  tlod_mesh_info info = tlod_mesh_query_info(m);
+  return memcmp(lo, info.bbox_min, sizeof(lo)) == 0 && memcmp(hi, info.bbox_max, sizeof(hi)) == 0;
+}
+
+/* tlod_mesh_create takes the box from the vertices when every one is a
+ * corner: bitwise the corners' box, a zero bound's sign included (-0 is
+ * the first in face order here, +0 the first in vertex order). */
+TEST(bbox_matches_the_corners) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  enum { N = 300 };
+  static float pos[N][3];
+  static uint32_t idx[N];
+  uint32_t r = 12345;
+  for (uint32_t i = 0; i < N; i++) {
+    for (int c = 0; c < 3; c++)
+      r = r * 1664525u + 1013904223u, pos[i][c] = (float)(r >> 8) * 0x1p-22f - 2.0f;
+    idx[i] = (i * 7u) % N; /* every vertex a corner, out of vertex order */
+  }
+  tlod_mesh* m = NULL;
+  tlod_mesh_desc d = {.positions = &pos[0][0], .vertex_count = N, .indices = idx, .index_count = N};
+  CHECK(tlod_mesh_create(ctx, &d, &m) == TLOD_SUCCESS);
+  CHECK(tlod_mesh_query_info(m).unused_vertices == 0 && bbox_is_corners_box(m));
+  tlod_mesh_destroy(m);
+  float zp[4][3] = {{0.0f, 0.0f, 0.0f}, {-0.0f, 1.0f, 0.0f}, {1.0f, 0.0f, 1.0f}, {1.0f, 1.0f, 1.0f}};
+  uint32_t zi[6] = {1, 2, 3, 0, 2, 1};
+  d = (tlod_mesh_desc){.positions = &zp[0][0], .vertex_count = 4, .indices = zi, .index_count = 6};
+  CHECK(tlod_mesh_create(ctx, &d, &m) == TLOD_SUCCESS);
+  CHECK(bbox_is_corners_box(m) && signbit(tlod_mesh_query_info(m).bbox_min[0]));
   tlod_mesh_destroy(m);
   tlod_context_destroy(ctx);
 }
@@ -1215,6 +1259,7 @@ int main(void) {
   RUN(bad_normals_repaired);
   RUN(alphas_clamped);
   RUN(unused_vertex_counted);
+  RUN(bbox_matches_the_corners);
   RUN(weld_epsilon_and_signed_zero);
   RUN(weld_epsilon_matches_brute_force);
   RUN(angle_weighted_cube_corner);
