@@ -579,40 +579,40 @@ TEST(hostile_files_refused_naming_the_fault) {
   CHECK(import_text("empty.vtk", t, &r0) != TLOD_SUCCESS && r0 == NULL && strstr(g_err, "empty.vtk: "));
 }
 
+/* Imports test data file (as name) with n bytes at the start of its appended data replaced by
+ * bytes; TLOD_ERROR_IO when the file or its appended data is missing. */
+static tlod_result import_patched(const char* file, const char* name, const char* bytes, size_t n) {
+  size_t size = 0;
+  char* text = test_read_file(file, &size);
+  char* app = text ? strstr(text, "<AppendedData") : NULL;
+  char* u = app ? strchr(app, '_') : NULL;
+  tlod_import_result* r = NULL;
+  tlod_result res = TLOD_ERROR_IO;
+  if (u && (size_t)(u + 1 - text) + n <= size) {
+    memcpy(u + 1, bytes, n);
+    res = tlod_import_memory(name, text, size, NULL, &r, g_err, sizeof g_err);
+  }
+  tlod_import_free(r);
+  free(text);
+  return res;
+}
+
 /* An appended array whose raw header announces 4 GB: VTK allocated what the header says
  * (fuzz_vtk: tests/data/fuzz/fuzz_vtk/appended_header_huge.vtp). */
 TEST(xml_array_header_past_the_file_refused) {
-  size_t size = 0;
-  char* text = test_read_file(TLOD_TEST_DATA_DIR "/vtk-data/Hexahedron.vtu", &size);
-  CHECK(text);
-  char* app = strstr(text, "<AppendedData");
-  char* u = app ? strchr(app, '_') : NULL;
-  if (u) memcpy(u + 1, "\xf0\xff\xff\xff", 4);
-  tlod_import_result* r = NULL;
-  const tlod_result res = u ? tlod_import_memory("huge.vtu", text, size, NULL, &r, g_err, sizeof g_err) : TLOD_SUCCESS;
-  free(text);
-  CHECK(u);
-  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL && strstr(g_err, "huge.vtu: DataArray ") &&
+  const tlod_result res =
+      import_patched(TLOD_TEST_DATA_DIR "/vtk-data/Hexahedron.vtu", "huge.vtu", "\xf0\xff\xff\xff", 4);
+  CHECK_MSG(res == TLOD_ERROR_PARSE && strstr(g_err, "huge.vtu: DataArray ") &&
                 strstr(g_err, ": its header announces 4294967280 bytes"),
             "%s", g_err);
 }
 
 /* A compressed array whose header lists a billion blocks: VTK allocated its per-block tables
- * (8 GB) before reading them (fuzz_vtk: tests/data/fuzz/fuzz_vtk/compressed_block_count_huge.vtp). */
+ * (8 GB) before reading them (fuzz_vtk: tests/data/fuzz/fuzz_vtk/compressed_block_count_huge.vtp).
+ * The bytes: base64 of 1049050693 blocks of 0 bytes (little-endian UInt32 words), 0 bytes announced. */
 TEST(xml_compressed_block_count_past_the_file_refused) {
-  size_t size = 0;
-  char* text = test_read_file(TLOD_TEST_DATA_DIR "/vtk-data/cow.vtp", &size);
-  CHECK(text);
-  char* app = strstr(text, "<AppendedData");
-  char* u = app ? strchr(app, '_') : NULL;
-  /* Base64 of 1049050693 blocks of 0 bytes (little-endian UInt32 words): 0 bytes announced */
-  if (u) memcpy(u + 1, "RT6HPgAAAAAAAAAA", 16);
-  tlod_import_result* r = NULL;
-  const tlod_result res =
-      u ? tlod_import_memory("blocks.vtp", text, size, NULL, &r, g_err, sizeof g_err) : TLOD_SUCCESS;
-  free(text);
-  CHECK(u);
-  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
+  const tlod_result res = import_patched(TLOD_TEST_DATA_DIR "/vtk-data/cow.vtp", "blocks.vtp", "RT6HPgAAAAAAAAAA", 16);
+  CHECK_MSG(res == TLOD_ERROR_PARSE &&
                 strstr(g_err, "blocks.vtp: DataArray 0: its compression header lists 1049050693 blocks"),
             "%s", g_err);
 }
@@ -688,6 +688,20 @@ TEST(xml_ascii_offsets_checked) {
                       strstr(g_err, " (offsets): the last offset 2147483647 is past the 6 connectivity ids"),
                   "order %d: %s", order, g_err);
     }
+}
+
+/* A compressed block whose listed size is past the file: VTK allocated a read buffer of that
+ * size (1.7 GB; fuzz_vtk reproducer, its first byte picks the format). */
+TEST(xml_compressed_block_past_the_file_refused) {
+  size_t size = 0;
+  char* text = test_read_file(TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/compressed_block_size_past_the_file.vtp", &size);
+  CHECK(text && size > 1);
+  tlod_import_result* r = NULL;
+  const tlod_result res = tlod_import_memory("b.vtp", text + 1, size - 1, NULL, &r, g_err, sizeof g_err);
+  free(text);
+  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
+                strstr(g_err, "b.vtp: DataArray 2: compressed block 0 runs past the end of the file"),
+            "%s", g_err);
 }
 
 TEST(unsupported_cell_type_named) {
@@ -927,6 +941,7 @@ int main(void) {
   RUN(xml_offsets_past_empty_connectivity_refused);
   RUN(xml_compressed_offsets_checked);
   RUN(xml_ascii_offsets_checked);
+  RUN(xml_compressed_block_past_the_file_refused);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);

@@ -252,6 +252,13 @@ private:
       fail(TLOD_ERROR_PARSE,
            format("DataArray %llu: its compression header lists %llu blocks, more than the file holds",
                   (unsigned long long)i, (unsigned long long)blocks));
+    // VTK reads each block into a buffer of its compressed size: the blocks must be in the file.
+    const std::string h = header(p, base64, 3 + blocks);
+    uint64_t sum = 0;
+    for (uint64_t k = 0; k < blocks && h.size() >= (3 + blocks) * word_; ++k)
+      if (__builtin_add_overflow(sum, word(h, 3 + k), &sum) || sum > left)
+        fail(TLOD_ERROR_PARSE, format("DataArray %llu: compressed block %llu runs past the end of the file",
+                                      (unsigned long long)i, (unsigned long long)k));
   }
 
   // The uncompressed bytes the header at p announces, checked against the file and the budget.
