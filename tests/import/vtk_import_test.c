@@ -704,6 +704,20 @@ TEST(xml_compressed_block_past_the_file_refused) {
             "%s", g_err);
 }
 
+/* An appended array without its offset: VTK's unstructured-grid reader reported it and leaked
+ * the arrays it had made (LeakSanitizer; fuzz_vtk reproducer, its first byte picks the format). */
+TEST(xml_appended_array_without_offset_refused) {
+  size_t size = 0;
+  char* text = test_read_file(TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/appended_array_without_offset.vtu", &size);
+  CHECK(text && size > 1);
+  tlod_import_result* r = NULL;
+  const tlod_result res = tlod_import_memory("o.vtu", text + 1, size - 1, NULL, &r, g_err, sizeof g_err);
+  free(text);
+  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL && strstr(g_err, "o.vtu: DataArray ") &&
+                strstr(g_err, ": format appended, but no offset"),
+            "%s", g_err);
+}
+
 TEST(unsupported_cell_type_named) {
   char t[1024];
   snprintf(t, sizeof t,
@@ -942,6 +956,7 @@ int main(void) {
   RUN(xml_compressed_offsets_checked);
   RUN(xml_ascii_offsets_checked);
   RUN(xml_compressed_block_past_the_file_refused);
+  RUN(xml_appended_array_without_offset_refused);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);

@@ -133,7 +133,11 @@ private:
     bool base64 = true;
     if (fmt == "appended") {
       char* stop = nullptr;
-      if (!appended_ || !xml_attribute(b, e, "offset", &off)) return; // VTK reports it
+      // VTK reports these too, but its unstructured-grid reader leaks the arrays it made.
+      if (!appended_)
+        fail(TLOD_ERROR_PARSE, format("DataArray %llu: format appended, but no <AppendedData>", (unsigned long long)i));
+      if (!xml_attribute(b, e, "offset", &off))
+        fail(TLOD_ERROR_PARSE, format("DataArray %llu: format appended, but no offset", (unsigned long long)i));
       const unsigned long long o = strtoull(off.c_str(), &stop, 10);
       if (off.empty() || *stop || o > uint64_t(end_ - appended_))
         fail(TLOD_ERROR_PARSE,
