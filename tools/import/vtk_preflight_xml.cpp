@@ -157,7 +157,7 @@ private:
   // arrays of a block may come in either order; compressed data: the offsets' last block is
   // inflated to read it.
   void cells(uint64_t i, const char* b, const char* e, uint64_t bytes, const char* p, bool base64) {
-    size_t size;
+    size_t size = 0;
     const int role = cell_role(b, e, &size);
     uint64_t v;
     if (role == kConnectivity) return pair(i, bytes / size, UINT64_MAX); // an empty one too
@@ -169,7 +169,7 @@ private:
   // The same for ASCII arrays: the connectivity's size is its word count, the offsets' last
   // value its last word's digits (as a C++ stream reads them).
   void ascii_cells(uint64_t i, const char* b, const char* e) {
-    size_t size;
+    size_t size = 0;
     const int role = cell_role(b, e, &size);
     if (role == kNone || e[-1] == '/') return role == kConnectivity ? pair(i, 0, UINT64_MAX) : void();
     const char* q = e + 1;
