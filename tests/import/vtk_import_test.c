@@ -617,20 +617,43 @@ TEST(xml_compressed_block_count_past_the_file_refused) {
             "%s", g_err);
 }
 
-/* Offsets past an empty connectivity array (UInt32 headers read from UInt64 data): the check
- * skipped empty connectivity, and VTK asked for 2^54 bytes (fuzz_vtk reproducer; its first byte
- * picks the format). */
-TEST(xml_offsets_past_empty_connectivity_refused) {
+/* Imports a fuzz_vtk reproducer (tests/data/fuzz/fuzz_vtk/file: its first byte picks the format,
+ * the rest is the file) as name; TLOD_ERROR_IO when it cannot be read. A result is freed. */
+static tlod_result import_reproducer(const char* file, const char* name) {
+  char path[512];
   size_t size = 0;
-  char* text = test_read_file(TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/offsets_past_empty_connectivity.vtp", &size);
-  CHECK(text && size > 1);
+  snprintf(path, sizeof path, TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/%s", file);
+  char* text = test_read_file(path, &size);
   tlod_import_result* r = NULL;
-  const tlod_result res = tlod_import_memory("offsets.vtp", text + 1, size - 1, NULL, &r, g_err, sizeof g_err);
+  const tlod_result res =
+      text && size > 1 ? tlod_import_memory(name, text + 1, size - 1, NULL, &r, g_err, sizeof g_err) : TLOD_ERROR_IO;
+  tlod_import_free(r);
   free(text);
-  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
-                strstr(g_err, "offsets.vtp: DataArray 11 (offsets): the last offset ") &&
-                strstr(g_err, " is past the 0 connectivity ids"),
-            "%s", g_err);
+  return res;
+}
+
+/* fuzz_vtk reproducers (their first byte picks the format), each refused naming its fault:
+ * - offsets past an empty connectivity array (UInt32 headers read from UInt64 data): the check
+ *   skipped empty connectivity, and VTK asked for 2^54 bytes;
+ * - a compressed block whose listed size is past the file: VTK allocated a read buffer of that
+ *   size (1.7 GB);
+ * - an appended array without its offset: VTK's unstructured-grid reader reported it and leaked
+ *   the arrays it had made (LeakSanitizer). */
+TEST(xml_reproducers_refused_naming_the_fault) {
+  static const struct {
+    const char *file, *name, *needle, *needle2;
+  } k[] = {
+      {"offsets_past_empty_connectivity.vtp", "offsets.vtp", "offsets.vtp: DataArray 11 (offsets): the last offset ",
+       " is past the 0 connectivity ids"},
+      {"compressed_block_size_past_the_file.vtp", "b.vtp",
+       "b.vtp: DataArray 2: compressed block 0 runs past the end of the file", ""},
+      {"appended_array_without_offset.vtu", "o.vtu", "o.vtu: DataArray ", ": format appended, but no offset"},
+  };
+  for (size_t i = 0; i < sizeof k / sizeof k[0]; ++i) {
+    const tlod_result res = import_reproducer(k[i].file, k[i].name);
+    CHECK_MSG(res == TLOD_ERROR_PARSE && strstr(g_err, k[i].needle) && strstr(g_err, k[i].needle2), "%s: %s", k[i].file,
+              g_err);
+  }
 }
 
 /* Compressed cell offsets: the pre-flight inflates the offsets' last block (base64 and raw
@@ -646,14 +669,9 @@ TEST(xml_compressed_offsets_checked) {
     const uint32_t faces = r->face_count;
     tlod_import_free(r);
     CHECK(faces == 2);
-    size_t size = 0;
-    snprintf(path, sizeof path, TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/compressed_offsets_past_connectivity_%s.vtp",
-             enc[k]);
-    char* text = test_read_file(path, &size);
-    CHECK(text && size > 1);
-    const tlod_result res = tlod_import_memory("c.vtp", text + 1, size - 1, NULL, &r, g_err, sizeof g_err);
-    free(text);
-    CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
+    snprintf(path, sizeof path, "compressed_offsets_past_connectivity_%s.vtp", enc[k]);
+    const tlod_result res = import_reproducer(path, "c.vtp");
+    CHECK_MSG(res == TLOD_ERROR_PARSE &&
                   strstr(g_err, "c.vtp: DataArray 2 (offsets): the last offset 2147483647 is past the 6 connectivity"),
               "%s: %s", enc[k], g_err);
   }
@@ -688,34 +706,6 @@ TEST(xml_ascii_offsets_checked) {
                       strstr(g_err, " (offsets): the last offset 2147483647 is past the 6 connectivity ids"),
                   "order %d: %s", order, g_err);
     }
-}
-
-/* A compressed block whose listed size is past the file: VTK allocated a read buffer of that
- * size (1.7 GB; fuzz_vtk reproducer, its first byte picks the format). */
-TEST(xml_compressed_block_past_the_file_refused) {
-  size_t size = 0;
-  char* text = test_read_file(TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/compressed_block_size_past_the_file.vtp", &size);
-  CHECK(text && size > 1);
-  tlod_import_result* r = NULL;
-  const tlod_result res = tlod_import_memory("b.vtp", text + 1, size - 1, NULL, &r, g_err, sizeof g_err);
-  free(text);
-  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL &&
-                strstr(g_err, "b.vtp: DataArray 2: compressed block 0 runs past the end of the file"),
-            "%s", g_err);
-}
-
-/* An appended array without its offset: VTK's unstructured-grid reader reported it and leaked
- * the arrays it had made (LeakSanitizer; fuzz_vtk reproducer, its first byte picks the format). */
-TEST(xml_appended_array_without_offset_refused) {
-  size_t size = 0;
-  char* text = test_read_file(TLOD_TEST_DATA_DIR "/fuzz/fuzz_vtk/appended_array_without_offset.vtu", &size);
-  CHECK(text && size > 1);
-  tlod_import_result* r = NULL;
-  const tlod_result res = tlod_import_memory("o.vtu", text + 1, size - 1, NULL, &r, g_err, sizeof g_err);
-  free(text);
-  CHECK_MSG(res == TLOD_ERROR_PARSE && r == NULL && strstr(g_err, "o.vtu: DataArray ") &&
-                strstr(g_err, ": format appended, but no offset"),
-            "%s", g_err);
 }
 
 TEST(unsupported_cell_type_named) {
@@ -952,11 +942,9 @@ int main(void) {
   RUN(hostile_files_refused_naming_the_fault);
   RUN(xml_array_header_past_the_file_refused);
   RUN(xml_compressed_block_count_past_the_file_refused);
-  RUN(xml_offsets_past_empty_connectivity_refused);
+  RUN(xml_reproducers_refused_naming_the_fault);
   RUN(xml_compressed_offsets_checked);
   RUN(xml_ascii_offsets_checked);
-  RUN(xml_compressed_block_past_the_file_refused);
-  RUN(xml_appended_array_without_offset_refused);
   RUN(unsupported_cell_type_named);
   RUN(nan_coordinate_refused);
   RUN(wrong_length_field_refused);
