@@ -638,7 +638,9 @@ static tlod_result import_reproducer(const char* file, const char* name) {
  * - a compressed block whose listed size is past the file: VTK allocated a read buffer of that
  *   size (1.7 GB);
  * - an appended array without its offset: VTK's unstructured-grid reader reported it and leaked
- *   the arrays it had made (LeakSanitizer). */
+ *   the arrays it had made (LeakSanitizer);
+ * - an array of unknown format with an offset: VTK reads it as appended (its offset decides), the
+ *   pre-flight read it as ASCII and missed its compression header (6.5 GB; fuzz_mesh). */
 TEST(xml_reproducers_refused_naming_the_fault) {
   static const struct {
     const char *file, *name, *needle, *needle2;
@@ -648,6 +650,8 @@ TEST(xml_reproducers_refused_naming_the_fault) {
       {"compressed_block_size_past_the_file.vtp", "b.vtp",
        "b.vtp: DataArray 2: compressed block 0 runs past the end of the file", ""},
       {"appended_array_without_offset.vtu", "o.vtu", "o.vtu: DataArray ", ": format appended, but no offset"},
+      {"unknown_format_with_offset.vtp", "f.vtp", "f.vtp: DataArray 0: its compression header lists 1635017028 blocks",
+       ""},
   };
   for (size_t i = 0; i < sizeof k / sizeof k[0]; ++i) {
     const tlod_result res = import_reproducer(k[i].file, k[i].name);

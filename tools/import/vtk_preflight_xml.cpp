@@ -124,20 +124,24 @@ private:
     return std::string(p, want);
   }
 
+  // An array is read as VTK reads it: appended when it has an offset (whatever its format says),
+  // else binary when its format is "binary", else ASCII.
   void array(const char* b, const char* e) {
     const uint64_t i = index_++;
     std::string fmt, off;
     xml_attribute(b, e, "format", &fmt);
-    if (fmt != "binary" && fmt != "appended") return ascii_cells(i, b, e); // VTK reads any other format as ASCII
+    const bool appended = xml_attribute(b, e, "offset", &off);
+    // VTK reports this too, but its unstructured-grid reader leaks the arrays it made.
+    if (!appended && fmt == "appended")
+      fail(TLOD_ERROR_PARSE, format("DataArray %llu: format appended, but no offset", (unsigned long long)i));
+    if (!appended && fmt != "binary") return ascii_cells(i, b, e);
     const char* p = e + 1;
     bool base64 = true;
-    if (fmt == "appended") {
+    if (appended) {
       char* stop = nullptr;
-      // VTK reports these too, but its unstructured-grid reader leaks the arrays it made.
       if (!appended_)
-        fail(TLOD_ERROR_PARSE, format("DataArray %llu: format appended, but no <AppendedData>", (unsigned long long)i));
-      if (!xml_attribute(b, e, "offset", &off))
-        fail(TLOD_ERROR_PARSE, format("DataArray %llu: format appended, but no offset", (unsigned long long)i));
+        fail(TLOD_ERROR_PARSE,
+             format("DataArray %llu: an appended offset, but no <AppendedData>", (unsigned long long)i));
       const unsigned long long o = strtoull(off.c_str(), &stop, 10);
       if (off.empty() || *stop || o > uint64_t(end_ - appended_))
         fail(TLOD_ERROR_PARSE,
