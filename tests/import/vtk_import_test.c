@@ -640,7 +640,9 @@ static tlod_result import_reproducer(const char* file, const char* name) {
  * - an appended array without its offset: VTK's unstructured-grid reader reported it and leaked
  *   the arrays it had made (LeakSanitizer);
  * - an array of unknown format with an offset: VTK reads it as appended (its offset decides), the
- *   pre-flight read it as ASCII and missed its compression header (6.5 GB; fuzz_mesh). */
+ *   pre-flight read it as ASCII and missed its compression header (6.5 GB; fuzz_mesh);
+ * - a "<VTKFile" without a compressor inside the appended data: the pre-flight took its attributes
+ *   for the root's, read the compressed offsets as raw, and VTK asked for 8 GB (CI fuzz_vtk). */
 TEST(xml_reproducers_refused_naming_the_fault) {
   static const struct {
     const char *file, *name, *needle, *needle2;
@@ -652,6 +654,8 @@ TEST(xml_reproducers_refused_naming_the_fault) {
       {"appended_array_without_offset.vtu", "o.vtu", "o.vtu: DataArray ", ": format appended, but no offset"},
       {"unknown_format_with_offset.vtp", "f.vtp", "f.vtp: DataArray 0: its compression header lists 1635017028 blocks",
        ""},
+      {"tag_inside_appended_data.vtp", "t.vtp",
+       "t.vtp: DataArray 2 (offsets): the last offset 2147483647 is past the 6", ""},
   };
   for (size_t i = 0; i < sizeof k / sizeof k[0]; ++i) {
     const tlod_result res = import_reproducer(k[i].file, k[i].name);

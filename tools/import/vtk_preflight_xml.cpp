@@ -71,14 +71,19 @@ class XmlHeaders {
 public:
   XmlHeaders(const char* data, size_t size, size_t room) : data_(data), end_(data + size), room_(room) {}
 
+  // Tags are read only before <AppendedData>: its bytes are data, not XML (VTK's parser never
+  // sees a tag in them), however much of them looks like a tag.
   void run() {
+    const char* tag = static_cast<const char*>(memmem(data_, size_t(end_ - data_), "<AppendedData", 13));
+    xml_end_ = tag ? tag : end_;
     file_attributes();
-    xml_tags(data_, size_t(end_ - data_), "DataArray", [this](const char* b, const char* e) { array(b, e); });
+    xml_tags(data_, size_t(xml_end_ - data_), "DataArray", [this](const char* b, const char* e) { array(b, e); });
   }
 
 private:
   const char* data_;
   const char* end_;
+  const char* xml_end_ = nullptr; // <AppendedData, or end_
   size_t room_;
   size_t word_ = 4;
   bool big_endian_ = false, compressed_ = false, appended_base64_ = false;
@@ -90,8 +95,11 @@ private:
   uint64_t offsets_index_ = 0;         // its DataArray number
 
   void file_attributes() {
-    xml_tags(data_, size_t(end_ - data_), "VTKFile", [this](const char* b, const char* e) {
+    bool first = true; // the root element's attributes, not a later tag's
+    xml_tags(data_, size_t(xml_end_ - data_), "VTKFile", [this, &first](const char* b, const char* e) {
       std::string v;
+      if (!first) return;
+      first = false;
       if (xml_attribute(b, e, "header_type", &v)) word_ = v == "UInt64" ? 8 : 4;
       if (xml_attribute(b, e, "byte_order", &v)) big_endian_ = v == "BigEndian";
       compressed_ = xml_attribute(b, e, "compressor", &v) && !v.empty();
@@ -166,8 +174,12 @@ private:
     uint64_t v;
     if (role == kConnectivity) return pair(i, bytes / size, UINT64_MAX); // an empty one too
     if (role != kOffsets || bytes < size) return;
-    if (compressed_ ? compressed_last(p, base64, size, &v) : raw_last(p, base64, bytes, size, &v))
-      pair(i, UINT64_MAX, v);
+    // Compressed offsets the pre-flight cannot read are refused: VTK may still read a block it
+    // cannot (a mangled base64 run), and would size the connectivity by a value nobody checked.
+    if (compressed_ && !compressed_last(p, base64, size, &v))
+      fail(TLOD_ERROR_PARSE,
+           format("DataArray %llu (offsets): its last compressed block does not read", (unsigned long long)i));
+    if (compressed_ || raw_last(p, base64, bytes, size, &v)) pair(i, UINT64_MAX, v);
   }
 
   // The same for ASCII arrays: the connectivity's size is its word count, the offsets' last
