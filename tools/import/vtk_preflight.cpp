@@ -19,8 +19,6 @@
 namespace tlod_import_detail {
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
-
 // Whitespace-separated words of [p, end).
 struct Words {
   const char* p;

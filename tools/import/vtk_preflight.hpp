@@ -29,6 +29,9 @@ void preflight_xml_headers(const char* data, size_t size, size_t room);
 // STL: a binary file's triangle count against its size.
 void preflight_stl(const char* data, size_t size);
 
+// Whitespace as a C++ stream (and VTK's readers) skips it.
+inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+
 // The value of attribute name (either quote) in the tag text [p, end); false when absent.
 bool xml_attribute(const char* p, const char* end, const char* name, std::string* value);
 

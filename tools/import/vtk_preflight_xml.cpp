@@ -48,8 +48,6 @@ std::string base64_prefix(const char* p, const char* end, size_t want) {
   return out;
 }
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
-
 // The first byte after n base64 characters (alphabet or '=') of [p, end), whitespace skipped.
 const char* skip_base64(const char* p, const char* end, uint64_t n) {
   for (; p < end && n > 0; ++p)
