@@ -228,7 +228,7 @@ float _tlod_level_rule(const tlod_scheduler_desc* d, const tlod_patch_info* info
   case TLOD_POLICY_FLAT:
     return 0.0f;
   case TLOD_POLICY_UNIFORM:
-    return (float)(d->max_level < cap ? d->max_level : (uint32_t)cap);
+    return (float)((float)d->max_level < cap ? d->max_level : (uint32_t)cap);
   case TLOD_POLICY_SILHOUETTE:
     return silhouette_target(d, contour, cap);
   case TLOD_POLICY_HYBRID:

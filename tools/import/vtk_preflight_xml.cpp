@@ -16,6 +16,7 @@
 
 #include "import_error.hpp"
 #include "vtk_preflight.hpp"
+#include "vtk_preflight_cells.hpp"
 
 namespace tlod_import_detail {
 namespace {
@@ -75,7 +76,14 @@ public:
     const char* tag = static_cast<const char*>(memmem(data_, size_t(end_ - data_), "<AppendedData", 13));
     xml_end_ = tag ? tag : end_;
     file_attributes();
-    xml_tags(data_, size_t(xml_end_ - data_), "DataArray", [this](const char* b, const char* e) { array(b, e); });
+    for (const char* p = data_; (p = static_cast<const char*>(memchr(p, '<', size_t(xml_end_ - p)))) != nullptr; ++p) {
+      const char* close = static_cast<const char*>(memchr(p, '>', size_t(xml_end_ - p)));
+      if (!close) break;
+      if (is_tag(p, close, "DataArray")) array(p, close);
+      for (const char* block : {"Piece", "Cells", "Verts", "Lines", "Strips", "Polys"})
+        if (is_tag(p, close, block) || (p[1] == '/' && is_tag(p + 1, close, block))) blocks_.end_block();
+    }
+    blocks_.end_block();
   }
 
 private:
@@ -86,11 +94,9 @@ private:
   size_t word_ = 4;
   bool big_endian_ = false, compressed_ = false, appended_base64_ = false;
   std::string compressor_;
-  const char* appended_ = nullptr;     // first byte after the '_' of <AppendedData>
-  uint64_t index_ = 0;                 // DataArray number, for messages
-  uint64_t connectivity_ = UINT64_MAX; // ids of the last connectivity array (UINT64_MAX: none pending)
-  uint64_t last_offset_ = UINT64_MAX;  // last value of the last offsets array (UINT64_MAX: none pending)
-  uint64_t offsets_index_ = 0;         // its DataArray number
+  const char* appended_ = nullptr; // first byte after the '_' of <AppendedData>
+  uint64_t index_ = 0;             // DataArray number, for messages
+  CellBlocks blocks_;
 
   void file_attributes() {
     bool first = true; // the root element's attributes, not a later tag's
@@ -111,6 +117,13 @@ private:
     appended_base64_ = xml_attribute(tag, close, "encoding", &enc) && enc == "base64";
     const char* u = static_cast<const char*>(memchr(close, '_', size_t(end_ - close)));
     appended_ = u ? u + 1 : nullptr;
+  }
+
+  // Whether [p, close] is the tag <name ...>, <name> or <name/>.
+  static bool is_tag(const char* p, const char* close, const char* name) {
+    const size_t n = strlen(name);
+    return size_t(close - p) > n && memcmp(p + 1, name, n) == 0 &&
+           (is_space(p[n + 1]) || p[n + 1] == '/' || p[n + 1] == '>');
   }
 
   uint64_t word(const std::string& h, size_t i) const {
@@ -162,103 +175,70 @@ private:
     cells(i, b, e, check(i, h, p, base64), p, base64);
   }
 
-  // VTK sizes a cell array's connectivity by its last offset before reading the connectivity: a
-  // last offset past the connectivity's own size (its header) would make VTK allocate it. The two
-  // arrays of a block may come in either order; compressed data: the offsets' last block is
-  // inflated to read it.
+  // Cell blocks: a connectivity's size is its byte count (its header), the offsets are read
+  // whole (decoded, every compressed block inflated: within the budget check() counted).
   void cells(uint64_t i, const char* b, const char* e, uint64_t bytes, const char* p, bool base64) {
-    size_t size = 0;
-    const int role = cell_role(b, e, &size);
-    uint64_t v;
-    if (role == kConnectivity) return pair(i, bytes / size, UINT64_MAX); // an empty one too
-    if (role != kOffsets || bytes < size) return;
+    const CellArray c = cell_array(b, e);
+    if (c.role == CellArray::kConnectivity) return blocks_.connectivity(bytes / c.size); // an empty one too
+    if (c.role != CellArray::kOffsets) return;
+    if (!compressed_ && !base64) // raw data, in the file (check())
+      return blocks_.binary_offsets(i, reinterpret_cast<const unsigned char*>(p) + word_, bytes / c.size, c,
+                                    big_endian_);
+    std::vector<unsigned char> data;
+    const bool ok = compressed_ ? inflated(p, base64, bytes, &data) : decoded(p, bytes, &data);
     // Compressed offsets the pre-flight cannot read are refused: VTK may still read a block it
     // cannot (a mangled base64 run), and would size the connectivity by a value nobody checked.
-    if (compressed_ && !compressed_last(p, base64, size, &v))
+    if (!ok && compressed_)
       fail(TLOD_ERROR_PARSE,
-           format("DataArray %llu (offsets): its last compressed block does not read", (unsigned long long)i));
-    if (compressed_ || raw_last(p, base64, bytes, size, &v)) pair(i, UINT64_MAX, v);
+           format("DataArray %llu (offsets): its compressed blocks do not read", (unsigned long long)i));
+    if (!ok) return; // short uncompressed data: VTK's read fails
+    blocks_.binary_offsets(i, data.data(), data.size() / c.size, c, big_endian_);
   }
 
-  // The same for ASCII arrays: the connectivity's size is its word count, the offsets' last
-  // value its last word's digits (as a C++ stream reads them).
+  // The same for ASCII arrays (and formats VTK does not know, which it reads as ASCII): the
+  // connectivity's size is its word count; the offsets are parsed as a C++ stream reads them.
   void ascii_cells(uint64_t i, const char* b, const char* e) {
-    size_t size = 0;
-    const int role = cell_role(b, e, &size);
-    if (role == kNone || e[-1] == '/') return role == kConnectivity ? pair(i, 0, UINT64_MAX) : void();
-    const char* q = e + 1;
-    const char* stop = static_cast<const char*>(memchr(q, '<', size_t(end_ - q)));
-    const char* word = nullptr;
-    uint64_t count = 0, v = 0;
-    for (const char* end = stop ? stop : end_; q < end; ++q)
-      if (!is_space(*q) && (q == e + 1 || is_space(q[-1]))) ++count, word = q;
-    for (size_t k = 0; word && word + k < end_ && k < 19 && word[k] >= '0' && word[k] <= '9'; ++k)
-      v = v * 10 + uint64_t(word[k] - '0');
-    if (role == kConnectivity) return pair(i, count, UINT64_MAX);
-    if (count > 0) pair(i, UINT64_MAX, v);
+    const CellArray c = cell_array(b, e);
+    if (c.role == CellArray::kNone) return;
+    const char* q = e[-1] == '/' ? e : e + 1; // <DataArray .../>: no text
+    const char* stop = e[-1] == '/' ? e : static_cast<const char*>(memchr(q, '<', size_t(end_ - q)));
+    const char* end = stop ? stop : end_;
+    if (c.role == CellArray::kOffsets) return blocks_.ascii_offsets(i, q, end, c);
+    uint64_t count = 0;
+    for (; q < end; ++q)
+      if (!is_space(*q) && (q == e + 1 || is_space(q[-1]))) ++count;
+    blocks_.connectivity(count);
   }
 
-  enum { kNone, kConnectivity, kOffsets };
-
-  // Whether a DataArray is a cell block's connectivity or offsets (an integer array of 4 or 8
-  // bytes a value: size), or neither.
-  static int cell_role(const char* b, const char* e, size_t* size) {
-    std::string name, type;
-    if (!xml_attribute(b, e, "Name", &name) || (name != "offsets" && name != "connectivity")) return kNone;
-    xml_attribute(b, e, "type", &type);
-    *size = type == "Int64" || type == "UInt64" ? 8 : type == "Int32" || type == "UInt32" ? 4 : 0;
-    if (*size == 0) return kNone;
-    return name == "offsets" ? kOffsets : kConnectivity;
-  }
-
-  // One half of a block's pair (UINT64_MAX: the other half); checked once both are known.
-  void pair(uint64_t i, uint64_t ids, uint64_t last) {
-    if (ids != UINT64_MAX) connectivity_ = ids;
-    if (last != UINT64_MAX) last_offset_ = last, offsets_index_ = i;
-    if (connectivity_ == UINT64_MAX || last_offset_ == UINT64_MAX) return;
-    if (last_offset_ > connectivity_)
-      fail(TLOD_ERROR_PARSE, format("DataArray %llu (offsets): the last offset %llu is past the %llu connectivity ids",
-                                    (unsigned long long)offsets_index_, (unsigned long long)last_offset_,
-                                    (unsigned long long)connectivity_));
-    connectivity_ = last_offset_ = UINT64_MAX;
-  }
-
-  // The value of size bytes at q in the file's byte order.
-  uint64_t value(const char* q, size_t size) const {
-    uint64_t v = 0;
-    for (size_t k = 0; k < size; ++k)
-      v = v << 8 | static_cast<unsigned char>(q[big_endian_ ? k : size - 1 - k]);
-    return v;
-  }
-
-  // The last value of an uncompressed array of bytes at p (header first); false if cut short.
-  bool raw_last(const char* p, bool base64, uint64_t bytes, size_t size, uint64_t* v) const {
-    const std::string all = base64 ? base64_prefix(p, end_, word_ + bytes) : std::string();
-    if (base64 && all.size() < word_ + bytes) return false;
-    *v = value(base64 ? all.data() + word_ + bytes - size : p + word_ + bytes - size, size);
+  // The bytes of uncompressed base64 data at p (its header first); false if the file is short.
+  bool decoded(const char* p, uint64_t bytes, std::vector<unsigned char>* out) const {
+    const std::string all = base64_prefix(p, end_, word_ + bytes);
+    if (all.size() < word_ + bytes) return false;
+    out->assign(all.begin() + long(word_), all.end());
     return true;
   }
 
-  // The last value of a compressed array at p: its last block, found after the header (its own
-  // base64 run when encoded) and the blocks before it, inflated. False where VTK's read will
-  // fail anyway (short data, a block that does not inflate) or the value spans two blocks.
-  bool compressed_last(const char* p, bool base64, size_t size, uint64_t* v) const {
+  // The bytes of compressed data at p: every block after the header (its own base64 run when
+  // encoded), inflated with VTK's own compressor classes. False where VTK's read will fail
+  // anyway (short data, a block that does not inflate).
+  bool inflated(const char* p, bool base64, uint64_t bytes, std::vector<unsigned char>* out) const {
     const std::string h3 = header(p, base64, 3);
-    const uint64_t blocks = word(h3, 0), raw = word(h3, 2) ? word(h3, 2) : word(h3, 1);
+    const uint64_t blocks = word(h3, 0), block = word(h3, 1), last = word(h3, 2) ? word(h3, 2) : block;
     const std::string h = header(p, base64, 3 + blocks); // block_table(): in the file
-    if (blocks == 0 || raw < size || h.size() < (3 + blocks) * word_) return false;
-    uint64_t at = 0;
-    for (uint64_t k = 0; k + 1 < blocks; ++k)
-      if (__builtin_add_overflow(at, word(h, 3 + k), &at)) return false;
-    const uint64_t n = word(h, 2 + blocks), hb = (3 + blocks) * word_;
+    if (h.size() < (3 + blocks) * word_) return false;
+    uint64_t total = 0;
+    for (uint64_t k = 0; k < blocks; ++k)
+      if (__builtin_add_overflow(total, word(h, 3 + k), &total)) return false;
+    const uint64_t hb = (3 + blocks) * word_;
     const char* d = base64 ? skip_base64(p, end_, (hb + 2) / 3 * 4) : p + hb;
-    const std::string dec = base64 ? base64_prefix(d, end_, at + n) : std::string();
-    const uint64_t have = base64 ? dec.size() : uint64_t(end_ - d);
-    if (at > have || n > have - at) return false;
-    std::vector<unsigned char> out(raw); // within the budget: check() counted it
-    const auto* src = reinterpret_cast<const unsigned char*>(base64 ? dec.data() : d) + at;
-    if (!inflate(compressor_, src, n, out.data(), raw)) return false;
-    *v = value(reinterpret_cast<const char*>(out.data()) + raw - size, size);
+    const std::string dec = base64 ? base64_prefix(d, end_, total) : std::string();
+    if ((base64 ? dec.size() : uint64_t(end_ - d)) < total) return false;
+    const auto* src = reinterpret_cast<const unsigned char*>(base64 ? dec.data() : d);
+    out->resize(bytes); // within the budget: check() counted it
+    for (uint64_t k = 0, at = 0; k < blocks; at += word(h, 3 + k), ++k) {
+      const uint64_t raw = k + 1 < blocks ? block : last;
+      if (!inflate(compressor_, src + at, word(h, 3 + k), out->data() + k * block, raw)) return false;
+    }
     return true;
   }
 
@@ -291,6 +271,15 @@ private:
     } else {
       const uint64_t blocks = word(h, 0), block = word(h, 1), last = word(h, 2);
       block_table(i, blocks, p, base64);
+      // VTK divides offsets by the block size, inflates the last block into a buffer of one block,
+      // and computes the total as blocks x block - (block - last): with no blocks, a last block
+      // makes that wrap, and VTK reads a block it has no table for.
+      if (blocks == 0 ? last != 0 : block == 0 || last > block)
+        fail(TLOD_ERROR_PARSE,
+             format(
+                 "DataArray %llu: its compression header is inconsistent (%llu blocks of %llu bytes, the last of %llu)",
+                 (unsigned long long)i, (unsigned long long)blocks, (unsigned long long)block,
+                 (unsigned long long)last));
       tables = blocks * 16; // VTK's two per-block tables (blocks is at most the file's size)
       if ((blocks && __builtin_mul_overflow(blocks - 1, block, &bytes)) ||
           __builtin_add_overflow(blocks ? bytes : 0, last ? last : (blocks ? block : 0), &bytes))

@@ -27,11 +27,10 @@
 #include <vtkStructuredGridReader.h>
 #include <vtkStructuredPointsReader.h>
 #include <vtkUnstructuredGridReader.h>
-#include <vtkXMLPolyDataReader.h>
-#include <vtkXMLUnstructuredGridReader.h>
 
 #include "import_error.hpp"
 #include "vtk_preflight.hpp"
+#include "vtk_xml_reader.hpp"
 
 namespace tlod_import_detail {
 namespace {
@@ -159,9 +158,9 @@ vtkSmartPointer<vtkAlgorithm> make_reader(const VtkSource& src, size_t room) {
     preflight_xml(src.data, src.size, room);
     vtkSmartPointer<vtkXMLReader> r;
     if (src.format == VtkFormat::Vtu)
-      r = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+      r = vtkSmartPointer<GridReader>::New();
     else
-      r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+      r = vtkSmartPointer<PolyReader>::New();
     r->ReadFromInputStringOn();
     r->SetInputString(std::string(src.data, src.size));
     return r;
