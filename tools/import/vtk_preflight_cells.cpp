@@ -22,6 +22,7 @@ constexpr double kHuge = 9.0e18;
 
 // The value of size bytes at q (big_endian or little), as a count; fails when it is not one.
 uint64_t binary_value(uint64_t i, const unsigned char* q, CellArray c, bool big_endian) {
+  if (c.size == 0 || c.size > 8) return 0; // not a cell array (callers pass only those)
   uint64_t bits = 0;
   for (size_t k = 0; k < c.size; ++k)
     bits = bits << 8 | q[big_endian ? k : c.size - 1 - k];
