@@ -1,6 +1,6 @@
-// Private to the VTK shim: the .vtu and .vtp readers we use, VTK's own with two of their
-// error paths repaired (docs/vtk.md section 7). Both bugs are reached by files that are merely
-// truncated, and neither can be ruled out by looking at the bytes first: whether VTK can read an
+// Private to the VTK shim: the .vtu and .vtp readers we use, VTK's own with three of their
+// error paths repaired (docs/vtk.md section 7). All three are reached by files that are merely
+// truncated, and none can be ruled out by looking at the bytes first: whether VTK can read an
 // array's values (ASCII, base64, raw, compressed) is only known by reading them.
 //   - A piece without <PointData> whose cell data does not read: VTK's error message names the
 //     <PointData> element, which is null (SEGV, VTK 9.1 to at least 9.4). An absent <PointData>
