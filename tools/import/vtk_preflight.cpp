@@ -505,18 +505,6 @@ uint64_t attribute_count(const char* p, const char* end, const char* name, const
   return uint64_t(x);
 }
 
-// VTK's reader of polyhedron faces (a .vtu's <Cells> arrays "faces" and "faceoffsets") leaks
-// its arrays when they do not read or do not match, and walks the faces by counts it never
-// checks (reads past them). We refuse polyhedra anyway (vtk_cells.cpp), so their faces are
-// refused before VTK reads them.
-void no_polyhedron_faces(const char* p, const char* end, uint64_t index) {
-  std::string name;
-  if (xml_attribute(p, end, "Name", &name) && (name == "faces" || name == "faceoffsets"))
-    fail(TLOD_ERROR_UNSUPPORTED, format("DataArray %llu (%s): polyhedron faces are not read (polyhedron cells, "
-                                        "type 42, are not supported)",
-                                        (unsigned long long)index, name.c_str()));
-}
-
 } // namespace
 
 void preflight_legacy(const char* data, size_t size, size_t room, std::string* dataset) {
@@ -530,9 +518,8 @@ void preflight_xml(const char* data, size_t size, size_t room) {
   // Tags end where the appended (binary) data starts.
   const char* app = static_cast<const char*>(memmem(data, size, "<AppendedData", 13));
   const char* end = app ? app : data + size;
-  uint64_t piece = 0, points = 0, cells = 0, bytes = 0, array = 0;
+  uint64_t piece = 0, points = 0, cells = 0, bytes = 0;
   bool in_points = false; // the next DataArray holds a piece's points
-  bool in_cells = false;  // inside a piece's <Cells>
   for (const char* p = data; (p = static_cast<const char*>(memchr(p, '<', size_t(end - p)))) != nullptr; ++p) {
     const char* close = static_cast<const char*>(memchr(p, '>', size_t(end - p)));
     if (!close) break;
@@ -549,13 +536,7 @@ void preflight_xml(const char* data, size_t size, size_t room) {
       piece++;
     } else if (size_t(end - p) > 7 && memcmp(p, "<Points", 7) == 0) {
       in_points = true;
-    } else if (size_t(end - p) > 6 && memcmp(p, "<Cells", 6) == 0) {
-      in_cells = true;
-    } else if (size_t(end - p) > 7 && memcmp(p, "</Cells", 7) == 0) {
-      in_cells = false;
     } else if (size_t(end - p) > 10 && memcmp(p, "<DataArray", 10) == 0) {
-      if (in_cells) no_polyhedron_faces(p, close, array);
-      array++;
       uint64_t comps = attribute_count(p, close, "NumberOfComponents", "DataArray", 0);
       const uint64_t tuples = attribute_count(p, close, "NumberOfTuples", "DataArray", 0);
       if (comps == 0) comps = 1;

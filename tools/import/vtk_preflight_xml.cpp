@@ -21,6 +21,18 @@
 namespace tlod_import_detail {
 namespace {
 
+// VTK's reader of polyhedron faces (a .vtu's <Cells> arrays "faces" and "faceoffsets") leaks
+// its arrays when they do not read or do not match, and walks the faces by counts it never
+// checks (reads past them). We refuse polyhedra anyway (vtk_cells.cpp), so their faces are
+// refused before VTK reads them.
+void no_polyhedron_faces(const char* p, const char* end, uint64_t index) {
+  std::string name;
+  if (xml_attribute(p, end, "Name", &name) && (name == "faces" || name == "faceoffsets"))
+    fail(TLOD_ERROR_UNSUPPORTED, format("DataArray %llu (%s): polyhedron faces are not read (polyhedron cells, "
+                                        "type 42, are not supported)",
+                                        (unsigned long long)index, name.c_str()));
+}
+
 int base64_value(char c) {
   if (c >= 'A' && c <= 'Z') return c - 'A';
   if (c >= 'a' && c <= 'z') return c - 'a' + 26;
@@ -81,7 +93,8 @@ public:
       if (!close) break;
       if (is_tag(p, close, "DataArray")) array(p, close);
       for (const char* block : {"Piece", "Cells", "Verts", "Lines", "Strips", "Polys"})
-        if (is_tag(p, close, block) || (p[1] == '/' && is_tag(p + 1, close, block))) blocks_.end_block();
+        if (is_open_or_close(p, close, block)) blocks_.end_block();
+      if (is_open_or_close(p, close, "Cells")) in_cells_ = p[1] != '/';
     }
     blocks_.end_block();
   }
@@ -96,6 +109,7 @@ private:
   std::string compressor_;
   const char* appended_ = nullptr; // first byte after the '_' of <AppendedData>
   uint64_t index_ = 0;             // DataArray number, for messages
+  bool in_cells_ = false;          // inside a piece's <Cells>
   CellBlocks blocks_;
 
   void file_attributes() {
@@ -126,6 +140,11 @@ private:
            (is_space(p[n + 1]) || p[n + 1] == '/' || p[n + 1] == '>');
   }
 
+  // Whether [p, close] opens or closes element name.
+  static bool is_open_or_close(const char* p, const char* close, const char* name) {
+    return is_tag(p, close, name) || (p[1] == '/' && is_tag(p + 1, close, name));
+  }
+
   uint64_t word(const std::string& h, size_t i) const {
     uint64_t v = 0;
     for (size_t k = 0; k < word_; ++k) {
@@ -147,6 +166,7 @@ private:
   // else binary when its format is "binary", else ASCII.
   void array(const char* b, const char* e) {
     const uint64_t i = index_++;
+    if (in_cells_) no_polyhedron_faces(b, e, i);
     std::string fmt, off;
     xml_attribute(b, e, "format", &fmt);
     const bool appended = xml_attribute(b, e, "offset", &off);
