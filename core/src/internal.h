@@ -47,8 +47,9 @@ void _tlod_pool_run(_tlod_pool* pool, tlod_task_fn fn, void* data, uint32_t coun
 struct tlod_mesh {
   tlod_context* ctx;
   char label[64];
-  uint64_t generation; /* tlod_mesh_view.generation */
-  tlod_mesh_desc desc; /* resolved; array pointers cleared */
+  uint64_t generation;        /* tlod_mesh_view.generation */
+  uint64_t smooth_generation; /* tlod_mesh_view.smooth_generation */
+  tlod_mesh_desc desc;        /* resolved; array pointers cleared */
 
   uint32_t vertex_count;
   float (*positions)[3];
@@ -96,7 +97,7 @@ void _tlod_mesh_add_finding(tlod_mesh* mesh, tlod_finding_kind kind, uint32_t el
 
 /* mesh_adjacency.c: weld ids alone, and the smooth flags after normals change. */
 tlod_result _tlod_mesh_weld(tlod_mesh* mesh);
-void _tlod_mesh_refresh_smooth(tlod_mesh* mesh);
+void _tlod_mesh_refresh_smooth(tlod_mesh* mesh); /* smooth_generation grows if a flag moved */
 /* mesh_normals.c: normals with crease splits; appended vertices' sources go
  * to *split_source. */
 tlod_result _tlod_mesh_compute_normals_split(tlod_mesh* mesh, uint32_t** split_source);

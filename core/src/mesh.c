@@ -521,6 +521,7 @@ tlod_result tlod_mesh_create(tlod_context* ctx, const tlod_mesh_desc* desc, tlod
   if (!m) return _tlod_fail(ctx, TLOD_ERROR_OUT_OF_MEMORY, "mesh '%s': out of memory (mesh)", plan.label);
   m->ctx = ctx;
   m->generation = 1;
+  m->smooth_generation = 1;
   memcpy(m->label, plan.label, sizeof(plan.label));
   r = build(m, &plan);
   if (r != TLOD_SUCCESS) {
@@ -766,5 +767,6 @@ tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* m) {
       .attributes = (const float(*)[4])m->attributes,
       .face_nodes = (const uint32_t(*)[TLOD_FACE_NODES])m->face_nodes,
       .generation = m->generation,
+      .smooth_generation = m->smooth_generation,
   };
 }

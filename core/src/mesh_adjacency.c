@@ -223,17 +223,21 @@ static bool edge_seam(const tlod_mesh* m, uint32_t f, uint32_t e, uint32_t g, ui
 
 void _tlod_mesh_refresh_smooth(tlod_mesh* m) {
   uint32_t creases = 0, seams = 0;
+  bool moved = false;
   for (uint32_t f = 0; f < m->face_count; f++)
     for (uint32_t e = 0; e < m->face_corners[f]; e++) {
       tlod_edge_link* l = &m->links[f][e];
       if (l->face == _TLOD_NONE) continue;
-      l->smooth = edge_smooth(m, f, e, l->face, l->edge);
+      bool smooth = edge_smooth(m, f, e, l->face, l->edge);
+      moved |= smooth != l->smooth;
+      l->smooth = smooth;
       l->seam = l->smooth && edge_seam(m, f, e, l->face, l->edge);
       creases += !l->smooth && f < l->face; /* each edge once */
       seams += l->seam && f < l->face;
     }
   m->info.crease_edges = creases;
   m->info.attribute_seam_edges = seams;
+  m->smooth_generation += moved;
 }
 
 /* ------------------------------------------------------------------------ */

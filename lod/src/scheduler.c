@@ -106,6 +106,12 @@ tlod_result tlod_scheduler_create(tlod_context* ctx, const tlod_surface* surface
   s->eps_scale = 1.0f;
   s->fast_path = !d.reference_path;
   s->fast = _tlod_fast_kernels_for(tlod_context_simd(ctx));
+  r = _tlod_up_edges_build(s);
+  if (r == TLOD_ERROR_OUT_OF_MEMORY) out_of_memory(s);
+  if (r != TLOD_SUCCESS) {
+    tlod_scheduler_destroy(s);
+    return r;
+  }
   *out = s;
   return TLOD_SUCCESS;
 }
@@ -116,6 +122,7 @@ void tlod_scheduler_destroy(tlod_scheduler* s) {
     free_view(s->ctx, &s->views[v]);
   tlod_context_free(s->ctx, s->views);
   _tlod_soa_free(s->ctx, &s->soa);
+  _tlod_up_edges_free(s->ctx, &s->up);
   tlod_context_free(s->ctx, s);
 }
 

@@ -33,6 +33,9 @@ typedef struct list_arrays {
   const float* e_max;
   const uint8_t* corners;
   const tlod_edge_link (*links)[4];
+  const uint8_t* up_mask; /* _tlod_up_edges */
+  const uint32_t* up_faces;
+  const uint32_t* up_first;
   int8_t* levels;
   uint8_t* edges; /* strip_edges */
   const tlod_patterns* pat;
@@ -47,6 +50,9 @@ static list_arrays arrays_of(const _tlod_frame* fr) {
                        .e_max = vs->e_max,
                        .corners = fr->mesh.face_corners,
                        .links = fr->mesh.links,
+                       .up_mask = fr->s->up.mask,
+                       .up_faces = fr->s->up.faces,
+                       .up_first = fr->s->up.first,
                        .levels = vs->levels,
                        .edges = vs->strip_edges,
                        .pat = fr->s->patterns,
@@ -68,8 +74,7 @@ static void chunk_range(const _tlod_frame* fr, uint32_t c, uint32_t* begin, uint
 }
 
 /* Whether edge e of visible patch f (drawn level l, blend m) has a strip
- * (see _tlod_strip_needed), and if so the strip. Only edges towards a
- * neighbour of higher index come here (the bits from _TLOD_UP_SHIFT). */
+ * (see _tlod_strip_needed), and if so the strip. Only up edges come here. */
 static bool strip_at(const list_arrays* a, uint32_t f, uint32_t e, uint32_t l, float m, tlod_draw_strip* st) {
   tlod_edge_link link = a->links[f][e];
   uint32_t g = link.face;
@@ -100,6 +105,7 @@ typedef struct chunk_tally {
    * since counts[] had them: neighbours mostly share a bucket, and a
    * counts[b]++ per patch would wait on the last one's store. */
   uint32_t run_bucket, run_count;
+  uint32_t up; /* up_faces index of the next patch's first up edge */
 } chunk_tally;
 
 /* The continuous level as the list sees it: two patches draw the same
@@ -109,30 +115,30 @@ typedef struct chunk_tally {
  * (and NaN) every patch draws level 0 at blend 1. */
 static float drawn_key(float c) { return c > 0.0f ? c : 0.0f; }
 
-/* Whether edge e of visible patch f (drawn key key) has a strip: a visible
- * neighbour of higher index across a crease or at another (level, blend).
- * Branch-free once the edge can have one: one compare per edge. */
-static uint32_t strip_bit(const list_arrays* a, uint32_t f, uint32_t e, float key) {
-  tlod_edge_link link = a->links[f][e];
-  uint32_t other = drawn_key(a->cont[link.face]) != key;
-  return (uint32_t)(a->visible[link.face] != 0) & ((uint32_t)!link.smooth | other);
+/* Whether the up edge to neighbour up (an up_faces entry) of a visible
+ * patch of drawn key key has a strip: the neighbour is visible, across a
+ * crease or at another (level, blend). Branch-free: one compare. */
+static uint32_t strip_bit(const list_arrays* a, uint32_t up, float key) {
+  uint32_t g = up & ~_TLOD_UP_CREASE, crease = up >> 31;
+  uint32_t other = drawn_key(a->cont[g]) != key;
+  return (uint32_t)(a->visible[g] != 0) & (crease | other);
 }
 
 /* The lowest set bit of each 4-bit mask (0 for none). */
 static const uint8_t k_lowest_edge[16] = {0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0};
 
-/* The edges of visible patch f that have a strip into the low bits of
- * edges[f] (for the second pass, which makes the strips); returns how
- * many. Only the edges that can have one are visited. */
-static uint32_t count_strips(const list_arrays* a, uint32_t f) {
-  uint32_t up = a->edges[f] >> _TLOD_UP_SHIFT, mask = 0, n = 0;
+/* The edges of visible patch f that have a strip into edges[f] (for the
+ * second pass, which makes the strips); returns how many. Only its up
+ * edges are visited, the next ones of the list from t->up. */
+static uint32_t count_strips(const list_arrays* a, chunk_tally* t, uint32_t f) {
+  uint32_t mask = 0, n = 0;
   float key = drawn_key(a->cont[f]);
-  for (uint32_t m = up; m; m &= m - 1) {
-    uint32_t e = k_lowest_edge[m], bit = strip_bit(a, f, e, key);
+  for (uint32_t m = a->up_mask[f]; m; m &= m - 1) {
+    uint32_t e = k_lowest_edge[m], bit = strip_bit(a, a->up_faces[t->up++], key);
     mask |= bit << e;
     n += bit;
   }
-  a->edges[f] = (uint8_t)(up << _TLOD_UP_SHIFT | mask);
+  a->edges[f] = (uint8_t)mask;
   return n;
 }
 
@@ -149,7 +155,18 @@ static void count_visible(const list_arrays* a, uint32_t* counts, chunk_tally* t
   t->run_count++;
   t->e_min = e < t->e_min ? e : t->e_min;
   t->e_max = e > t->e_max ? e : t->e_max;
-  if (a->strips) t->strips += count_strips(a, f);
+  if (a->strips) {
+    t->strips += count_strips(a, t, f);
+  } else {
+    t->up += (uint32_t)__builtin_popcount(a->up_mask[f]);
+  }
+}
+
+/* The up edges of the 8 patches from f (the up list skipped past them). */
+static uint32_t up_edges_8(const uint8_t* up_mask, uint32_t f) {
+  uint64_t w;
+  memcpy(&w, up_mask + f, 8);
+  return (uint32_t)__builtin_popcountll(w);
 }
 
 /* The n visible bytes from f OR-ed, 8 at a time (n a multiple of 8). */
@@ -172,14 +189,17 @@ static bool culled_8(const uint8_t* visible, uint32_t f, uint32_t end) {
 /* Patches [f0, f1) of a visible block: levels (-1 when culled), bucket and
  * strip counts, statistics. */
 static void count_block(const list_arrays* a, uint32_t* counts, chunk_tally* t, uint32_t f0, uint32_t f1) {
+  t->up = a->up_first[f0 / FAST_BLOCK];
   for (uint32_t f = f0; f < f1; f++) {
     if (culled_8(a->visible, f, f1)) {
       memset(a->levels + f, -1, 8);
       t->culled += 8;
+      t->up += up_edges_8(a->up_mask, f);
       f += 7;
     } else if (!a->visible[f]) {
       a->levels[f] = -1;
       t->culled++;
+      t->up += (uint32_t)__builtin_popcount(a->up_mask[f]);
     } else {
       count_visible(a, counts, t, f);
     }
@@ -190,16 +210,6 @@ static void count_block(const list_arrays* a, uint32_t* counts, chunk_tally* t, 
 static void block_range(uint32_t f0, uint32_t f1, uint32_t k, uint32_t* b0, uint32_t* b1) {
   *b0 = f0 + k * FAST_BLOCK;
   *b1 = *b0 + FAST_BLOCK < f1 ? *b0 + FAST_BLOCK : f1;
-}
-
-/* The edges of patch f that can have a strip: a neighbour of higher index. */
-static uint8_t up_edges(const list_arrays* a, uint32_t f) {
-  uint8_t up = 0;
-  for (uint32_t e = 0; e < a->corners[f]; e++) {
-    uint32_t g = a->links[f][e].face;
-    if (g != _TLOD_NO_FACE && g > f) up |= (uint8_t)(1u << e);
-  }
-  return (uint8_t)(up << _TLOD_UP_SHIFT);
 }
 
 /* Whether block [b0, b1) has a visible patch (a short tail byte by byte). */
@@ -213,13 +223,11 @@ static bool block_visible(const uint8_t* visible, uint32_t b0, uint32_t b1) {
 
 /* Chunk c reset: its visible blocks found, its culled ones' levels set
  * to -1 and counted (nothing reads them again this frame). */
-static void scan_chunk(const _tlod_frame* fr, const list_arrays* a, uint32_t c, bool new_links) {
+static void scan_chunk(const _tlod_frame* fr, const list_arrays* a, uint32_t c) {
   _tlod_list_chunk* ch = &fr->vs->chunks[c];
   uint32_t f0, f1;
   chunk_range(fr, c, &f0, &f1);
   *ch = (_tlod_list_chunk){.e_max_min = INFINITY};
-  for (uint32_t f = f0; new_links && f < f1; f++)
-    a->edges[f] = up_edges(a, f);
   for (uint32_t k = 0; f0 + k * FAST_BLOCK < f1; k++) {
     uint32_t b0, b1;
     block_range(f0, f1, k, &b0, &b1);
@@ -237,9 +245,8 @@ static void scan_task(void* data, uint32_t begin, uint32_t end, uint32_t worker)
   (void)worker;
   const _tlod_frame* fr = data;
   list_arrays a = arrays_of(fr);
-  bool new_links = fr->vs->up_links != (const void*)fr->mesh.links;
   for (uint32_t c = begin; c < end; c++)
-    scan_chunk(fr, &a, c, new_links);
+    scan_chunk(fr, &a, c);
 }
 
 /* Pass 1 over busy chunks [begin, end): count_block over their visible blocks. */
@@ -288,7 +295,7 @@ static void write_visible(const list_arrays* a, write_cursor* w, uint32_t f) {
   /* Edges blend with their patch (see _tlod_strip_needed). */
   float m = _tlod_morph_of(a->cont[f], l);
   *w->next++ = (tlod_draw_instance){.patch = f, .level = l, .morph = m};
-  uint32_t mask = a->edges[f] & ((1u << _TLOD_UP_SHIFT) - 1);
+  uint32_t mask = a->edges[f];
   for (uint32_t e = 0; w->strip && mask >> e; e++)
     if (mask & (1u << e)) strip_at(a, f, e, l, m, w->strip++);
 }
@@ -411,7 +418,6 @@ tlod_result _tlod_list_alloc(tlod_scheduler* s, _tlod_view_state* vs) {
   vs->chunks = tlod_context_calloc(s->ctx, 1, chunks * (sizeof(_tlod_list_chunk) + sizeof(uint32_t)));
   vs->busy = vs->chunks ? (uint32_t*)(vs->chunks + chunks) : NULL;
   vs->strip_edges = tlod_context_calloc(s->ctx, (size_t)s->patch_count + 1, 1);
-  vs->up_links = NULL;
   return vs->chunks && vs->strip_edges ? TLOD_SUCCESS : TLOD_ERROR_OUT_OF_MEMORY;
 }
 
@@ -427,8 +433,8 @@ tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   vs->list.instances = vs->instances;
   vs->list.buckets = vs->buckets;
   vs->key_valid = vs->settled_known = false;
+  _tlod_up_edges_refresh(fr->s, &fr->mesh);
   tlod_context_parallel_for(fr->s->ctx, scan_task, fr, chunks);
-  vs->up_links = fr->mesh.links;
   list_busy(vs, chunks);
   tlod_context_parallel_for(fr->s->ctx, count_task, fr, vs->busy_count);
   vs->list.pattern_triangles = 0;

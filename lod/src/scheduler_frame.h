@@ -7,6 +7,7 @@
  *                         frame-time control
  *   scheduler_morph.c     geomorph state (continuous level per patch)
  *   scheduler_draw_list.c instances, buckets, strips, statistics
+ *   scheduler_up_edges.c  the edges a strip is counted from (at create)
  *   scheduler_coherence.c whether an update can keep the last draw lists
  *   scheduler.c           create / update / destroy: the stages in order
  * lod reads core through its public views only (tesslod/core.h).
@@ -32,10 +33,15 @@ typedef struct _tlod_camera {
  * the order they are summed in) never depend on the thread count. */
 #define _TLOD_LIST_CHUNK 4096u
 
-/* strip_edges of a patch: bits 0-3 the edges with a strip this frame,
- * bits 4-7 (from _TLOD_UP_SHIFT) the edges that can have one at all: a
- * neighbour of higher index (fixed by the mesh's links). */
-#define _TLOD_UP_SHIFT 4u
+/* The mesh's up edges (scheduler_up_edges.c): the edges towards a
+ * neighbour of higher index, the only ones a strip is counted from. */
+#define _TLOD_UP_CREASE 0x80000000u /* faces[]: the edge is not smooth */
+typedef struct _tlod_up_edges {
+  uint8_t* mask;              /* per patch, bit e: edge e is an up edge */
+  uint32_t* faces;            /* per up edge, in patch then edge order: the neighbour, | _TLOD_UP_CREASE */
+  uint32_t* first;            /* per block of FAST_BLOCK patches: faces[] index of its first up edge */
+  uint64_t smooth_generation; /* of the mesh whose smooth flags faces[] holds */
+} _tlod_up_edges;
 
 /* One chunk's part of the draw list: counted in pass 1, summed in chunk
  * order, written in pass 2 (scheduler_draw_list.c). */
@@ -76,7 +82,7 @@ typedef struct _tlod_view_state {
   uint32_t strip_cap;
   tlod_draw_bucket buckets[_TLOD_BUCKETS];
   _tlod_list_chunk* chunks; /* one per _TLOD_LIST_CHUNK patches */
-  uint8_t* strip_edges;     /* per patch: bit e when edge e has a strip (this frame) */
+  uint8_t* strip_edges;     /* per visible patch: bit e when edge e has a strip (this frame) */
   _tlod_view_key key;       /* valid while key_valid */
   bool key_valid;
   /* The last draw list's morphs were all at rest: checked only when a
@@ -86,8 +92,6 @@ typedef struct _tlod_view_state {
   /* The chunks with a visible patch, this frame (in the chunks' block). */
   uint32_t* busy;
   uint32_t busy_count;
-  /* The mesh links the strip_edges' bits 4-7 were made from (NULL: none). */
-  const void* up_links;
 } _tlod_view_state;
 
 /* One view's frame: what every stage task reads. The mesh and surface views
@@ -133,6 +137,7 @@ struct tlod_scheduler {
   bool fast_path;
   _tlod_fast_kernels fast;
   _tlod_soa soa;
+  _tlod_up_edges up;
 };
 
 /* scheduler_metric.c */
@@ -190,6 +195,13 @@ tlod_result _tlod_soa_update(tlod_scheduler* s, const tlod_mesh_view* mesh, cons
 /* Silhouette and metric stages of fr (t[1] set), fused with levels and
  * morph (fr->fused) when may_fuse and the frame has no budget and is not locked. */
 void _tlod_fast_begin(_tlod_frame* fr, bool may_fuse);
+
+/* scheduler_up_edges.c: s->up from the mesh's links (on failure the
+ * caller frees what was made). */
+tlod_result _tlod_up_edges_build(tlod_scheduler* s);
+/* The crease bits again when the mesh's smooth flags moved (an update). */
+void _tlod_up_edges_refresh(tlod_scheduler* s, const tlod_mesh_view* mesh);
+void _tlod_up_edges_free(tlod_context* ctx, _tlod_up_edges* u);
 
 /* scheduler_draw_list.c */
 /* The view's chunk and strip-edge arrays (freed with its other arrays). */

@@ -1045,6 +1045,7 @@ TEST(update_normals_refreshes_smooth_flags) {
   tlod_mesh* m = NULL;
   CHECK(tlod_mesh_create(ctx, &d, &m) == TLOD_SUCCESS);
   CHECK(tlod_mesh_query_info(m).crease_edges == 12);
+  uint64_t smooth_gen = tlod_mesh_query_view(m).smooth_generation;
   /* Interleaved normals, all the same: every edge becomes smooth. */
   float normals[24][6] = {{0}};
   for (uint32_t v = 0; v < 24; v++) {
@@ -1053,6 +1054,13 @@ TEST(update_normals_refreshes_smooth_flags) {
   }
   CHECK(tlod_mesh_update(m, NULL, 0, &normals[0][0], 24) == TLOD_SUCCESS);
   CHECK_MSG(tlod_mesh_query_info(m).crease_edges == 0, "creases %u", tlod_mesh_query_info(m).crease_edges);
+  /* The flags moved: a new smooth generation; the same normals again move
+   * nothing: the same smooth generation, a new mesh generation. */
+  tlod_mesh_view before = tlod_mesh_query_view(m);
+  CHECK(before.smooth_generation == smooth_gen + 1);
+  CHECK(tlod_mesh_update(m, NULL, 0, &normals[0][0], 24) == TLOD_SUCCESS);
+  CHECK(tlod_mesh_query_view(m).smooth_generation == before.smooth_generation);
+  CHECK(tlod_mesh_query_view(m).generation == before.generation + 1);
   float n[3];
   tlod_mesh_vertex(m, 11, NULL, n);
   CHECK(n[0] == 0.0f && n[1] == 0.0f && n[2] == 1.0f);

@@ -694,6 +694,10 @@ typedef struct tlod_mesh_view {
    * tlod_mesh_update_attribute: equal generations, equal arrays (a
    * scheduler or backend may skip work for an unchanged mesh). */
   uint64_t generation;
+  /* Grows by one on each update that changed some link's smooth flag
+   * (new normals on a mesh with crease-split vertices or nodes): equal
+   * generations, equal smooth flags. */
+  uint64_t smooth_generation;
 } tlod_mesh_view;
 TLOD_API tlod_mesh_view tlod_mesh_query_view(const tlod_mesh* mesh);
 
