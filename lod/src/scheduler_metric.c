@@ -43,7 +43,7 @@ static float near_distance(const float proj[16], bool ortho) {
  * a displacement d projects to at most (f / z) sqrt(1 + (x/z)^2 + (y/z)^2) |d|
  * pixels; over the sphere z >= z_c - r (at least the near plane) and
  * |x/z| <= (|x_c| + r) / z_min, at most the frustum's (1 + |P20|) / |P00|
- * (y likewise). Computed in double, rounded up. */
+ * (y likewise). Computed in double (one division: 1 / z), rounded up. */
 float tlod_patch_projection_scale(const tlod_view_desc* v, const float center[3], float radius) {
   const float *V = v->view, *P = v->proj;
   double fx = 0.5 * (double)v->viewport_width * fabs((double)P[0]);
@@ -58,10 +58,10 @@ float tlod_patch_projection_scale(const tlod_view_desc* v, const float center[3]
   if (!(zmin > 0.0)) zmin = r > 0.0 ? 1e-4 * r : 1e-30;
   if (!(z >= zmin)) z = zmin;
   double tx = (1.0 + fabs((double)P[8])) / fabs((double)P[0]), ty = (1.0 + fabs((double)P[9])) / fabs((double)P[5]);
-  double rx = (fabs(x) + r) / z, ry = (fabs(y) + r) / z;
+  double iz = 1.0 / z, rx = (fabs(x) + r) * iz, ry = (fabs(y) + r) * iz;
   rx = rx < tx ? rx : tx;
   ry = ry < ty ? ry : ty;
-  double s = f / z * sqrt(1.0 + rx * rx + ry * ry);
+  double s = f * iz * sqrt(1.0 + rx * rx + ry * ry);
   return isfinite(s) && s < (double)FLT_MAX ? float_up(s) : INFINITY;
 }
 
