@@ -44,7 +44,7 @@ static void copy_patches(_tlod_soa* a, const tlod_surface_view* sv, const tlod_m
     a->cx[f] = info->center[0], a->cy[f] = info->center[1], a->cz[f] = info->center[2];
     a->radius[f] = info->radius;
     for (uint32_t l = 0; l < a->levels; l++)
-      a->bound[l * n + f] = tlod_patch_error_bound(info, l);
+      a->bound[(size_t)l * n + f] = tlod_patch_error_bound(info, l);
     for (uint32_t c = 0; c < 4; c++)
       a->corner[c * n + f] = mv->faces[f][c < mv->face_corners[f] ? c : 0];
   }
