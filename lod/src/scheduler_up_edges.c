@@ -38,7 +38,7 @@ static void fill_faces(_tlod_up_edges* u, const tlod_mesh_view* m, uint32_t patc
   uint32_t q = 0;
   for (uint32_t f = 0; f < patches; f++)
     for (uint32_t e = 0; e < 4; e++) {
-      if (!(u->mask[f] >> e & 1u)) continue;
+      if (!((uint32_t)u->mask[f] >> e & 1u)) continue;
       tlod_edge_link link = m->links[f][e];
       u->faces[q++] = link.face | (link.smooth ? 0u : _TLOD_UP_CREASE);
     }
