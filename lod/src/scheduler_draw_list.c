@@ -155,11 +155,7 @@ static void count_visible(const list_arrays* a, uint32_t* counts, chunk_tally* t
   t->run_count++;
   t->e_min = e < t->e_min ? e : t->e_min;
   t->e_max = e > t->e_max ? e : t->e_max;
-  if (a->strips) {
-    t->strips += count_strips(a, t, f);
-  } else {
-    t->up += (uint32_t)__builtin_popcount(a->up_mask[f]);
-  }
+  if (a->strips) t->strips += count_strips(a, t, f); /* without strips nothing reads t->up */
 }
 
 /* The up edges of the 8 patches from f (the up list skipped past them). */
