@@ -19,7 +19,8 @@
  *    level 1's four cells (level01_m2); every entry and the tail are also
  *    capped by the second-derivative bound error_bound 4^-l.
  *  - quads (Phong): a shared sample grid of the patch, all cells, and the
- *    remainder (1/2) M R^2 with M from the tensor net (phong.c).
+ *    remainder (1/2) M R^2 with M from the tensor net (phong.c); the
+ *    samples are float, with a bound of their rounding added.
  *  - every entry adds a slack for the float rounding of the evaluation.
  *  - TLOD_ERROR_TABLES_CLOSED_FORM: error_bound 4^-l plus the same slack,
  *    nothing measured (_tlod_error_table_closed); never below the above.
@@ -40,6 +41,7 @@
 #define QUAD_G (2 << K)
 
 typedef double d3[3];
+typedef float fl3[3];
 
 /* Plain maxima (fmax handles NaN, and is a library call at -O2). */
 static inline double dmax(double a, double b) { return a > b ? a : b; }
@@ -503,47 +505,69 @@ static biquad_law biquad_bound(const d3 (*a)[4]) {
  * f00 + si gu + tj gv, evaluated left to right: the row part f00 + si gu is
  * the same for a whole row, so it is formed once a row (the same roundings
  * as per sample) and the components are kept in registers: this loop was
- * 55% of a Phong quad's surface build. */
-static double quad_cell_m2(const d3 (*f)[QUAD_G + 1], int i0, int j0, int step) {
-  const double *f00 = f[i0][j0], *f10 = f[i0 + step][j0], *f11 = f[i0 + step][j0 + step], *f01 = f[i0][j0 + step];
-  double du1[3], dv1[3], du2[3], dv2[3], inv = 1.0 / step, worst = 0.0;
+ * 55% of a Phong quad's surface build. In float (the grid is relative to
+ * the patch's corner, quad_grid_floats; quad_table_from adds the roundings'
+ * allowance), and without the four corners, whose deviation is rounding
+ * alone: a quarter of the samples. */
+static double quad_cell_m2(const fl3 (*f)[QUAD_G + 1], int i0, int j0, int step) {
+  const float *f00 = f[i0][j0], *f10 = f[i0 + step][j0], *f11 = f[i0 + step][j0 + step], *f01 = f[i0][j0 + step];
+  float du1[3], dv1[3], du2[3], dv2[3], inv = 1.0f / (float)step, worst = 0.0f;
   for (int k = 0; k < 3; k++)
     du1[k] = f10[k] - f00[k], dv1[k] = f11[k] - f10[k], du2[k] = f11[k] - f01[k], dv2[k] = f01[k] - f00[k];
   for (int i = 0; i <= step; i++) {
-    double si = i * inv, r1[3], r2[3];
+    float si = (float)i * inv, r1[3], r2[3];
     for (int k = 0; k < 3; k++)
       r1[k] = f00[k] + si * du1[k], r2[k] = f00[k] + si * du2[k];
-    const double* row = f[i0 + i][j0];
-    for (int j = 0; j <= step; j++) {
-      double tj = j * inv;
-      const double *r = j <= i ? r1 : r2, *gv = j <= i ? dv1 : dv2, *p = row + 3 * j;
-      double dx = p[0] - (r[0] + tj * gv[0]), dy = p[1] - (r[1] + tj * gv[1]), dz = p[2] - (r[2] + tj * gv[2]);
-      worst = dmax(worst, dx * dx + dy * dy + dz * dz);
+    const float* row = f[i0 + i][j0];
+    int corner = i == 0 || i == step; /* the first and last row start and end at a corner */
+    for (int j = corner; j <= step - corner; j++) {
+      float tj = (float)j * inv;
+      const float *r = j <= i ? r1 : r2, *gv = j <= i ? dv1 : dv2, *p = row + 3 * j;
+      float dx = p[0] - (r[0] + tj * gv[0]), dy = p[1] - (r[1] + tj * gv[1]), dz = p[2] - (r[2] + tj * gv[2]);
+      float x = dx * dx + dy * dy + dz * dz;
+      worst = worst > x ? worst : x;
     }
   }
   return worst;
 }
 
+/* The grid in float relative to the patch's corner 0, o = the power form's
+ * constant (the difference in double, one rounding): g's largest
+ * component, E, scales the float samples' rounding allowance
+ * (quad_table_from). */
+static double quad_grid_floats(const d3 (*f)[QUAD_G + 1], const double* o, fl3 (*g)[QUAD_G + 1]) {
+  float e = 0.0f;
+  for (int i = 0; i <= QUAD_G; i++)
+    for (int j = 0; j <= QUAD_G; j++)
+      for (int k = 0; k < 3; k++) {
+        g[i][j][k] = (float)(f[i][j][k] - o[k]);
+        float x = fabsf(g[i][j][k]);
+        e = e > x ? e : x;
+      }
+  return e;
+}
+
 /* The table of a quad (Phong or biquadratic) from its net's m and the
  * squared maxima worst2[l] of the shared grid's level-l cells: between grid
  * points (sub-triangles with legs 1/G, R^2 = 1/(2 G^2)) at most M/(4 G^2).
- * A biquadratic (law finite) also takes the h^2 law above, for the
- * remainder, every level and the tail. */
-static void quad_table_from(double m, const double* worst2, const biquad_law* law, double slack,
+ * The samples are float, relative to the patch's corner 0, E the grid's
+ * largest component: a sample's roundings (the grid values', the
+ * interpolant's, the difference) are at most 14 u E per component, u = 2^-24
+ * (docs/design.md 3.5b), so 32 u E bounds their norm, with room; the float
+ * sum of squares and its square root err by a few u relatively (1 + 2^-21),
+ * and squares below 2^-126 by at most 2^-61 absolutely. A biquadratic (law
+ * finite) also takes the h^2 law above, for the remainder, every level and
+ * the tail. */
+static void quad_table_from(double m, const double* worst2, double grid_max, const biquad_law* law, double slack,
                             tlod_patch_info* info) {
   enum { G = QUAD_G };
-  double e[K + 1];
+  double e[K + 1], allowance = 32.0 * 0x1p-24 * grid_max + 0x1p-61;
   for (int l = 0; l <= K; l++) {
-    double sampled = sqrt(worst2[l]) + dmin(m / (4.0 * G * G), biquad_at(law, 1.0 / G));
+    double sampled = sqrt(worst2[l]) * (1.0 + 0x1p-21) + allowance + dmin(m / (4.0 * G * G), biquad_at(law, 1.0 / G));
     e[l] = dmin(dmin(sampled, m / 4.0 * k_pow4[l]), biquad_at(law, k_pow4[l] * (1 << l)));
   }
   /* l > K: h <= 2^-(K+1), so e(h) <= 4^-l (q + 2^-(K+1) (c + 2^-(K+1) d)). */
   finish(info, e, dmin(m / 4.0, biquad_at(law, 1.0 / (1 << (K + 1))) * (double)(1 << (2 * (K + 1)))), slack);
-}
-
-void _tlod_phong_quad_table_from(double m, const double* worst2, double slack, tlod_patch_info* info) {
-  const biquad_law none = {INFINITY, 0.0, 0.0};
-  quad_table_from(m, worst2, &none, slack, info);
 }
 
 /* All cells of levels 0..K on the shared (QUAD_G + 1)^2 grid (the same
@@ -565,17 +589,18 @@ static void phong_quad_table(const double (*net)[4][3], bool biquadratic, double
         f[i][j][k] = ((col[3][k] * v + col[2][k]) * v + col[1][k]) * v + col[0][k];
     }
   }
-  double worst2[K + 1];
+  fl3 g[S][S];
+  double grid_max = quad_grid_floats((const d3(*)[S])f, a[0][0], g), worst2[K + 1];
   for (int l = 0; l <= K; l++) {
     int step = G >> l, cells = 1 << l;
     double worst = 0.0;
     for (int ca = 0; ca < cells; ca++)
       for (int cb = 0; cb < cells; cb++)
-        worst = dmax(worst, quad_cell_m2((const d3(*)[S])f, ca * step, cb * step, step));
+        worst = dmax(worst, quad_cell_m2((const fl3(*)[S])g, ca * step, cb * step, step));
     worst2[l] = worst;
   }
   biquad_law law = biquadratic ? biquad_bound((const d3(*)[4])a) : (biquad_law){INFINITY, 0.0, 0.0};
-  quad_table_from(_tlod_quad_net_m(net), worst2, &law, slack, info);
+  quad_table_from(_tlod_quad_net_m(net), worst2, grid_max, &law, slack, info);
 }
 
 /* Bilinear: S = ... + u v (p0 - p1 + p2 - p3); on a cell's triangle the

@@ -3,8 +3,9 @@
  * its second-derivative maximum and the shared sample grid's cells were
  * 90% of a Phong quad surface's build. Bitwise the scalar path of phong.c
  * and error_table.c: same operations in the same order per lane, exact IEEE
- * division and sqrt, no contraction (-ffp-contract=off); the few per-patch
- * scalar steps (slack, rounding up) are the scalar code's own functions. */
+ * division and sqrt, no contraction (-ffp-contract=off), the table's
+ * rounding up included; only CLOSED_FORM's table is the scalar code's own
+ * function, per patch. */
 #include <math.h>
 #include <string.h>
 
@@ -18,7 +19,8 @@ typedef struct lanes_in {
 } lanes_in;
 
 typedef struct lanes_out {
-  double m[L], worst2[K + 1][L], slack[L];
+  double m[L], worst2[K + 1][L], slack[L], grid_max[L];
+  float table[K + 3][L]; /* measured: error_table[0..K], error_tail, error_slack */
   float bound[L], center[3][L], radius[L];
 } lanes_out;
 
@@ -73,9 +75,8 @@ void _tlod_phong_quads(tlod_simd simd, const _tlod_corners* c, uint32_t n, tlod_
     p->radius = out.radius[l];
     if (tables == TLOD_ERROR_TABLES_CLOSED_FORM) _tlod_error_table_closed_slack(out.slack[l], p);
     if (!measured) continue;
-    double worst2[K + 1];
     for (int lv = 0; lv <= K; lv++)
-      worst2[lv] = out.worst2[lv][l];
-    _tlod_phong_quad_table_from(out.m[l], worst2, out.slack[l], p);
+      p->error_table[lv] = out.table[lv][l];
+    p->error_tail = out.table[K + 1][l], p->error_slack = out.table[K + 2][l];
   }
 }

@@ -5,8 +5,8 @@
 
 #include "surface_eval.h"
 
-/* Patches per call. */
-enum { _TLOD_QUAD_LANES = 8 };
+/* Patches per call: the float samples fill one AVX-512 register. */
+enum { _TLOD_QUAD_LANES = 16 };
 
 /* For the n <= _TLOD_QUAD_LANES Phong quads c[0..n): info[i]'s error_bound,
  * d_max and sphere as build_patch gives them (_tlod_quad_net,
@@ -17,10 +17,6 @@ enum { _TLOD_QUAD_LANES = 8 };
 void _tlod_phong_quads(tlod_simd simd, const _tlod_corners* c, uint32_t n, tlod_error_tables tables,
                        tlod_patch_info* const* info);
 
-/* error_table.c: a Phong quad's table from its net's m, the squared maxima
- * worst2[l] of its shared sample grid's cells at level l and its slack
- * (eval_slack without extra points). */
-void _tlod_phong_quad_table_from(double m, const double* worst2, double slack, tlod_patch_info* info);
 /* error_table.c: _tlod_error_table_closed without extra points, its slack given. */
 void _tlod_error_table_closed_slack(double slack, tlod_patch_info* info);
 

@@ -159,8 +159,8 @@ float _tlod_phong_alpha_bound(const _tlod_corners* c) {
 static void cubic_net(const double f[4], double b[4]) {
   double f0 = f[0], f1 = f[1], f2 = f[2], f3 = f[3];
   b[0] = f0;
-  b[1] = (-5.0 * f0 + 18.0 * f1 - 9.0 * f2 + 2.0 * f3) / 6.0;
-  b[2] = (2.0 * f0 - 9.0 * f1 + 18.0 * f2 - 5.0 * f3) / 6.0;
+  b[1] = (-5.0 * f0 + 18.0 * f1 - 9.0 * f2 + 2.0 * f3) * (1.0 / 6.0);
+  b[2] = (2.0 * f0 - 9.0 * f1 + 18.0 * f2 - 5.0 * f3) * (1.0 / 6.0);
   b[3] = f3;
 }
 

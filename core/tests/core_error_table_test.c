@@ -779,7 +779,7 @@ static tlod_patch_info scalar_quad_patch(const tlod_surface* s, uint32_t f, bool
   return info;
 }
 
-/* Phong quads are built in lanes of 8 patches (error_table_lanes.c): every
+/* Phong quads are built in lanes of 16 patches (error_table_lanes.c): every
  * patch's info bitwise the scalar path's, at every instruction set and
  * thread count, MEASURED and CLOSED_FORM, per-vertex and global alphas,
  * patch counts that leave part-filled lanes, quads between triangles. */
