@@ -531,19 +531,33 @@ static double quad_cell_m2(const fl3 (*f)[QUAD_G + 1], int i0, int j0, int step)
   return worst;
 }
 
-/* The grid in float relative to the patch's corner 0, o = the power form's
- * constant (the difference in double, one rounding): g's largest
- * component, E, scales the float samples' rounding allowance
- * (quad_table_from). */
-static double quad_grid_floats(const d3 (*f)[QUAD_G + 1], const double* o, fl3 (*g)[QUAD_G + 1]) {
+/* The shared grid g[i][j] = S(i/G, j/G) - S(0, 0) in float, returning its
+ * largest component E (which scales the float samples' rounding allowance,
+ * quad_table_from). In double: the power form without its constant, each
+ * row's cubic in v by Horner's rule in u, then forward differences along
+ * the row (3 additions a value instead of 6 operations), each value rounded
+ * once to float; the double roundings, below 2^-40 E, are inside the
+ * allowance's room. */
+static double quad_grid_floats(const d3 (*a)[4], fl3 (*g)[QUAD_G + 1]) {
+  const double h = 1.0 / QUAD_G, h2 = h * h, h3 = h2 * h;
   float e = 0.0f;
-  for (int i = 0; i <= QUAD_G; i++)
+  for (int i = 0; i <= QUAD_G; i++) {
+    double u = (double)i / QUAD_G, fd[4][3];
+    for (int k = 0; k < 3; k++) {
+      double c[4];
+      for (int q = 0; q < 4; q++)
+        c[q] = ((a[3][q][k] * u + a[2][q][k]) * u + a[1][q][k]) * u + (q ? a[0][q][k] : 0.0);
+      fd[0][k] = c[0], fd[1][k] = (c[1] * h + c[2] * h2) + c[3] * h3;
+      fd[2][k] = 2.0 * c[2] * h2 + 6.0 * c[3] * h3, fd[3][k] = 6.0 * c[3] * h3;
+    }
     for (int j = 0; j <= QUAD_G; j++)
       for (int k = 0; k < 3; k++) {
-        g[i][j][k] = (float)(f[i][j][k] - o[k]);
+        g[i][j][k] = (float)fd[0][k];
         float x = fabsf(g[i][j][k]);
         e = e > x ? e : x;
+        fd[0][k] = fd[0][k] + fd[1][k], fd[1][k] = fd[1][k] + fd[2][k], fd[2][k] = fd[2][k] + fd[3][k];
       }
+  }
   return e;
 }
 
@@ -576,21 +590,8 @@ static void phong_quad_table(const double (*net)[4][3], bool biquadratic, double
   enum { G = QUAD_G, S = G + 1 };
   d3 a[4][4];
   quad_power(net, a);
-  d3 f[S][S];
-  for (int i = 0; i < S; i++) {
-    double u = (double)i / G;
-    d3 col[4];
-    for (int q = 0; q < 4; q++)
-      for (int k = 0; k < 3; k++)
-        col[q][k] = ((a[3][q][k] * u + a[2][q][k]) * u + a[1][q][k]) * u + a[0][q][k];
-    for (int j = 0; j < S; j++) {
-      double v = (double)j / G;
-      for (int k = 0; k < 3; k++)
-        f[i][j][k] = ((col[3][k] * v + col[2][k]) * v + col[1][k]) * v + col[0][k];
-    }
-  }
   fl3 g[S][S];
-  double grid_max = quad_grid_floats((const d3(*)[S])f, a[0][0], g), worst2[K + 1];
+  double grid_max = quad_grid_floats((const d3(*)[4])a, g), worst2[K + 1];
   for (int l = 0; l <= K; l++) {
     int step = G >> l, cells = 1 << l;
     double worst = 0.0;
