@@ -12,6 +12,7 @@
 #include "error_table_lanes.h"
 
 #define K (TLOD_ERROR_TABLE_LEVELS - 1)
+_Static_assert(K == 2, "error_table_lanes.inc's table kernel holds 4^-l for l <= 3");
 enum { L = _TLOD_QUAD_LANES, G = 2 << K, S = G + 1 };
 
 typedef struct lanes_in {
