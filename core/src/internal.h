@@ -37,6 +37,13 @@ tlod_simd _tlod_simd_resolve(tlod_simd wanted);
 #define _tlod_parallel_for tlod_context_parallel_for
 #define _tlod_worker_count tlod_context_worker_count
 
+/* count elements of size bytes, not zeroed (for arrays every element of
+ * which is written before it is read: the context's calloc is a memset
+ * pass of its own); NULL where count * size overflows. */
+static inline void* _tlod_alloc_array(const tlod_context* ctx, size_t count, size_t size) {
+  return size != 0 && count > SIZE_MAX / size ? NULL : _tlod_alloc(ctx, count * size);
+}
+
 /* Built-in thread pool (thread_pool.c). */
 tlod_result _tlod_pool_create(tlod_context* ctx, uint32_t threads, _tlod_pool** out);
 void _tlod_pool_destroy(tlod_context* ctx, _tlod_pool* pool);

@@ -2,8 +2,8 @@
  * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_attributes.c,
  * mesh_normals.c).
  *
- * Welding hashes positions (exactly, or by grid cells of the weld epsilon):
- * expected O(n). Edges are bucketed by their smaller welded end (a counting
+ * Exact welding radix-sorts position hashes (O(n)); epsilon welding hashes
+ * grid cells of the weld epsilon (expected O(n)). Edges are bucketed by their smaller welded end (a counting
  * sort): O(n log n) at worst. Both give the same result for the same input
  * whatever the hash layout.
  *
@@ -94,16 +94,6 @@ static void table_insert(weld_table* t, uint64_t hash, uint32_t v) {
   t->slots[i] = (weld_slot){(uint32_t)(hash >> 32), v + 1};
 }
 
-/* For finite floats == is bitwise equality, except that -0.0 == +0.0. */
-static uint32_t exact_find(const weld_table* t, float (*pos)[3], uint32_t v, uint64_t hash) {
-  for (size_t i = (size_t)hash & t->mask; t->slots[i].vertex_plus1; i = (i + 1) & t->mask) {
-    const float* q = pos[t->slots[i].vertex_plus1 - 1];
-    if (t->slots[i].tag == (uint32_t)(hash >> 32) && q[0] == pos[v][0] && q[1] == pos[v][1] && q[2] == pos[v][2])
-      return t->slots[i].vertex_plus1 - 1;
-  }
-  return _TLOD_NONE;
-}
-
 static bool within_eps(const weld_table* t, const float* a, const float* b) {
   for (int i = 0; i < 3; i++)
     if (fabs((double)a[i] - (double)b[i]) > t->eps) return false;
@@ -135,57 +125,110 @@ static uint32_t eps_find(const weld_table* t, float (*pos)[3], uint32_t v) {
   return best;
 }
 
-/* Slots are random in a table larger than the caches: the slot of the
- * vertex WELD_AHEAD on is fetched while this one is looked up (a hint only:
- * the same result). */
-enum { WELD_AHEAD = 16 };
-
-static void prefetch_slot(const weld_table* t, const tlod_mesh* m, uint32_t v) {
-#if defined(__GNUC__)
-  if (t->inv_cell == 0.0 && v < m->vertex_count)
-    __builtin_prefetch(&t->slots[(size_t)exact_hash(m->positions[v]) & t->mask]);
-#else
-  (void)t, (void)m, (void)v;
-#endif
-}
-
-static void weld_all(weld_table* t, tlod_mesh* m) {
+static void weld_eps(weld_table* t, tlod_mesh* m) {
   for (uint32_t v = 0; v < m->vertex_count; v++) {
-    prefetch_slot(t, m, v + WELD_AHEAD);
-    uint64_t h;
-    uint32_t rep;
-    if (t->inv_cell > 0.0) {
-      double c[3];
-      cell_of(t, m->positions[v], c);
-      h = cell_hash(c);
-      rep = eps_find(t, m->positions, v);
-    } else {
-      h = exact_hash(m->positions[v]);
-      rep = exact_find(t, m->positions, v, h);
-    }
+    double c[3];
+    cell_of(t, m->positions[v], c);
+    uint32_t rep = eps_find(t, m->positions, v);
     if (rep == _TLOD_NONE) {
-      table_insert(t, h, v);
+      table_insert(t, cell_hash(c), v);
       rep = v;
     }
     m->weld_id[v] = rep;
   }
 }
 
+static tlod_result weld_by_cells(tlod_mesh* m) {
+  size_t cap = table_capacity(m->vertex_count);
+  /* A hair over 2 eps: two points within eps are then less than half a
+   * cell apart despite rounding in the product (see eps_find). */
+  weld_table t = {.mask = cap - 1, .eps = m->desc.weld_epsilon};
+  t.inv_cell = 1.0 / (2.0 * t.eps * (1.0 + 1e-6));
+  t.slots = _tlod_calloc(m->ctx, cap, sizeof(weld_slot));
+  if (!t.slots) return fail_oom(m, "weld table");
+  weld_eps(&t, m);
+  _tlod_free(m->ctx, t.slots);
+  return TLOD_SUCCESS;
+}
+
+/* Exact welding sorts (hash, vertex) keys instead of probing a table: the
+ * table's probes were random loads in a table past the caches, the sort's
+ * passes stream. A stable radix sort keeps each hash's vertices ascending,
+ * so the first of a run with a position is its smallest index, as the
+ * table's first-seen representative was: the same weld ids. */
+typedef struct weld_key {
+  uint32_t hash;
+  uint32_t vertex;
+} weld_key;
+
+enum { RADIX_BITS = 11, RADIX = 1 << RADIX_BITS, RADIX_PASSES = 3 };
+
+static void radix_pass(const weld_key* in, weld_key* out, uint32_t n, int shift) {
+  uint32_t start[RADIX] = {0};
+  for (uint32_t i = 0; i < n; i++)
+    start[(in[i].hash >> shift) & (RADIX - 1)]++;
+  for (uint32_t d = 0, total = 0; d < RADIX; d++) {
+    uint32_t c = start[d];
+    start[d] = total;
+    total += c;
+  }
+  for (uint32_t i = 0; i < n; i++)
+    out[start[(in[i].hash >> shift) & (RADIX - 1)]++] = in[i];
+}
+
+/* Sorted by hash, vertices ascending within a hash; *keys swaps with *tmp. */
+static void sort_keys(weld_key** keys, weld_key** tmp, uint32_t n) {
+  for (int p = 0; p < RADIX_PASSES; p++) {
+    radix_pass(*keys, *tmp, n, p * RADIX_BITS);
+    weld_key* x = *keys;
+    *keys = *tmp, *tmp = x;
+  }
+}
+
+static bool same_position(const float* a, const float* b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+
+/* One run of equal hashes (vertices ascending): each vertex takes the first
+ * earlier one at its position. The run's distinct positions are kept at its
+ * front, so the work is the run's length times its distinct positions
+ * (one, and a run one long, but for hash collisions). */
+static void weld_run(tlod_mesh* m, weld_key* run, uint32_t n) {
+  uint32_t distinct = 0;
+  for (uint32_t i = 0; i < n; i++) {
+    uint32_t v = run[i].vertex, d = 0;
+    while (d < distinct && !same_position(m->positions[run[d].vertex], m->positions[v]))
+      d++;
+    if (d == distinct) run[distinct++].vertex = v;
+    m->weld_id[v] = run[d].vertex;
+  }
+}
+
+static tlod_result weld_by_sort(tlod_mesh* m) {
+  uint32_t n = m->vertex_count;
+  if (n == 0) return TLOD_SUCCESS;
+  weld_key* keys = _tlod_alloc_array(m->ctx, n, sizeof(weld_key));
+  weld_key* tmp = _tlod_alloc_array(m->ctx, n, sizeof(weld_key));
+  if (!keys || !tmp) {
+    _tlod_free(m->ctx, keys);
+    _tlod_free(m->ctx, tmp);
+    return fail_oom(m, "weld keys");
+  }
+  for (uint32_t v = 0; v < n; v++)
+    keys[v] = (weld_key){(uint32_t)(exact_hash(m->positions[v]) >> 32), v};
+  sort_keys(&keys, &tmp, n);
+  for (uint32_t i = 0, j; i < n; i = j) {
+    for (j = i + 1; j < n && keys[j].hash == keys[i].hash; j++) {
+    }
+    weld_run(m, keys + i, j - i);
+  }
+  _tlod_free(m->ctx, keys);
+  _tlod_free(m->ctx, tmp);
+  return TLOD_SUCCESS;
+}
+
 tlod_result _tlod_mesh_weld(tlod_mesh* m) {
   if (!m->weld_id) m->weld_id = _tlod_calloc(m->ctx, m->vertex_count, sizeof(uint32_t));
   if (!m->weld_id) return fail_oom(m, "weld ids");
-  size_t cap = table_capacity(m->vertex_count);
-  weld_table t = {.mask = cap - 1, .eps = m->desc.weld_epsilon};
-  if (t.eps > 0.0) {
-    /* A hair over 2 eps: two points within eps are then less than half a
-     * cell apart despite rounding in the product (see eps_find). */
-    t.inv_cell = 1.0 / (2.0 * t.eps * (1.0 + 1e-6));
-  }
-  t.slots = _tlod_calloc(m->ctx, cap, sizeof(weld_slot));
-  if (!t.slots) return fail_oom(m, "weld table");
-  weld_all(&t, m);
-  _tlod_free(m->ctx, t.slots);
-  return TLOD_SUCCESS;
+  return m->desc.weld_epsilon > 0.0f ? weld_by_cells(m) : weld_by_sort(m);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -300,7 +343,7 @@ static tlod_result buckets_build(tlod_mesh* m, edge_buckets* b) {
   const tlod_context* ctx = m->ctx;
   size_t half = (size_t)m->info.triangle_count * 3 + (size_t)m->info.quad_count * 4;
   b->first = _tlod_calloc(ctx, (size_t)m->vertex_count + 1, sizeof(uint32_t));
-  b->half = _tlod_calloc(ctx, half, sizeof(half_edge));
+  b->half = _tlod_alloc_array(ctx, half, sizeof(half_edge)); /* every slot is filled below */
   if (!b->first || !b->half) {
     _tlod_free(ctx, b->first);
     _tlod_free(ctx, b->half);

@@ -724,6 +724,17 @@ static uint32_t brute_force_weld(float (*pos)[3], float eps, uint32_t* want) {
   return reps;
 }
 
+/* Fisher-Yates over n points. */
+static void shuffle_points(float (*pos)[3], uint32_t n, uint32_t* seed) {
+  for (uint32_t i = n - 1; i > 0; i--) {
+    uint32_t j = lcg_next(seed) % (i + 1);
+    float t[3];
+    memcpy(t, pos[i], sizeof(t));
+    memcpy(pos[i], pos[j], sizeof(t));
+    memcpy(pos[j], t, sizeof(t));
+  }
+}
+
 static void make_weld_cloud(float (*pos)[3], float jitter) {
   uint32_t seed = 12345;
   for (uint32_t i = 0; i < WELD_N; i++) {
@@ -732,13 +743,7 @@ static void make_weld_cloud(float (*pos)[3], float jitter) {
     for (int c = 0; c < 3; c++)
       pos[i][c] = base[c] + ((float)(lcg_next(&seed) % 2001) / 1000.0f - 1.0f) * jitter;
   }
-  for (uint32_t i = WELD_N - 1; i > 0; i--) { /* shuffle */
-    uint32_t j = lcg_next(&seed) % (i + 1);
-    float t[3];
-    memcpy(t, pos[i], sizeof(t));
-    memcpy(pos[i], pos[j], sizeof(t));
-    memcpy(pos[j], t, sizeof(t));
-  }
+  shuffle_points(pos, WELD_N, &seed);
 }
 
 TEST(weld_epsilon_matches_brute_force) {
@@ -772,6 +777,77 @@ TEST(weld_epsilon_matches_brute_force) {
                 tlod_mesh_vertex_weld_id(m, v), want[v]);
     tlod_mesh_destroy(m);
   }
+  tlod_context_destroy(ctx);
+}
+
+/* Exact welding against sorting in the test: each vertex welds to the
+ * smallest vertex with an equal position (== : -0.0 and +0.0 alike). Half a
+ * million vertices drawn from about 260k distinct positions, shuffled, some
+ * zeros negated: ties, long runs of one position, and (with a 32-bit sort
+ * key) a handful of pairs of distinct positions whose keys collide. */
+enum { EXACT_N = 1 << 19, EXACT_BASES = 1 << 18 };
+
+static float (*exact_pos)[3];
+
+static int exact_cmp(const void* pa, const void* pb) {
+  uint32_t a = *(const uint32_t*)pa, b = *(const uint32_t*)pb;
+  for (int c = 0; c < 3; c++) {
+    float x = exact_pos[a][c], y = exact_pos[b][c];
+    if (x != y) return x < y ? -1 : 1;
+  }
+  return a < b ? -1 : (a > b);
+}
+
+static uint32_t sort_weld(float (*pos)[3], uint32_t* order, uint32_t* want) {
+  exact_pos = pos;
+  for (uint32_t v = 0; v < EXACT_N; v++)
+    order[v] = v;
+  qsort(order, EXACT_N, sizeof(*order), exact_cmp);
+  uint32_t reps = 0;
+  for (uint32_t i = 0, first = 0; i < EXACT_N; i++) {
+    bool same = true;
+    for (int c = 0; c < 3; c++)
+      same = same && pos[order[first]][c] == pos[order[i]][c];
+    if (!same) first = i;
+    want[order[i]] = order[first];
+    reps += first == i;
+  }
+  return reps;
+}
+
+static void make_exact_cloud(float (*pos)[3]) {
+  uint32_t seed = 777;
+  for (uint32_t i = 0; i < EXACT_N; i++) {
+    uint32_t b = i < EXACT_BASES ? i : lcg_next(&seed) % EXACT_BASES;
+    uint32_t h = b * 2654435761u;
+    for (int c = 0; c < 3; c++) {
+      float x = (float)((h >> (c * 7)) % 97) * 0.25f - 12.0f; /* 0.0 exactly at 48 */
+      pos[i][c] = x == 0.0f && (lcg_next(&seed) & 1) ? -0.0f : x;
+    }
+    pos[i][0] += (float)(b % 4096) * 0x1p-10f;
+  }
+  shuffle_points(pos, EXACT_N, &seed);
+}
+
+TEST(weld_exact_matches_sorting) {
+  tlod_context* ctx = new_context(1, NULL, NULL);
+  static float pos[EXACT_N][3];
+  static uint32_t want[EXACT_N], order[EXACT_N];
+  make_exact_cloud(pos);
+  float corner[3][3] = {{-100, -100, -100}, {100, -100, -100}, {-100, 100, -100}};
+  memcpy(pos[0], corner[0], sizeof(corner));
+  uint32_t reps = sort_weld(pos, order, want), idx[3] = {0, 1, 2};
+  CHECK_MSG(reps > EXACT_BASES / 2 && reps < EXACT_N - EXACT_N / 8, "distinct %u", reps);
+  tlod_mesh_desc d = {.positions = &pos[0][0], .vertex_count = EXACT_N, .indices = idx, .index_count = 3};
+  tlod_mesh* m = NULL;
+  CHECK(tlod_mesh_create(ctx, &d, &m) == TLOD_SUCCESS);
+  CHECK_MSG(tlod_mesh_query_info(m).welded_vertex_count == reps, "welded %u, want %u",
+            tlod_mesh_query_info(m).welded_vertex_count, reps);
+  uint32_t wrong = 0;
+  for (uint32_t v = 0; v < EXACT_N; v++)
+    wrong += tlod_mesh_vertex_weld_id(m, v) != want[v];
+  CHECK_MSG(wrong == 0, "%u vertices weld elsewhere", wrong);
+  tlod_mesh_destroy(m);
   tlod_context_destroy(ctx);
 }
 
@@ -1270,6 +1346,7 @@ int main(void) {
   RUN(bbox_matches_the_corners);
   RUN(weld_epsilon_and_signed_zero);
   RUN(weld_epsilon_matches_brute_force);
+  RUN(weld_exact_matches_sorting);
   RUN(angle_weighted_cube_corner);
   RUN(recompute_modes_ignore_given_normals);
   RUN(quad_normals);
