@@ -2,10 +2,11 @@
  * Owned by the mesh module (mesh.c, mesh_adjacency.c, mesh_attributes.c,
  * mesh_normals.c).
  *
- * Exact welding radix-sorts position hashes (O(n)); epsilon welding hashes
- * grid cells of the weld epsilon (expected O(n)). Edges are bucketed by their smaller welded end (a counting
- * sort): O(n log n) at worst. Both give the same result for the same input
- * whatever the hash layout.
+ * Exact welding radix-sorts position hashes: O(n), and O(n log n) at worst
+ * (positions sorted within a hash). Epsilon welding hashes grid cells of
+ * the weld epsilon: expected O(n). Edges are bucketed by their smaller
+ * welded end (a counting sort): O(n log n) at worst. Both give the same
+ * result for the same input whatever the hash layout.
  *
  * This work is based on:
  *   T. Boubekeur, M. Alexa. Phong Tessellation. ACM TOG 27(5), 2008
@@ -185,20 +186,51 @@ static void sort_keys(weld_key** keys, weld_key** tmp, uint32_t n) {
   }
 }
 
-static bool same_position(const float* a, const float* b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+/* Positions in lexicographic order; -0.0 and +0.0 tie (positions are
+ * finite, so < is a total preorder). */
+static int position_cmp(const tlod_mesh* m, weld_key a, weld_key b) {
+  const float *p = m->positions[a.vertex], *q = m->positions[b.vertex];
+  for (int c = 0; c < 3; c++)
+    if (p[c] != q[c]) return p[c] < q[c] ? -1 : 1;
+  return 0;
+}
 
-/* One run of equal hashes (vertices ascending): each vertex takes the first
- * earlier one at its position. The run's distinct positions are kept at its
- * front, so the work is the run's length times its distinct positions
- * (one, and a run one long, but for hash collisions). */
-static void weld_run(tlod_mesh* m, weld_key* run, uint32_t n) {
-  uint32_t distinct = 0;
-  for (uint32_t i = 0; i < n; i++) {
-    uint32_t v = run[i].vertex, d = 0;
-    while (d < distinct && !same_position(m->positions[run[d].vertex], m->positions[v]))
-      d++;
-    if (d == distinct) run[distinct++].vertex = v;
-    m->weld_id[v] = run[d].vertex;
+/* Stable: a's key first on a tie. */
+static void merge_runs(const tlod_mesh* m, const weld_key* a, uint32_t na, const weld_key* b, uint32_t nb,
+                       weld_key* out) {
+  uint32_t i = 0, j = 0, k = 0;
+  while (i < na && j < nb)
+    out[k++] = position_cmp(m, b[j], a[i]) < 0 ? b[j++] : a[i++];
+  while (i < na)
+    out[k++] = a[i++];
+  while (j < nb)
+    out[k++] = b[j++];
+}
+
+/* A run of equal hashes (vertices ascending) sorted by position, stably, so
+ * each position's vertices stay ascending: bottom-up merge sort through
+ * scratch, O(n log n) however many distinct positions collide in a hash
+ * (a crafted file gains nothing). */
+static void sort_run(const tlod_mesh* m, weld_key* run, weld_key* scratch, uint32_t n) {
+  weld_key *from = run, *to = scratch;
+  for (size_t w = 1; w < n; w *= 2) { /* size_t: 2 w stays below SIZE_MAX (n keys fit in memory) */
+    for (size_t lo = 0; lo < n; lo += 2 * w) {
+      size_t mid = n - lo < w ? n : lo + w, hi = n - mid < w ? n : mid + w;
+      merge_runs(m, from + lo, (uint32_t)(mid - lo), from + mid, (uint32_t)(hi - mid), to + lo);
+    }
+    weld_key* x = from;
+    from = to, to = x;
+  }
+  if (from != run) memcpy(run, from, n * sizeof(*run));
+}
+
+/* Each vertex of a run takes the first vertex at its position: its
+ * smallest index. */
+static void weld_run(tlod_mesh* m, weld_key* run, weld_key* scratch, uint32_t n) {
+  if (n > 1) sort_run(m, run, scratch, n);
+  for (uint32_t i = 0, rep = 0; i < n; i++) {
+    if (i == 0 || position_cmp(m, run[i - 1], run[i]) != 0) rep = run[i].vertex;
+    m->weld_id[run[i].vertex] = rep;
   }
 }
 
@@ -218,7 +250,7 @@ static tlod_result weld_by_sort(tlod_mesh* m) {
   for (uint32_t i = 0, j; i < n; i = j) {
     for (j = i + 1; j < n && keys[j].hash == keys[i].hash; j++) {
     }
-    weld_run(m, keys + i, j - i);
+    weld_run(m, keys + i, tmp + i, j - i);
   }
   _tlod_free(m->ctx, keys);
   _tlod_free(m->ctx, tmp);
