@@ -782,9 +782,9 @@ TEST(weld_epsilon_matches_brute_force) {
 
 /* Exact welding against sorting in the test: each vertex welds to the
  * smallest vertex with an equal position (== : -0.0 and +0.0 alike). Half a
- * million vertices drawn from about 260k distinct positions, shuffled, some
- * zeros negated: ties, long runs of one position, and (with a 32-bit sort
- * key) a handful of pairs of distinct positions whose keys collide. */
+ * million vertices drawn from about 230k distinct positions, shuffled, some
+ * zeros negated: positions held by one to several vertices, and (with a
+ * 32-bit sort key) a handful of distinct positions whose keys collide. */
 enum { EXACT_N = 1 << 19, EXACT_BASES = 1 << 18 };
 
 static float (*exact_pos)[3];
