@@ -452,6 +452,10 @@ static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_
   for (uint32_t b = 0; b < dl->bucket_count; ++b) {
     const tlod_draw_bucket* bk = &dl->buckets[b];
     if (bk->first != next) FAILF("bucket %u starts at %u, expected %u", b, bk->first, next);
+    if (!bk->count) FAILF("bucket %u is empty", b);
+    if (b && (bk->shape < bk[-1].shape || (bk->shape == bk[-1].shape && bk->level <= bk[-1].level)))
+      FAILF("bucket %u (shape %d level %u) after shape %d level %u", b, (int)bk->shape, bk->level, (int)bk[-1].shape,
+            bk[-1].level);
     next = bk->first + bk->count;
     if (next > dl->instance_count) FAILF("bucket %u runs past the instances", b);
     for (uint32_t k = bk->first; k < next; ++k) {
@@ -459,6 +463,8 @@ static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_
       if (in->level != bk->level || shape_of(fx, in->patch) != bk->shape)
         FAILF("instance %u (patch %u level %u) in bucket %u (shape %d level %u)", k, in->patch, in->level, b,
               (int)bk->shape, bk->level);
+      if (k > bk->first && in->patch <= in[-1].patch)
+        FAILF("bucket %u: instance %u (patch %u) after patch %u", b, k, in->patch, in[-1].patch);
     }
   }
   if (next != dl->instance_count) FAILF("buckets cover %u of %u instances", next, dl->instance_count);
@@ -467,6 +473,10 @@ static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_
     const tlod_draw_strip* st = &dl->strips[k];
     if (st->patch_a >= fx->patches || st->patch_b >= fx->patches)
       FAILF("strip %u: patches %u, %u", k, st->patch_a, st->patch_b);
+    if (st->patch_a >= st->patch_b) FAILF("strip %u: listed from patch %u, not below %u", k, st->patch_a, st->patch_b);
+    if (k && (st->patch_a < st[-1].patch_a || (st->patch_a == st[-1].patch_a && st->edge_a <= st[-1].edge_a)))
+      FAILF("strip %u (patch %u edge %u) after patch %u edge %u", k, st->patch_a, st->edge_a, st[-1].patch_a,
+            st[-1].edge_a);
     if (dl->levels[st->patch_a] < 0 || dl->levels[st->patch_b] < 0)
       FAILF("strip %u joins a culled patch (%u, %u)", k, st->patch_a, st->patch_b);
     if (st->edge_a >= fx->ncorner[st->patch_a] || st->edge_b >= fx->ncorner[st->patch_b]) FAILF("strip %u: edges", k);

@@ -232,6 +232,9 @@ typedef struct tlod_draw_list {
    * vertex with frustum culling off or a lock_to_main view); a vertex only
    * culled patches use may keep an older frame's value on the fast path */
   const float* vertex_depth;
+  /* The order is fixed whatever the thread count: buckets (the non-empty
+   * ones only) by shape, then level; a bucket's instances by patch index;
+   * strips by patch_a, then edge_a (a strip is listed from its lower patch). */
   const tlod_draw_instance* instances; /* visible patches, bucket by bucket */
   uint32_t instance_count;
   const tlod_draw_bucket* buckets;
