@@ -396,6 +396,9 @@ static double ref_patch_s(const fixture* fx, const view_ref* r, uint32_t p) {
 /* Draw-list consistency (structure, counts, strips)                        */
 /* ------------------------------------------------------------------------ */
 
+/* Whether (a, b) comes strictly after (c, d) in lexicographic order. */
+static bool pair_after(uint32_t a, uint32_t b, uint32_t c, uint32_t d) { return a > c || (a == c && b > d); }
+
 /* Levels in range, one instance per visible patch, buckets covering them,
  * statistics that add up, and strips exactly where two visible sides of an
  * edge would otherwise not meet: smooth edges with different levels, and
@@ -453,7 +456,7 @@ static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_
     const tlod_draw_bucket* bk = &dl->buckets[b];
     if (bk->first != next) FAILF("bucket %u starts at %u, expected %u", b, bk->first, next);
     if (!bk->count) FAILF("bucket %u is empty", b);
-    if (b && (bk->shape < bk[-1].shape || (bk->shape == bk[-1].shape && bk->level <= bk[-1].level)))
+    if (b && !pair_after((uint32_t)bk->shape, bk->level, (uint32_t)bk[-1].shape, bk[-1].level))
       FAILF("bucket %u (shape %d level %u) after shape %d level %u", b, (int)bk->shape, bk->level, (int)bk[-1].shape,
             bk[-1].level);
     next = bk->first + bk->count;
@@ -474,7 +477,7 @@ static bool check_draw_list(const fixture* fx, const tlod_draw_list* dl, uint32_
     if (st->patch_a >= fx->patches || st->patch_b >= fx->patches)
       FAILF("strip %u: patches %u, %u", k, st->patch_a, st->patch_b);
     if (st->patch_a >= st->patch_b) FAILF("strip %u: listed from patch %u, not below %u", k, st->patch_a, st->patch_b);
-    if (k && (st->patch_a < st[-1].patch_a || (st->patch_a == st[-1].patch_a && st->edge_a <= st[-1].edge_a)))
+    if (k && !pair_after(st->patch_a, st->edge_a, st[-1].patch_a, st[-1].edge_a))
       FAILF("strip %u (patch %u edge %u) after patch %u edge %u", k, st->patch_a, st->edge_a, st[-1].patch_a,
             st[-1].edge_a);
     if (dl->levels[st->patch_a] < 0 || dl->levels[st->patch_b] < 0)
