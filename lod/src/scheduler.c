@@ -70,7 +70,7 @@ static tlod_result alloc_view(tlod_scheduler* s, _tlod_view_state* v) {
   v->contour = tlod_context_calloc(ctx, np, sizeof(float));
   v->target = tlod_context_calloc(ctx, np, sizeof(float));
   v->cont = tlod_context_calloc(ctx, np, sizeof(float));
-  v->visible = tlod_context_calloc(ctx, np, 1);
+  v->visible = tlod_context_calloc(ctx, np + 3, 1); /* + 3: _tlod_list_in */
   v->instances = tlod_context_calloc(ctx, np, sizeof(tlod_draw_instance));
   bool ok =
       v->levels && v->e_max && v->scale && v->depth && v->contour && v->target && v->cont && v->visible && v->instances;
@@ -106,6 +106,7 @@ tlod_result tlod_scheduler_create(tlod_context* ctx, const tlod_surface* surface
   s->eps_scale = 1.0f;
   s->fast_path = !d.reference_path;
   s->fast = _tlod_fast_kernels_for(tlod_context_simd(ctx));
+  s->list = _tlod_list_kernels_for(d.reference_path ? TLOD_SIMD_SCALAR : tlod_context_simd(ctx));
   r = _tlod_up_edges_build(s);
   if (r == TLOD_ERROR_OUT_OF_MEMORY) out_of_memory(s);
   if (r != TLOD_SUCCESS) {

@@ -111,6 +111,20 @@ bool _tlod_blocks_hold(tlod_context* ctx, _tlod_soa* a, uint32_t views) {
   return true;
 }
 
+/* A plane's terms of the block test that do not depend on the block,
+ * made once a frame (a block is tested against every plane). */
+typedef struct plane_terms {
+  double p[4], n, n1, base; /* n = |p.xyz| (1 + SLACK), n1 = max(n, 1), base = max|p_k| */
+} plane_terms;
+
+static plane_terms plane_terms_of(const float p[4]) {
+  plane_terms t = {{p[0], p[1], p[2], p[3]}, 0.0, 0.0, 0.0};
+  t.n = sqrt(t.p[0] * t.p[0] + t.p[1] * t.p[1] + t.p[2] * t.p[2]) * (1.0 + SLACK);
+  t.n1 = fmax(t.n, 1.0);
+  t.base = fmax(fabs(t.p[0]), fmax(fabs(t.p[1]), fabs(t.p[2])));
+  return t;
+}
+
 /* A patch's test evaluates d_i = ((p0 cx + p1 cy) + p2 cz) + p3 in float:
  * at most 4 roundings per term, |fl(d_i) - d_i| <= gamma_4 (|p0 cx| +
  * |p1 cy| + |p2 cz| + |p3|) <= gamma_4 (max|p_k| l1 + |p3|), gamma_4 =
@@ -122,21 +136,18 @@ bool _tlod_blocks_hold(tlod_context* ctx, _tlod_soa* a, uint32_t views) {
  *     fl(d_i) >= -r_i: no patch is outside the plane;
  *   d_i <= d + |n| (r - r_i), so d + max(|n|, 1) r + margin < 0 gives
  *     fl(d_i) < -r_i: every patch is outside it. */
-static int plane_state(const float p[4], const _tlod_block* b) {
-  double p0 = p[0], p1 = p[1], p2 = p[2], p3 = p[3];
-  double d = p0 * b->c[0] + p1 * b->c[1] + p2 * b->c[2] + p3;
-  double n = sqrt(p0 * p0 + p1 * p1 + p2 * p2) * (1.0 + SLACK);
-  double pk = fmax(fabs(p0), fmax(fabs(p1), fabs(p2)));
-  double margin = 3e-7 * (pk * b->l1 + fabs(p3)) + SLACK * n * b->r + 1e-40;
-  if (d + fmax(n, 1.0) * b->r + margin < 0.0) return _TLOD_BLOCK_OUT;
-  return d - n * b->r - margin >= 0.0 ? _TLOD_BLOCK_IN : _TLOD_BLOCK_PARTIAL;
+static int plane_state(const plane_terms* t, const _tlod_block* b) {
+  double d = t->p[0] * b->c[0] + t->p[1] * b->c[1] + t->p[2] * b->c[2] + t->p[3];
+  double margin = 3e-7 * (t->base * b->l1 + fabs(t->p[3])) + SLACK * t->n * b->r + 1e-40;
+  if (d + t->n1 * b->r + margin < 0.0) return _TLOD_BLOCK_OUT;
+  return d - t->n * b->r - margin >= 0.0 ? _TLOD_BLOCK_IN : _TLOD_BLOCK_PARTIAL;
 }
 
-static uint8_t block_state(const float planes[6][4], const _tlod_block* b) {
+static uint8_t block_state(const plane_terms planes[6], const _tlod_block* b) {
   if (!b->valid) return _TLOD_BLOCK_PARTIAL;
   bool in = true;
   for (int p = 0; p < 6; p++) {
-    int st = plane_state(planes[p], b);
+    int st = plane_state(&planes[p], b);
     if (st == _TLOD_BLOCK_OUT) return _TLOD_BLOCK_OUT;
     in = in && st == _TLOD_BLOCK_IN;
   }
@@ -144,8 +155,15 @@ static uint8_t block_state(const float planes[6][4], const _tlod_block* b) {
 }
 
 void _tlod_blocks_classify(_tlod_soa* a, const float planes[6][4], bool cull) {
+  if (!cull) {
+    memset(a->block_state, _TLOD_BLOCK_IN, a->block_count);
+    return;
+  }
+  plane_terms terms[6];
+  for (int p = 0; p < 6; p++)
+    terms[p] = plane_terms_of(planes[p]);
   for (uint32_t b = 0; b < a->block_count; b++)
-    a->block_state[b] = cull ? block_state(planes, &a->blocks[b]) : _TLOD_BLOCK_IN;
+    a->block_state[b] = block_state(terms, &a->blocks[b]);
 }
 
 void _tlod_blocks_free(tlod_context* ctx, _tlod_soa* a) {

@@ -28,42 +28,29 @@ _Static_assert(_TLOD_LIST_CHUNK / FAST_BLOCK <= 64, "a chunk has at most 64 bloc
  * anything, and read through fr->vs every pointer would be reloaded after
  * each of them. */
 typedef struct list_arrays {
-  const uint8_t* visible;
-  const float* cont;
-  const float* e_max;
-  const uint8_t* corners;
-  const tlod_edge_link (*links)[4];
-  const uint8_t* up_mask; /* _tlod_up_edges */
-  const uint32_t* up_faces;
-  const uint32_t* up_first;
-  int8_t* levels;
-  uint8_t* edges; /* strip_edges */
+  _tlod_list_in in; /* the kernels' arrays */
+  _tlod_list_kernels kernels;
+  const uint8_t* block_slots; /* _tlod_up_edges */
   const tlod_patterns* pat;
-  uint32_t levels_n; /* max_level + 1: buckets per shape */
-  bool strips;       /* FLAT draws no strip */
+  bool strips; /* FLAT draws no strip */
 } list_arrays;
 
 static list_arrays arrays_of(const _tlod_frame* fr) {
   _tlod_view_state* vs = fr->vs;
-  return (list_arrays){.visible = vs->visible,
-                       .cont = vs->cont,
-                       .e_max = vs->e_max,
-                       .corners = fr->mesh.face_corners,
-                       .links = fr->mesh.links,
-                       .up_mask = fr->s->up.mask,
-                       .up_faces = fr->s->up.faces,
-                       .up_first = fr->s->up.first,
-                       .levels = vs->levels,
-                       .edges = vs->strip_edges,
+  return (list_arrays){.in = {.slot = fr->s->up.slot,
+                              .patch_count = fr->s->patch_count,
+                              .levels_n = fr->s->desc.max_level + 1,
+                              .visible = vs->visible,
+                              .cont = vs->cont,
+                              .e_max = vs->e_max,
+                              .corners = fr->mesh.face_corners,
+                              .levels = vs->levels,
+                              .edges = vs->strip_edges,
+                              .instances = vs->instances},
+                       .kernels = fr->s->list,
+                       .block_slots = fr->s->up.block_slots,
                        .pat = fr->s->patterns,
-                       .levels_n = fr->s->desc.max_level + 1,
                        .strips = fr->s->desc.policy != TLOD_POLICY_FLAT};
-}
-
-/* Buckets are ordered by shape, then level: bucket index shape * (lmax + 1) + level. */
-static uint32_t bucket_of(const list_arrays* a, uint32_t f, uint32_t level) {
-  uint32_t shape = a->corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
-  return shape * a->levels_n + level;
 }
 
 static uint32_t chunk_count(uint32_t patches) { return (patches + _TLOD_LIST_CHUNK - 1) / _TLOD_LIST_CHUNK; }
@@ -73,96 +60,28 @@ static void chunk_range(const _tlod_frame* fr, uint32_t c, uint32_t* begin, uint
   *end = *begin + _TLOD_LIST_CHUNK < fr->s->patch_count ? *begin + _TLOD_LIST_CHUNK : fr->s->patch_count;
 }
 
-/* Whether edge e of visible patch f (drawn level l, blend m) has a strip
- * (see _tlod_strip_needed), and if so the strip. Only up edges come here. */
-static bool strip_at(const list_arrays* a, uint32_t f, uint32_t e, uint32_t l, float m, tlod_draw_strip* st) {
-  tlod_edge_link link = a->links[f][e];
-  uint32_t g = link.face;
-  if (!a->visible[g]) return false;
-  float cg = a->cont[g];
+/* The strip on up edge slot k of visible patch f, where pass 1 found one
+ * (the neighbour visible, across a crease or at another level or blend:
+ * see _tlod_strip_needed). Edges blend with their patch. */
+static tlod_draw_strip strip_at(const list_arrays* a, uint32_t f, uint32_t k) {
+  uint32_t s = a->in.slot[(size_t)k * a->in.patch_count + f], g = s & _TLOD_UP_FACE;
+  bool smooth = !(s & _TLOD_UP_CREASE);
+  uint32_t l = (uint32_t)a->in.levels[f];
+  float m = _tlod_morph_of(a->in.cont[f], l);
+  float cg = a->in.cont[g];
   uint32_t lg = _tlod_drawn_level(cg);
   float mg = _tlod_morph_of(cg, lg);
-  if (link.smooth && l == lg && m == mg) return false;
   /* The coarser side's edge points are exact when its new vertices are at
    * rest: then the finer side has the same points (all of lower level). */
-  bool exact = link.smooth && l != lg && (l < lg ? m : mg) == 1.0f;
-  *st = (tlod_draw_strip){f, g, (uint8_t)e, link.edge, (uint8_t)l, (uint8_t)lg, !link.smooth, exact};
-  return true;
+  bool exact = smooth && l != lg && (l < lg ? m : mg) == 1.0f;
+  uint8_t ea = (uint8_t)(s >> _TLOD_UP_EDGE_SHIFT & 3u), eb = (uint8_t)(s >> _TLOD_UP_EDGE_B_SHIFT & 3u);
+  return (tlod_draw_strip){f, g, ea, eb, (uint8_t)l, (uint8_t)lg, !smooth, exact};
 }
 
 /* The triangles of strip st (tlod_draw_strip_connection without its checks:
  * the levels are the scheduler's, never above the patterns'). */
 static uint32_t strip_triangles(const tlod_patterns* p, const tlod_draw_strip* st) {
   return (st->exact ? p->connect_exact_count : p->connect_count)[st->level_a][st->level_b];
-}
-
-/* Running statistics of a chunk's count pass, kept in locals rather
- * than in the chunk (whose counts[] stores would otherwise alias them). */
-typedef struct chunk_tally {
-  float e_min, e_max;
-  uint32_t strips, culled;
-  /* The bucket of the last visible patch and the visible patches in it
-   * since counts[] had them: neighbours mostly share a bucket, and a
-   * counts[b]++ per patch would wait on the last one's store. */
-  uint32_t run_bucket, run_count;
-  uint32_t up; /* up_faces index of the next patch's first up edge */
-} chunk_tally;
-
-/* The continuous level as the list sees it: two patches draw the same
- * level and blend exactly when these are equal. Above 0 the drawn level
- * is l = ceil(c) and the blend c - (l - 1), exact (Sterbenz: l - 1 <= c
- * <= 2 (l - 1), or l - 1 == 0), so (l, blend) gives c back; at or below 0
- * (and NaN) every patch draws level 0 at blend 1. */
-static float drawn_key(float c) { return c > 0.0f ? c : 0.0f; }
-
-/* Whether the up edge to neighbour up (an up_faces entry) of a visible
- * patch of drawn key key has a strip: the neighbour is visible, across a
- * crease or at another (level, blend). Branch-free: one compare. */
-static uint32_t strip_bit(const list_arrays* a, uint32_t up, float key) {
-  uint32_t g = up & ~_TLOD_UP_CREASE, crease = up >> 31;
-  uint32_t other = drawn_key(a->cont[g]) != key;
-  return (uint32_t)(a->visible[g] != 0) & (crease | other);
-}
-
-/* The lowest set bit of each 4-bit mask (0 for none). */
-static const uint8_t k_lowest_edge[16] = {0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0};
-
-/* The edges of visible patch f that have a strip into edges[f] (for the
- * second pass, which makes the strips); returns how many. Only its up
- * edges are visited, the next ones of the list from t->up. */
-static uint32_t count_strips(const list_arrays* a, chunk_tally* t, uint32_t f) {
-  uint32_t mask = 0, n = 0;
-  float key = drawn_key(a->cont[f]);
-  for (uint32_t m = a->up_mask[f]; m; m &= m - 1) {
-    uint32_t e = k_lowest_edge[m], bit = strip_bit(a, a->up_faces[t->up++], key);
-    mask |= bit << e;
-    n += bit;
-  }
-  a->edges[f] = (uint8_t)mask;
-  return n;
-}
-
-/* Visible patch f: its drawn level, bucket count, statistics and strips. */
-static void count_visible(const list_arrays* a, uint32_t* counts, chunk_tally* t, uint32_t f) {
-  float c = a->cont[f], e = a->e_max[f];
-  uint32_t l = _tlod_drawn_level(c);
-  a->levels[f] = (int8_t)l;
-  uint32_t b = bucket_of(a, f, l);
-  if (b != t->run_bucket) {
-    counts[t->run_bucket] += t->run_count;
-    t->run_bucket = b, t->run_count = 0;
-  }
-  t->run_count++;
-  t->e_min = e < t->e_min ? e : t->e_min;
-  t->e_max = e > t->e_max ? e : t->e_max;
-  if (a->strips) t->strips += count_strips(a, t, f); /* without strips nothing reads t->up */
-}
-
-/* The up edges of the 8 patches from f (the up list skipped past them). */
-static uint32_t up_edges_8(const uint8_t* up_mask, uint32_t f) {
-  uint64_t w;
-  memcpy(&w, up_mask + f, 8);
-  return (uint32_t)__builtin_popcountll(w);
 }
 
 /* The n visible bytes from f OR-ed, 8 at a time (n a multiple of 8). */
@@ -176,30 +95,11 @@ static uint64_t any_visible(const uint8_t* visible, uint32_t f, uint32_t n) {
   return any;
 }
 
-/* Whether the 8 patches from f, all inside [f, end), are culled: a visible
- * block's culled patches skipped 8 at a time. */
-static bool culled_8(const uint8_t* visible, uint32_t f, uint32_t end) {
-  return f % 8 == 0 && end - f >= 8 && !any_visible(visible, f, 8);
-}
-
-/* Patches [f0, f1) of a visible block: levels (-1 when culled), bucket and
- * strip counts, statistics. */
-static void count_block(const list_arrays* a, uint32_t* counts, chunk_tally* t, uint32_t f0, uint32_t f1) {
-  t->up = a->up_first[f0 / FAST_BLOCK];
-  for (uint32_t f = f0; f < f1; f++) {
-    if (culled_8(a->visible, f, f1)) {
-      memset(a->levels + f, -1, 8);
-      t->culled += 8;
-      t->up += up_edges_8(a->up_mask, f);
-      f += 7;
-    } else if (!a->visible[f]) {
-      a->levels[f] = -1;
-      t->culled++;
-      t->up += (uint32_t)__builtin_popcount(a->up_mask[f]);
-    } else {
-      count_visible(a, counts, t, f);
-    }
-  }
+/* Patches [f0, f1) of a visible block: strip edges (for the second pass,
+ * which makes the strips), levels, bucket counts, statistics. */
+static uint32_t count_block(const list_arrays* a, uint32_t* counts, _tlod_list_tally* t, uint32_t f0, uint32_t f1) {
+  a->kernels.count(&a->in, f0, f1, counts, t);
+  return a->strips ? a->kernels.strip_edges(&a->in, f0, f1, a->block_slots[f0 / FAST_BLOCK]) : 0;
 }
 
 /* Block k of chunk [f0, f1): its patch range. */
@@ -227,10 +127,10 @@ static void scan_chunk(const _tlod_frame* fr, const list_arrays* a, uint32_t c) 
   for (uint32_t k = 0; f0 + k * FAST_BLOCK < f1; k++) {
     uint32_t b0, b1;
     block_range(f0, f1, k, &b0, &b1);
-    if (block_visible(a->visible, b0, b1)) {
+    if (block_visible(a->in.visible, b0, b1)) {
       ch->blocks |= UINT64_C(1) << k;
     } else {
-      memset(a->levels + b0, -1, b1 - b0);
+      memset(a->in.levels + b0, -1, b1 - b0);
       ch->culled += b1 - b0;
     }
   }
@@ -251,58 +151,32 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
   _tlod_frame* fr = data;
   list_arrays a = arrays_of(fr);
   for (uint32_t i = begin; i < end; i++) {
-    uint32_t c = fr->vs->busy[i], f0, f1, b0, b1;
+    uint32_t c = fr->vs->busy[i], f0, f1, b0, b1, strips = 0;
     _tlod_list_chunk* ch = &fr->vs->chunks[c];
-    chunk_tally t = {.e_min = INFINITY, .culled = ch->culled};
+    _tlod_list_tally t = {.e_min = INFINITY, .culled = ch->culled};
     chunk_range(fr, c, &f0, &f1);
     for (uint32_t k = 0; ch->blocks >> k; k++) {
       block_range(f0, f1, k, &b0, &b1);
-      if (ch->blocks & (UINT64_C(1) << k)) count_block(&a, ch->counts, &t, b0, b1);
+      if (ch->blocks & (UINT64_C(1) << k)) strips += count_block(&a, ch->counts, &t, b0, b1);
     }
-    ch->counts[t.run_bucket] += t.run_count;
     ch->e_max_min = t.e_min, ch->e_max_max = t.e_max;
-    ch->strips = t.strips, ch->culled = t.culled;
+    ch->strips = strips, ch->culled = t.culled;
   }
 }
 
-/* Where pass 2 writes a chunk: its next slot per bucket, the current
- * bucket's kept as a pointer (see chunk_tally.run_bucket), the next strip. */
-typedef struct write_cursor {
-  uint32_t* slots;
-  tlod_draw_instance* base;
-  tlod_draw_instance* next; /* of bucket `bucket`; slots[bucket] is stale */
-  uint32_t bucket;
-  tlod_draw_strip* strip; /* NULL: no strips */
-} write_cursor;
-
-static write_cursor cursor_of(_tlod_view_state* vs, _tlod_list_chunk* ch) {
-  return (write_cursor){ch->counts, vs->instances, vs->instances + ch->counts[0], 0,
-                        ch->strips ? vs->strips + ch->strip_first : NULL};
-}
-
-/* Visible patch f's instance at its bucket's next slot and its strips
- * (the edges counted in pass 1). */
-static void write_visible(const list_arrays* a, write_cursor* w, uint32_t f) {
-  uint32_t l = (uint32_t)a->levels[f], b = bucket_of(a, f, l);
-  if (b != w->bucket) {
-    w->slots[w->bucket] = (uint32_t)(w->next - w->base);
-    w->bucket = b, w->next = w->base + w->slots[b];
-  }
-  /* Edges blend with their patch (see _tlod_strip_needed). */
-  float m = _tlod_morph_of(a->cont[f], l);
-  *w->next++ = (tlod_draw_instance){.patch = f, .level = l, .morph = m};
-  uint32_t mask = a->edges[f];
-  for (uint32_t e = 0; w->strip && mask >> e; e++)
-    if (mask & (1u << e)) strip_at(a, f, e, l, m, w->strip++);
-}
-
-/* Patches [f0, f1) of a visible block into the list. */
-static void write_block(const list_arrays* a, write_cursor* w, uint32_t f0, uint32_t f1) {
-  for (uint32_t f = f0; f < f1; f++) {
-    if (culled_8(a->visible, f, f1))
-      f += 7;
-    else if (a->visible[f])
-      write_visible(a, w, f);
+/* The strips of patches [f0, f1) (their slots found in pass 1), in patch
+ * and edge order from *next: the slot masks of 8 patches as one word, bit
+ * 8 i + k for slot k of the i-th (slots are in edge order), so its set
+ * bits in order are the strips in order (a culled patch's mask is 0). */
+static void write_strips(const list_arrays* a, tlod_draw_strip** next, uint32_t f0, uint32_t f1) {
+  for (uint32_t f = f0; f < f1; f += 8) {
+    uint64_t w = 0;
+    for (uint32_t i = 0; i < 8 && f + i < f1; i++)
+      w |= (uint64_t)a->in.edges[f + i] << (8 * i);
+    for (; w; w &= w - 1) {
+      uint32_t bit = (uint32_t)__builtin_ctzll(w);
+      *(*next)++ = strip_at(a, f + bit / 8, bit % 8);
+    }
   }
 }
 
@@ -315,13 +189,15 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
   for (uint32_t i = begin; i < end; i++) {
     uint32_t c = fr->vs->busy[i], f0, f1, b0, b1;
     _tlod_list_chunk* ch = &fr->vs->chunks[c];
-    write_cursor w = cursor_of(fr->vs, ch);
+    tlod_draw_strip *first = ch->strips ? fr->vs->strips + ch->strip_first : NULL, *next = first;
     chunk_range(fr, c, &f0, &f1);
     for (uint32_t k = 0; ch->blocks >> k; k++) {
       block_range(f0, f1, k, &b0, &b1);
-      if (ch->blocks & (UINT64_C(1) << k)) write_block(&a, &w, b0, b1);
+      if (!(ch->blocks & (UINT64_C(1) << k))) continue;
+      a.kernels.write(&a.in, b0, b1, ch->counts);
+      if (next) write_strips(&a, &next, b0, b1);
     }
-    for (const tlod_draw_strip* st = fr->vs->strips + ch->strip_first; w.strip && st < w.strip; st++)
+    for (const tlod_draw_strip* st = first; st < next; st++)
       ch->strip_triangles += strip_triangles(a.pat, st);
   }
 }

@@ -34,14 +34,56 @@ typedef struct _tlod_camera {
 #define _TLOD_LIST_CHUNK 4096u
 
 /* The mesh's up edges (scheduler_up_edges.c): the edges towards a
- * neighbour of higher index, the only ones a strip is counted from. */
-#define _TLOD_UP_CREASE 0x80000000u /* faces[]: the edge is not smooth */
+ * neighbour of higher index, the only ones a strip is counted from, in
+ * slots: slot[k * patch_count + f] is patch f's k-th up edge (in edge
+ * order), the whole strip but the levels: the neighbour, the patch's edge,
+ * the neighbour's edge and the crease bit; or f itself (smooth) where f has
+ * fewer than k + 1 up edges: a patch never strips to itself, so the strip
+ * test needs no count. */
+#define _TLOD_UP_FACE 0x07FFFFFFu   /* bits 0-26: the neighbour (patches stay below 2^27) */
+#define _TLOD_UP_EDGE_B_SHIFT 27    /* bits 27-28: the neighbour's edge */
+#define _TLOD_UP_EDGE_SHIFT 29      /* bits 29-30: the patch's edge */
+#define _TLOD_UP_CREASE 0x80000000u /* bit 31: the edge is not smooth */
 typedef struct _tlod_up_edges {
-  uint8_t* mask;              /* per patch, bit e: edge e is an up edge */
-  uint32_t* faces;            /* per up edge, in patch then edge order: the neighbour, | _TLOD_UP_CREASE */
-  uint32_t* first;            /* per block of FAST_BLOCK patches: faces[] index of its first up edge */
-  uint64_t smooth_generation; /* of the mesh whose smooth flags faces[] holds */
+  uint32_t* slot;             /* _TLOD_UP_SLOTS slots per patch, slot-major */
+  uint8_t* block_slots;       /* per block of FAST_BLOCK patches: the most up edges of a patch in it */
+  uint64_t smooth_generation; /* of the mesh whose smooth flags slot[] holds */
 } _tlod_up_edges;
+#define _TLOD_UP_SLOTS 4
+
+/* The draw list's per-block kernels (scheduler_list_kernels.c), over the
+ * patches [begin, end) of one block with a visible patch:
+ *   strip_edges: per patch the bit k of each slot k whose up edge needs a
+ *     strip (0 for a culled patch) into edges; returns the bits set. slots: the
+ *     block's block_slots. visible is read 4 bytes at a time (3 bytes
+ *     readable past the last patch).
+ *   count: levels (drawn level, -1 culled), counts[bucket] += instances,
+ *     the tally's culled patches and e_max range.
+ *   write: each visible patch's instance at instances[slots[bucket]++]
+ *     (after count: levels set). */
+typedef struct _tlod_list_in {
+  const uint32_t* slot; /* _tlod_up_edges */
+  uint32_t patch_count; /* the slot stride */
+  uint32_t levels_n;    /* buckets per shape */
+  const uint8_t* visible;
+  const float* cont;
+  const float* e_max;
+  const uint8_t* corners;
+  int8_t* levels;
+  uint8_t* edges;
+  tlod_draw_instance* instances;
+} _tlod_list_in;
+typedef struct _tlod_list_tally {
+  float e_min, e_max; /* the first of equal values kept, NaN never taken */
+  uint32_t culled;
+} _tlod_list_tally;
+typedef struct _tlod_list_kernels {
+  uint32_t (*strip_edges)(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t slots);
+  void (*count)(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* counts, _tlod_list_tally* t);
+  void (*write)(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* slots);
+} _tlod_list_kernels;
+/* The kernels of SIMD level simd (never DEFAULT): the best built not above it. */
+_tlod_list_kernels _tlod_list_kernels_for(tlod_simd simd);
 
 /* One chunk's part of the draw list: counted in pass 1, summed in chunk
  * order, written in pass 2 (scheduler_draw_list.c). */
@@ -82,7 +124,7 @@ typedef struct _tlod_view_state {
   uint32_t strip_cap;
   tlod_draw_bucket buckets[_TLOD_BUCKETS];
   _tlod_list_chunk* chunks; /* one per _TLOD_LIST_CHUNK patches */
-  uint8_t* strip_edges;     /* per visible patch: bit e when edge e has a strip (this frame) */
+  uint8_t* strip_edges;     /* per visible patch: bit k when up edge slot k has a strip (this frame) */
   _tlod_view_key key;       /* valid while key_valid */
   bool key_valid;
   /* The last draw list's morphs were all at rest: checked only when a
@@ -138,6 +180,7 @@ struct tlod_scheduler {
   _tlod_fast_kernels fast;
   _tlod_soa soa;
   _tlod_up_edges up;
+  _tlod_list_kernels list; /* the scalar ones on the reference path */
 };
 
 /* scheduler_metric.c */

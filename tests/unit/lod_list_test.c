@@ -47,6 +47,14 @@ static tlod_context* uneven_context(void) {
   return tlod_context_create(&desc, &ctx) == TLOD_SUCCESS ? ctx : NULL;
 }
 
+/* threads threads at SIMD level simd or the best below it this processor
+ * has (the draw list's strip test has a copy per level). */
+static tlod_context* simd_context(uint32_t threads, tlod_simd simd) {
+  tlod_context_desc desc = {.thread_count = threads, .simd = simd};
+  tlod_context* ctx = NULL;
+  return tlod_context_create(&desc, &ctx) == TLOD_SUCCESS ? ctx : NULL;
+}
+
 static const tlod_draw_list* plan(const fixture* fx, tlod_scheduler* s, const tlod_view_desc* v, uint32_t count,
                                   float dt_ms) {
   tlod_frame_desc f = {.views = v, .view_count = count, .dt_ms = dt_ms};
@@ -182,9 +190,12 @@ static tlod_view_desc view_of_frame(int f, double radius) {
 
 enum { BUILDS = 4, FRAMES = 10 };
 
+/* Builds: the reference path on one scalar thread, then 2 threads at
+ * the best SIMD level, 3 at AVX2 (or the best below it) and the uneven
+ * engine parallel-for at the best level. */
 static void run_builds(const shape* sh, double radius, tlod_surface_type type, tlod_scheduler_desc d) {
-  tlod_context* ctx[BUILDS] = {new_context(1, NULL, NULL), new_context(2, NULL, NULL), new_context(3, NULL, NULL),
-                               uneven_context()};
+  tlod_context* ctx[BUILDS] = {simd_context(1, TLOD_SIMD_SCALAR), new_context(2, NULL, NULL),
+                               simd_context(3, TLOD_SIMD_AVX2), uneven_context()};
   fixture fx[BUILDS];
   tlod_scheduler* s[BUILDS];
   for (int b = 0; b < BUILDS; ++b) {
@@ -194,7 +205,7 @@ static void run_builds(const shape* sh, double radius, tlod_surface_type type, t
     s[b] = scheduler_create(fx[b].ctx, fx[b].surf, fx[b].pat, db);
     CHECK(s[b]);
   }
-  uint32_t strips = 0, levels = 0;
+  uint32_t strips = 0, levels = 0, creases = 0;
   for (int f = 0; f < FRAMES; ++f) {
     tlod_view_desc v[2] = {view_of_frame(f, radius), view_at(f + 2, radius * 1.8)};
     v[1].lock_to_main = f % 2;
@@ -209,17 +220,24 @@ static void run_builds(const shape* sh, double radius, tlod_surface_type type, t
       CHECK_MSG(ref->culled == ref->patch_count, "%s: the camera looking away culled only %u", sh->name, ref->culled);
     for (int b = 1; b < BUILDS; ++b) {
       CHECK(plan(&fx[b], s[b], v, 2, 40.0f));
-      for (uint32_t view = 0; view < 2; ++view)
-        CHECK_MSG(same_list(tlod_scheduler_draw_list(s[0], view), tlod_scheduler_draw_list(s[b], view), fx[0].mesh),
+      for (uint32_t view = 0; view < 2; ++view) {
+        const tlod_draw_list* r = tlod_scheduler_draw_list(s[b], view);
+        CHECK_MSG(check_strips(&fx[b], r), "%s frame %d view %u: build %d (%s) fails the strip oracle", sh->name, f,
+                  view, b, tlod_simd_name(tlod_context_simd(ctx[b])));
+        CHECK_MSG(same_list(tlod_scheduler_draw_list(s[0], view), r, fx[0].mesh),
                   "%s %s frame %d view %u: build %d differs from the one-thread reference", sh->name,
                   tlod_lod_policy_name(d.policy), f, view, b);
+      }
     }
     strips += ref->strip_count;
+    for (uint32_t k = 0; k < ref->strip_count; ++k)
+      creases += ref->strips[k].crease;
     for (uint32_t l = 3; l <= TLOD_MAX_LEVEL; ++l)
       levels += ref->level_histogram[l];
   }
   CHECK_MSG(strips > 0 && levels > 0, "%s: the cameras made no strips (%u) or no level >= 3 (%u)", sh->name, strips,
             levels);
+  CHECK_MSG(!sh->creases || creases > 0, "%s: a creased shape made no crease strip", sh->name);
   for (int b = 0; b < BUILDS; ++b) {
     tlod_scheduler_destroy(s[b]);
     fixture_free(&fx[b]);
@@ -228,17 +246,19 @@ static void run_builds(const shape* sh, double radius, tlod_surface_type type, t
 }
 
 TEST(test_builds_equal) {
-  shape torus = shape_torus(120, 80), cube = shape_quad_sphere(56);
+  shape torus = shape_torus(120, 80), cube = shape_quad_sphere(56), creased = shape_creased_sphere(40);
   tlod_scheduler_desc d = {
       .policy = TLOD_POLICY_HYBRID, .morph = TLOD_MORPH_TIME, .morph_ms = 100, .max_level = 6, .epsilon_px = 0.25f};
   run_builds(&torus, 1.4, TLOD_SURFACE_PHONG, d);
   run_builds(&cube, 1.0, TLOD_SURFACE_PHONG, d);
+  run_builds(&creased, 1.0, TLOD_SURFACE_PHONG, d);
   d.policy = TLOD_POLICY_ERROR, d.morph = TLOD_MORPH_CONTINUOUS;
   run_builds(&torus, 1.4, TLOD_SURFACE_PN, d);
   d.policy = TLOD_POLICY_SILHOUETTE, d.morph = TLOD_MORPH_NONE;
   run_builds(&cube, 1.0, TLOD_SURFACE_PHONG, d);
   shape_free(&torus);
   shape_free(&cube);
+  shape_free(&creased);
 }
 
 /* A fresh scheduler's list for the same view and desc: what a kept or

@@ -304,6 +304,42 @@ static inline shape shape__cube_split(bool soft) {
   return out;
 }
 
+/* The quad sphere of shape_quad_sphere(n) with each cube face's vertices
+ * its own, normal = normalize(position + 0.5 face direction): smooth and
+ * curved inside a face, a crease (bitwise equal positions, other normals)
+ * along the cube's 12 edges. */
+static inline shape shape_creased_sphere(uint32_t n) {
+  static const int face_axes[6][4] = {{0, 1, 1, 2}, {0, 0, 2, 1}, {1, 1, 2, 0},
+                                      {1, 0, 0, 2}, {2, 1, 0, 1}, {2, 0, 1, 0}};
+  uint32_t side = n + 1;
+  shape out;
+  shape_alloc(&out, "creased_sphere", 6 * side * side, 6 * 4 * n * n, 4, true);
+  uint32_t k = 0;
+  for (uint32_t fa = 0; fa < 6; ++fa) {
+    for (uint32_t t = 0; t <= n; ++t)
+      for (uint32_t u = 0; u <= n; ++u) {
+        double p[3], nn[3];
+        p[face_axes[fa][0]] = face_axes[fa][1] ? 1.0 : -1.0;
+        p[face_axes[fa][2]] = 2.0 * u / n - 1.0;
+        p[face_axes[fa][3]] = 2.0 * t / n - 1.0;
+        shape_normalize3(p);
+        memcpy(nn, p, sizeof nn);
+        nn[face_axes[fa][0]] += face_axes[fa][1] ? 0.5 : -0.5;
+        shape_normalize3(nn);
+        shape_set_vertex(&out, fa * side * side + t * side + u, p, nn);
+      }
+    for (uint32_t t = 0; t < n; ++t)
+      for (uint32_t u = 0; u < n; ++u) {
+        uint32_t b = fa * side * side + t * side + u, quad[4] = {b, b + 1, b + side + 1, b + side};
+        memcpy(out.indices + k, quad, sizeof quad);
+        k += 4;
+      }
+  }
+  out.closed = true;
+  out.creases = true;
+  return out;
+}
+
 static inline shape shape_cube_split(void) { return shape__cube_split(false); }
 static inline shape shape_cube_soft(void) { return shape__cube_split(true); }
 

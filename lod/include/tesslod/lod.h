@@ -40,11 +40,11 @@
  *   reductions run afterwards in a fixed order, so draw lists are bitwise
  *   the same for any thread count. Allocation goes through the context's
  *   allocator: at create the mesh's up edges (the edges a connection
- *   strip is counted from: 1 byte per patch and 4 per edge shared with a
- *   patch of higher index, about 9 bytes per quad of a closed mesh), per
- *   view arrays on the first update with that many views, and the strip
- *   array when a frame needs more strips than any before; otherwise an
- *   update does not allocate.
+ *   strip is counted from: 16 bytes per patch), per view arrays on the
+ *   first update with that many views, and the strip array when a frame
+ *   needs more strips than any before; otherwise an update does not
+ *   allocate. A scheduler takes meshes of fewer than 2^27 patches
+ *   (TLOD_ERROR_INVALID_ARGUMENT above: split such a mesh in objects).
  *
  * CONTRACT (the policy of tesslod/core.h; what this header checks)
  *   - NULL handles: create and update return TLOD_ERROR_INVALID_ARGUMENT,

@@ -1,0 +1,323 @@
+/* tesslod::lod -- the draw list's per-block kernels (scheduler_draw_list.c
+ * runs them over the visible blocks of its chunks):
+ *   strip_edges  per visible patch, which of its up edges (slots,
+ *                scheduler_up_edges.c) need a connection strip: the
+ *                neighbour visible, across a crease or at another drawn
+ *                key (level and blend);
+ *   count        drawn levels (-1 when culled), instances per bucket, the
+ *                culled count and the e_max range;
+ *   write        the instances at their buckets' next slots.
+ *
+ * One copy per SIMD level, chosen at create (the scalar one on the
+ * reference path): the scalar loops; AVX2 and AVX-512 copies of the strip
+ * test (8 or 16 patches a step, the neighbours' keys and visibility
+ * gathered, visibility 4 bytes at a byte offset with the low byte kept: the
+ * array has 3 spare bytes); AVX-512 copies of count and write (16 patches a
+ * step, the lanes of one bucket compressed together). Every copy gives
+ * bitwise the scalar results: integer and compare work, the blend by the
+ * scalar expression, the e_max range by the scalar rule (first of equal
+ * zeros, NaN ignored). lod_list_test checks each level against the oracle,
+ * lod_fast_test against the reference path's scalar copies. */
+#include <math.h>
+#include <string.h>
+
+#include "scheduler_frame.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+/* The continuous level as the list sees it: two patches draw the same
+ * level and blend exactly when these are equal. Above 0 the drawn level
+ * is l = ceil(c) and the blend c - (l - 1), exact (Sterbenz: l - 1 <= c
+ * <= 2 (l - 1), or l - 1 == 0), so (l, blend) gives c back; at or below 0
+ * (and NaN) every patch draws level 0 at blend 1. */
+static float drawn_key(float c) { return c > 0.0f ? c : 0.0f; }
+
+/* Buckets are ordered by shape, then level: bucket index shape * (lmax + 1) + level. */
+static uint32_t bucket_of(const _tlod_list_in* in, uint32_t f, uint32_t level) {
+  uint32_t shape = in->corners[f] == 4 ? TLOD_PATTERN_QUAD : TLOD_PATTERN_TRIANGLE;
+  return shape * in->levels_n + level;
+}
+
+/* ---- scalar ---- */
+
+/* The 4-bit strip mask of patch f over its first slots slots. */
+static uint32_t patch_edges(const _tlod_list_in* in, uint32_t f, uint32_t slots) {
+  float key = drawn_key(in->cont[f]);
+  uint32_t mask = 0;
+  for (uint32_t k = 0; k < slots; k++) {
+    uint32_t s = in->slot[(size_t)k * in->patch_count + f], g = s & _TLOD_UP_FACE;
+    uint32_t cross = (s >> 31) | (uint32_t)(drawn_key(in->cont[g]) != key);
+    mask |= ((uint32_t)(in->visible[g] != 0) & cross) << k;
+  }
+  return in->visible[f] ? mask : 0u;
+}
+
+/* The bits set in a 4-bit mask. */
+static uint32_t bits4(uint32_t mask) { return (UINT32_C(0x4332322132212110) >> (4u * mask)) & 0xFu; }
+
+static uint32_t strip_edges_scalar(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t slots) {
+  uint32_t count = 0;
+  for (uint32_t f = begin; f < end; f++) {
+    uint32_t mask = patch_edges(in, f, slots);
+    in->edges[f] = (uint8_t)mask;
+    count += bits4(mask);
+  }
+  return count;
+}
+
+/* Whether the 8 patches from f, all inside [f, end), are culled: a visible
+ * block's culled patches skipped 8 at a time. */
+static bool culled_8(const uint8_t* visible, uint32_t f, uint32_t end) {
+  uint64_t w = 1;
+  if (f % 8 == 0 && end - f >= 8) memcpy(&w, visible + f, 8);
+  return w == 0;
+}
+
+/* The running e_max range: the scalar rule every copy follows (the first
+ * of equal values kept, NaN never taken). */
+static void tally_e(_tlod_list_tally* t, float e) {
+  t->e_min = e < t->e_min ? e : t->e_min;
+  t->e_max = e > t->e_max ? e : t->e_max;
+}
+
+/* Visible patches in runs of one bucket (neighbours mostly share one, and
+ * a counts[b]++ per patch would wait on the last one's store). */
+static void count_scalar(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* counts, _tlod_list_tally* t) {
+  uint32_t run_bucket = 0, run = 0;
+  for (uint32_t f = begin; f < end; f++) {
+    if (culled_8(in->visible, f, end)) {
+      memset(in->levels + f, -1, 8);
+      t->culled += 8, f += 7;
+    } else if (!in->visible[f]) {
+      in->levels[f] = -1;
+      t->culled++;
+    } else {
+      uint32_t l = _tlod_drawn_level(in->cont[f]), b = bucket_of(in, f, l);
+      in->levels[f] = (int8_t)l;
+      if (b != run_bucket) counts[run_bucket] += run, run_bucket = b, run = 0;
+      run++;
+      tally_e(t, in->e_max[f]);
+    }
+  }
+  counts[run_bucket] += run;
+}
+
+/* The current bucket's next instance kept as a pointer (slots[bucket]
+ * stale until the bucket changes), as count_scalar's runs. */
+static void write_scalar(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* slots) {
+  uint32_t bucket = 0;
+  tlod_draw_instance* next = in->instances + slots[0];
+  for (uint32_t f = begin; f < end; f++) {
+    if (culled_8(in->visible, f, end)) {
+      f += 7;
+      continue;
+    }
+    if (!in->visible[f]) continue;
+    uint32_t l = (uint32_t)in->levels[f], b = bucket_of(in, f, l);
+    if (b != bucket) {
+      slots[bucket] = (uint32_t)(next - in->instances);
+      bucket = b, next = in->instances + slots[b];
+    }
+    *next++ = (tlod_draw_instance){.patch = f, .level = l, .morph = _tlod_morph_of(in->cont[f], l)};
+  }
+  slots[bucket] = (uint32_t)(next - in->instances);
+}
+
+#if defined(__x86_64__)
+/* ---- AVX2: the strip test ---- */
+
+#define AVX2_ATTR __attribute__((target("avx2")))
+/* drawn_key: max returns its second operand for NaN and for two zeros. */
+AVX2_ATTR static uint32_t strip_edges_avx2(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t slots) {
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256i face = _mm256_set1_epi32((int)_TLOD_UP_FACE), low = _mm256_set1_epi32(0xFF);
+  const __m256i none = _mm256_setzero_si256();
+  __m256i count = _mm256_setzero_si256();
+  uint32_t f = begin, lanes[8];
+  for (; end - f >= 8; f += 8) {
+    __m256 key = _mm256_max_ps(_mm256_loadu_ps(in->cont + f), zero);
+    __m256i own = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i*)(in->visible + f)));
+    __m256i seen = _mm256_xor_si256(_mm256_cmpeq_epi32(own, none), _mm256_cmpeq_epi32(none, none));
+    __m256i mask = none;
+    for (uint32_t k = 0; k < slots; k++) {
+      __m256i s = _mm256_loadu_si256((const __m256i*)(in->slot + (size_t)k * in->patch_count + f));
+      __m256i g = _mm256_and_si256(s, face);
+      __m256 other = _mm256_max_ps(_mm256_i32gather_ps(in->cont, g, 4), zero);
+      __m256i vis = _mm256_and_si256(_mm256_i32gather_epi32((const int*)in->visible, g, 1), low);
+      __m256i cross =
+          _mm256_or_si256(_mm256_srai_epi32(s, 31), _mm256_castps_si256(_mm256_cmp_ps(other, key, _CMP_NEQ_UQ)));
+      __m256i bit = _mm256_andnot_si256(_mm256_cmpeq_epi32(vis, none), _mm256_and_si256(seen, cross));
+      mask = _mm256_or_si256(mask, _mm256_and_si256(bit, _mm256_set1_epi32(1 << k)));
+      count = _mm256_sub_epi32(count, bit);
+    }
+    _mm256_storeu_si256((__m256i*)lanes, mask);
+    for (uint32_t q = 0; q < 8; q++)
+      in->edges[f + q] = (uint8_t)lanes[q];
+  }
+  _mm256_storeu_si256((__m256i*)lanes, count);
+  uint32_t total = 0;
+  for (uint32_t q = 0; q < 8; q++)
+    total += lanes[q];
+  return total + strip_edges_scalar(in, f, end, slots);
+}
+
+/* ---- AVX-512 ---- */
+
+#define AVX512_ATTR __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
+
+AVX512_ATTR static uint32_t strip_edges_avx512(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t slots) {
+  const __m512 zero = _mm512_setzero_ps();
+  const __m512i face = _mm512_set1_epi32((int)_TLOD_UP_FACE), low = _mm512_set1_epi32(0xFF);
+  const __m512i one = _mm512_set1_epi32(1);
+  __m512i count = _mm512_setzero_si512();
+  uint32_t f = begin;
+  for (; end - f >= 16; f += 16) {
+    __m512 key = _mm512_max_ps(_mm512_loadu_ps(in->cont + f), zero);
+    __m128i own = _mm_loadu_si128((const __m128i*)(in->visible + f));
+    __mmask16 seen = _mm_test_epi8_mask(own, own);
+    __m512i mask = _mm512_setzero_si512();
+    for (uint32_t k = 0; seen && k < slots; k++) {
+      __m512i s = _mm512_loadu_si512(in->slot + (size_t)k * in->patch_count + f);
+      __m512i g = _mm512_and_si512(s, face);
+      __m512 other = _mm512_max_ps(_mm512_mask_i32gather_ps(zero, seen, g, in->cont, 4), zero);
+      __m512i vis = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), seen, g, in->visible, 1);
+      __mmask16 cross = _mm512_movepi32_mask(s) | _mm512_cmp_ps_mask(other, key, _CMP_NEQ_UQ);
+      __mmask16 bit = seen & _mm512_test_epi32_mask(vis, low) & cross;
+      mask = _mm512_mask_or_epi32(mask, bit, mask, _mm512_set1_epi32(1 << k));
+      count = _mm512_mask_add_epi32(count, bit, count, one);
+    }
+    _mm_storeu_si128((__m128i*)(in->edges + f), _mm512_cvtepi32_epi8(mask));
+  }
+  return (uint32_t)_mm512_reduce_add_epi32(count) + strip_edges_scalar(in, f, end, slots);
+}
+
+/* The set bits of a lane mask (no popcnt instruction assumed). */
+static uint32_t bits16(uint32_t m) {
+  m -= (m >> 1) & 0x5555u;
+  m = (m & 0x3333u) + ((m >> 2) & 0x3333u);
+  m = (m + (m >> 4)) & 0x0F0Fu;
+  return (m + (m >> 8)) & 0x1Fu;
+}
+
+/* 16 patches from f: the visible lanes, their drawn levels and buckets. */
+typedef struct lanes16 {
+  __mmask16 seen;
+  __m512i level, bucket;
+} lanes16;
+
+AVX512_ATTR static lanes16 lanes_at(const _tlod_list_in* in, uint32_t f) {
+  __m128i own = _mm_loadu_si128((const __m128i*)(in->visible + f));
+  __m512 c = _mm512_loadu_ps(in->cont + f);
+  /* _tlod_drawn_level: 0 unless c > 0, else i = (uint32_t)c, + 1 where (float)i < c. */
+  __mmask16 up = _mm512_cmp_ps_mask(c, _mm512_setzero_ps(), _CMP_GT_OQ);
+  __m512i i = _mm512_maskz_cvttps_epu32(up, c);
+  __mmask16 below = _mm512_cmp_ps_mask(_mm512_cvtepu32_ps(i), c, _CMP_LT_OQ) & up;
+  __m512i level = _mm512_mask_add_epi32(i, below, i, _mm512_set1_epi32(1));
+  __m512i corners = _mm512_cvtepu8_epi32(_mm_loadu_si128((const __m128i*)(in->corners + f)));
+  __mmask16 quad = _mm512_cmpeq_epi32_mask(corners, _mm512_set1_epi32(4));
+  __m512i base = _mm512_maskz_mov_epi32(quad, _mm512_set1_epi32((int)(TLOD_PATTERN_QUAD * in->levels_n)));
+  return (lanes16){_mm_test_epi8_mask(own, own), level, _mm512_add_epi32(base, level)};
+}
+
+/* The e_max range over lanes seen, as tally_e over them in lane order:
+ * NaN lanes left out, the extremes found by reductions, and an extreme of
+ * zero (either sign) taken from the first lane holding a zero. */
+AVX512_ATTR static void tally_e16(_tlod_list_tally* t, __m512 e, __mmask16 seen) {
+  __mmask16 valid = seen & _mm512_cmp_ps_mask(e, e, _CMP_ORD_Q);
+  if (!valid) return;
+  float lo = _mm512_reduce_min_ps(_mm512_mask_mov_ps(_mm512_set1_ps(INFINITY), valid, e));
+  float hi = _mm512_reduce_max_ps(_mm512_mask_mov_ps(_mm512_setzero_ps(), valid, e));
+  if (lo == 0.0f) {
+    float z[16];
+    _mm512_storeu_ps(z, e);
+    lo = z[__builtin_ctz(valid & _mm512_cmp_ps_mask(e, _mm512_setzero_ps(), _CMP_EQ_OQ))];
+  }
+  tally_e(t, lo);
+  tally_e(t, hi);
+}
+
+/* Instances per bucket of the lanes seen: one bucket a step. */
+AVX512_ATTR static void count_buckets16(const lanes16* l, uint32_t* counts) {
+  uint32_t b[16];
+  _mm512_storeu_si512(b, l->bucket);
+  for (__mmask16 left = l->seen; left;) {
+    uint32_t bucket = b[__builtin_ctz(left)];
+    __mmask16 same = left & _mm512_cmpeq_epi32_mask(l->bucket, _mm512_set1_epi32((int)bucket));
+    counts[bucket] += bits16(same);
+    left &= (__mmask16)~same;
+  }
+}
+
+AVX512_ATTR static void count_avx512(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* counts,
+                                     _tlod_list_tally* t) {
+  uint32_t f = begin;
+  for (; end - f >= 16; f += 16) {
+    lanes16 l = lanes_at(in, f);
+    __m512i level = _mm512_mask_mov_epi32(_mm512_set1_epi32(-1), l.seen, l.level);
+    _mm_storeu_si128((__m128i*)(in->levels + f), _mm512_cvtepi32_epi8(level));
+    t->culled += 16 - bits16(l.seen);
+    if (!l.seen) continue;
+    count_buckets16(&l, counts);
+    tally_e16(t, _mm512_loadu_ps(in->e_max + f), l.seen);
+  }
+  count_scalar(in, f, end, counts, t);
+}
+
+/* _tlod_morph_of of 16 lanes: 1 at level 0, else c - (level - 1) clamped to [0, 1]. */
+AVX512_ATTR static __m512 morphs16(const _tlod_list_in* in, uint32_t f, __m512i level) {
+  __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
+  __m512 m =
+      _mm512_sub_ps(_mm512_loadu_ps(in->cont + f), _mm512_cvtepu32_ps(_mm512_sub_epi32(level, _mm512_set1_epi32(1))));
+  m = _mm512_mask_mov_ps(m, _mm512_cmp_ps_mask(m, one, _CMP_GT_OQ), one);
+  m = _mm512_mask_mov_ps(m, _mm512_cmp_ps_mask(m, zero, _CMP_LT_OQ), zero);
+  return _mm512_mask_mov_ps(m, _mm512_cmpeq_epi32_mask(level, _mm512_setzero_si512()), one);
+}
+
+/* The lanes of one bucket at a time, compressed, then stored as instances. */
+AVX512_ATTR static void write_avx512(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* slots) {
+  uint32_t f = begin;
+  for (; end - f >= 16; f += 16) {
+    __m128i lv = _mm_loadu_si128((const __m128i*)(in->levels + f));
+    __mmask16 seen = _mm_cmpgt_epi8_mask(lv, _mm_set1_epi8(-1));
+    if (!seen) continue;
+    __m512i level = _mm512_cvtepi8_epi32(lv);
+    __m512i corners = _mm512_cvtepu8_epi32(_mm_loadu_si128((const __m128i*)(in->corners + f)));
+    __mmask16 quad = _mm512_cmpeq_epi32_mask(corners, _mm512_set1_epi32(4));
+    __m512i bucket =
+        _mm512_mask_add_epi32(level, quad, level, _mm512_set1_epi32((int)(TLOD_PATTERN_QUAD * in->levels_n)));
+    __m512 morph = morphs16(in, f, level);
+    __m512i patch = _mm512_add_epi32(_mm512_set1_epi32((int)f),
+                                     _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0));
+    uint32_t b[16], p[16], l[16];
+    float m[16];
+    _mm512_storeu_si512(b, bucket);
+    for (__mmask16 left = seen; left;) {
+      uint32_t k = b[__builtin_ctz(left)], n;
+      __mmask16 same = left & _mm512_cmpeq_epi32_mask(bucket, _mm512_set1_epi32((int)k));
+      /* compress into a register, then store (Zen 4 microcodes the store form) */
+      _mm512_storeu_si512(p, _mm512_maskz_compress_epi32(same, patch));
+      _mm512_storeu_si512(l, _mm512_maskz_compress_epi32(same, level));
+      _mm512_storeu_ps(m, _mm512_maskz_compress_ps(same, morph));
+      n = bits16(same);
+      tlod_draw_instance* out = in->instances + slots[k];
+      for (uint32_t q = 0; q < n; q++)
+        out[q] = (tlod_draw_instance){.patch = p[q], .level = l[q], .morph = m[q]};
+      slots[k] += n;
+      left &= (__mmask16)~same;
+    }
+  }
+  write_scalar(in, f, end, slots);
+}
+#endif
+
+_tlod_list_kernels _tlod_list_kernels_for(tlod_simd simd) {
+#if defined(__x86_64__)
+  if (simd == TLOD_SIMD_AVX512) return (_tlod_list_kernels){strip_edges_avx512, count_avx512, write_avx512};
+  if (simd == TLOD_SIMD_AVX2) return (_tlod_list_kernels){strip_edges_avx2, count_scalar, write_scalar};
+#else
+  (void)simd;
+#endif
+  return (_tlod_list_kernels){strip_edges_scalar, count_scalar, write_scalar};
+}
