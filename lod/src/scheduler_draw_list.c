@@ -164,15 +164,28 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
   }
 }
 
+/* The masks of patches [f, min(f + 8, end)) as one word, patch f + i's
+ * in byte i (its bits 8 i to 8 i + 7). */
+static uint64_t mask_word(const uint8_t* masks, uint32_t f, uint32_t end) {
+  uint64_t w = 0;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  if (end - f >= 8) {
+    memcpy(&w, masks + f, 8);
+    return w;
+  }
+#endif
+  for (uint32_t i = 0; i < 8 && f + i < end; i++)
+    w |= (uint64_t)masks[f + i] << (8 * i);
+  return w;
+}
+
 /* The strips of patches [f0, f1) (their slots found in pass 1), in patch
  * and edge order from *next: the slot masks of 8 patches as one word, bit
  * 8 i + k for slot k of the i-th (slots are in edge order), so its set
  * bits in order are the strips in order (a culled patch's mask is 0). */
 static void write_strips(const list_arrays* a, tlod_draw_strip** next, uint32_t f0, uint32_t f1) {
   for (uint32_t f = f0; f < f1; f += 8) {
-    uint64_t w = 0;
-    for (uint32_t i = 0; i < 8 && f + i < f1; i++)
-      w |= (uint64_t)a->in.edges[f + i] << (8 * i);
+    uint64_t w = mask_word(a->in.edges, f, f1);
     for (; w; w &= w - 1) {
       uint32_t bit = (uint32_t)__builtin_ctzll(w);
       *(*next)++ = strip_at(a, f + bit / 8, bit % 8);
