@@ -9,8 +9,7 @@
 
 #include "scheduler_fast.h"
 
-/* Relative slack of the double sums below (each well under 1e-15). */
-#define SLACK 1e-12
+#define SLACK _TLOD_BLOCK_SLACK
 
 static bool finite_sphere(const _tlod_soa* a, uint32_t i) {
   return isfinite(a->cx[i]) && isfinite(a->cy[i]) && isfinite(a->cz[i]) && isfinite(a->radius[i]) &&
@@ -82,18 +81,34 @@ static bool build_chunks(tlod_context* ctx, _tlod_soa* a, uint32_t* scratch) {
   return true;
 }
 
+/* Block b's sphere into the structure-of-arrays fields. */
+static void store_sphere(_tlod_soa* a, uint32_t b, const _tlod_block* s) {
+  a->bx[b] = s->c[0], a->by[b] = s->c[1], a->bz[b] = s->c[2];
+  a->br[b] = s->r, a->bl1[b] = s->l1, a->bvalid[b] = s->valid;
+}
+
+/* The blocks' arrays: five doubles and a flag a block in one allocation. */
+static bool alloc_blocks(tlod_context* ctx, _tlod_soa* a) {
+  size_t n = (size_t)a->block_count + 1;
+  a->bx = tlod_context_alloc(ctx, n * (5 * sizeof(double) + 1));
+  if (!a->bx) return false;
+  a->by = a->bx + n, a->bz = a->by + n, a->br = a->bz + n, a->bl1 = a->br + n;
+  a->bvalid = (uint8_t*)(a->bl1 + n);
+  return true;
+}
+
 bool _tlod_blocks_build(tlod_context* ctx, _tlod_soa* a) {
-  if (!a->blocks) {
+  if (!a->bx) {
     a->block_count = (a->patch_count + FAST_BLOCK - 1) / FAST_BLOCK;
     a->chunk_count = (a->vertex_count + FAST_VCHUNK - 1) / FAST_VCHUNK;
-    a->blocks = tlod_context_alloc(ctx, sizeof(_tlod_block) * ((size_t)a->block_count + 1));
     a->block_state = tlod_context_alloc(ctx, (size_t)a->block_count + 1);
     a->chunk_first = tlod_context_alloc(ctx, sizeof(uint32_t) * ((size_t)a->chunk_count + 1));
-    if (!a->blocks || !a->block_state || !a->chunk_first) return false;
+    if (!alloc_blocks(ctx, a) || !a->block_state || !a->chunk_first) return false;
   }
   for (uint32_t b = 0; b < a->block_count; b++) {
     uint32_t begin = b * FAST_BLOCK, end = a->patch_count - begin < FAST_BLOCK ? a->patch_count : begin + FAST_BLOCK;
-    a->blocks[b] = block_sphere(a, begin, end);
+    _tlod_block s = block_sphere(a, begin, end);
+    store_sphere(a, b, &s);
   }
   uint32_t* scratch = tlod_context_alloc(ctx, sizeof(uint32_t) * 2 * ((size_t)a->chunk_count + 1));
   bool ok = scratch && build_chunks(ctx, a, scratch);
@@ -111,20 +126,6 @@ bool _tlod_blocks_hold(tlod_context* ctx, _tlod_soa* a, uint32_t views) {
   return true;
 }
 
-/* A plane's terms of the block test that do not depend on the block,
- * made once a frame (a block is tested against every plane). */
-typedef struct plane_terms {
-  double p[4], n, n1, base; /* n = |p.xyz| (1 + SLACK), n1 = max(n, 1), base = max|p_k| */
-} plane_terms;
-
-static plane_terms plane_terms_of(const float p[4]) {
-  plane_terms t = {{p[0], p[1], p[2], p[3]}, 0.0, 0.0, 0.0};
-  t.n = sqrt(t.p[0] * t.p[0] + t.p[1] * t.p[1] + t.p[2] * t.p[2]) * (1.0 + SLACK);
-  t.n1 = fmax(t.n, 1.0);
-  t.base = fmax(fabs(t.p[0]), fmax(fabs(t.p[1]), fabs(t.p[2])));
-  return t;
-}
-
 /* A patch's test evaluates d_i = ((p0 cx + p1 cy) + p2 cz) + p3 in float:
  * at most 4 roundings per term, |fl(d_i) - d_i| <= gamma_4 (|p0 cx| +
  * |p1 cy| + |p2 cz| + |p3|) <= gamma_4 (max|p_k| l1 + |p3|), gamma_4 =
@@ -135,39 +136,33 @@ static plane_terms plane_terms_of(const float p[4]) {
  *   d_i >= d - |n| (r - r_i), so d - |n| r - margin >= 0 gives
  *     fl(d_i) >= -r_i: no patch is outside the plane;
  *   d_i <= d + |n| (r - r_i), so d + max(|n|, 1) r + margin < 0 gives
- *     fl(d_i) < -r_i: every patch is outside it. */
-static int plane_state(const plane_terms* t, const _tlod_block* b) {
-  double d = t->p[0] * b->c[0] + t->p[1] * b->c[1] + t->p[2] * b->c[2] + t->p[3];
-  double margin = 3e-7 * (t->base * b->l1 + fabs(t->p[3])) + SLACK * t->n * b->r + 1e-40;
-  if (d + t->n1 * b->r + margin < 0.0) return _TLOD_BLOCK_OUT;
-  return d - t->n * b->r - margin >= 0.0 ? _TLOD_BLOCK_IN : _TLOD_BLOCK_PARTIAL;
-}
-
-static uint8_t block_state(const plane_terms planes[6], const _tlod_block* b) {
-  if (!b->valid) return _TLOD_BLOCK_PARTIAL;
-  bool in = true;
+ *     fl(d_i) < -r_i: every patch is outside it.
+ * margin = 3e-7 (max|p_k| l1 + |p3|) + SLACK |n| r + 1e-40; the kernels'
+ * classify (scheduler_fast.inc) tests every block against these terms. */
+static void plane_terms(const float planes[6][4], _tlod_plane_terms* t) {
   for (int p = 0; p < 6; p++) {
-    int st = plane_state(&planes[p], b);
-    if (st == _TLOD_BLOCK_OUT) return _TLOD_BLOCK_OUT;
-    in = in && st == _TLOD_BLOCK_IN;
+    for (int k = 0; k < 4; k++)
+      t->p[p][k] = planes[p][k];
+    const double* q = t->p[p];
+    t->n[p] = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) * (1.0 + SLACK);
+    t->n1[p] = fmax(t->n[p], 1.0);
+    t->base[p] = fmax(fabs(q[0]), fmax(fabs(q[1]), fabs(q[2])));
+    t->d_abs[p] = fabs(q[3]);
   }
-  return in ? _TLOD_BLOCK_IN : _TLOD_BLOCK_PARTIAL;
 }
 
-void _tlod_blocks_classify(_tlod_soa* a, const float planes[6][4], bool cull) {
+void _tlod_blocks_classify(_tlod_soa* a, const _tlod_fast_kernels* kernels, const float planes[6][4], bool cull) {
   if (!cull) {
     memset(a->block_state, _TLOD_BLOCK_IN, a->block_count);
     return;
   }
-  plane_terms terms[6];
-  for (int p = 0; p < 6; p++)
-    terms[p] = plane_terms_of(planes[p]);
-  for (uint32_t b = 0; b < a->block_count; b++)
-    a->block_state[b] = block_state(terms, &a->blocks[b]);
+  _tlod_plane_terms terms;
+  plane_terms(planes, &terms);
+  kernels->classify(a, &terms, 0, a->block_count);
 }
 
 void _tlod_blocks_free(tlod_context* ctx, _tlod_soa* a) {
-  void* arrays[] = {a->blocks, a->block_state, a->chunk_first, a->chunk_blocks, a->held};
+  void* arrays[] = {a->bx, a->block_state, a->chunk_first, a->chunk_blocks, a->held};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(ctx, arrays[i]);
 }

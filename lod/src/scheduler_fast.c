@@ -45,16 +45,16 @@ _tlod_fast_kernels _tlod_fast_kernels_for(tlod_simd simd) {
 #if defined(__x86_64__)
   switch (simd) {
   case TLOD_SIMD_AVX512:
-    return (_tlod_fast_kernels){vertices_avx512, patches_avx512};
+    return (_tlod_fast_kernels){vertices_avx512, patches_avx512, classify_avx512};
   case TLOD_SIMD_AVX2:
-    return (_tlod_fast_kernels){vertices_avx2, patches_avx2};
+    return (_tlod_fast_kernels){vertices_avx2, patches_avx2, classify_avx2};
   case TLOD_SIMD_SSE2:
-    return (_tlod_fast_kernels){vertices_sse2, patches_sse2};
+    return (_tlod_fast_kernels){vertices_sse2, patches_sse2, classify_sse2};
   default:
     break;
   }
 #else
   (void)simd;
 #endif
-  return (_tlod_fast_kernels){vertices_scalar, patches_scalar};
+  return (_tlod_fast_kernels){vertices_scalar, patches_scalar, classify_scalar};
 }

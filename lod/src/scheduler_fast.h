@@ -35,6 +35,17 @@ typedef struct _tlod_block {
   bool valid;
 } _tlod_block;
 
+/* Relative slack of the blocks' double sums (each well under 1e-15). */
+#define _TLOD_BLOCK_SLACK 1e-12
+
+/* The frustum planes' terms of the block test that do not depend on the
+ * block, made once a frame (scheduler_blocks.c): per plane p its
+ * coefficients, n = |p.xyz| (1 + slack), n1 = max(n, 1), base = max |p_k|
+ * and |p3|. */
+typedef struct _tlod_plane_terms {
+  double p[6][4], n[6], n1[6], base[6], d_abs[6];
+} _tlod_plane_terms;
+
 /* cont of a culled patch: no morph history, it appears at its goal. */
 #define _TLOD_NO_HISTORY (-1.0f)
 
@@ -51,7 +62,8 @@ typedef struct _tlod_soa {
    * the blocks that use one of its vertices, chunk_blocks[chunk_first[j] ..
    * chunk_first[j + 1]) (scheduler_blocks.c). */
   uint32_t block_count, chunk_count, chunk_capacity;
-  _tlod_block* blocks;
+  double *bx, *by, *bz, *br, *bl1; /* the blocks' spheres (_tlod_block), one array a field */
+  uint8_t* bvalid;
   uint32_t *chunk_first, *chunk_blocks; /* chunk_capacity entries */
   uint8_t* block_state;                 /* this frame's, one view at a time */
   /* held[v * block_count + b]: view v's visible, e_max, target and cont of
@@ -109,10 +121,14 @@ typedef struct _tlod_fast_local {
   uint8_t visible[FAST_BLOCK];
 } _tlod_fast_local;
 
-/* Both over ranges of clusters: vertex chunks and patch blocks. */
+/* Over ranges of clusters: vertex chunks and patch blocks; classify sets
+ * a->block_state of blocks [begin, end) against the planes (OUT only if
+ * every patch's own float test culls it, IN only if every patch's own
+ * test keeps it: scheduler_blocks.c proves the margin). */
 typedef struct _tlod_fast_kernels {
   void (*vertices)(const _tlod_fast_frame* k, uint32_t chunk_begin, uint32_t chunk_end);
   void (*patches)(const _tlod_fast_frame* k, uint32_t block_begin, uint32_t block_end);
+  void (*classify)(_tlod_soa* a, const _tlod_plane_terms* t, uint32_t begin, uint32_t end);
 } _tlod_fast_kernels;
 
 /* scheduler_blocks.c. The block spheres and chunk lists of a (just
@@ -123,7 +139,7 @@ bool _tlod_blocks_hold(tlod_context* ctx, _tlod_soa* a, uint32_t views);
 /* a->block_state of every block against planes; all IN unless cull. OUT
  * only if every patch's own float test culls it, IN only if every
  * patch's own test keeps it. */
-void _tlod_blocks_classify(_tlod_soa* a, const float planes[6][4], bool cull);
+void _tlod_blocks_classify(_tlod_soa* a, const _tlod_fast_kernels* kernels, const float planes[6][4], bool cull);
 void _tlod_blocks_free(tlod_context* ctx, _tlod_soa* a);
 
 /* The kernels of SIMD level simd (never DEFAULT): the best compiled one not above it. */

@@ -78,7 +78,7 @@ void _tlod_fast_begin(_tlod_frame* fr, bool may_fuse) {
   rule_constants(fr, &t.k);
   view_arrays(s, fr->vs, &t.k);
   fr->fused = t.k.fuse = may_fuse && !fr->main && !fr->budget;
-  _tlod_blocks_classify(&s->soa, t.k.planes, t.k.cull);
+  _tlod_blocks_classify(&s->soa, &s->fast, t.k.planes, t.k.cull);
   tlod_context_parallel_for(s->ctx, vertex_task, &t, s->soa.chunk_count);
   fr->t[1] = tlod_now_ms();
   tlod_context_parallel_for(s->ctx, patch_task, &t, s->soa.block_count);
