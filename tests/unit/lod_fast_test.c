@@ -10,6 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "shapes.h"
 #include "tesslod/core.h"
 #include "tesslod/lod.h"
@@ -504,6 +508,58 @@ TEST(test_cluster_views) {
             seen[2]);
 }
 
+/* The ERROR ladder on epsilons at rounding ties: epsilon = a visible
+ * patch's e_max of the same view, fl(bound * scale), which the exact
+ * product exceeds by under an ulp whenever the float product rounded down.
+ * The fast path's ladder must decide every such patch as the reference's
+ * exact double products do (a ladder in float rounded to nearest fails
+ * here), also with flush-to-zero and denormals-are-zero set, as some
+ * engines run. */
+static bool ties_agree(world w[2], uint32_t tries, char* why, size_t n) {
+  camera c = frame_camera(1);
+  tlod_view_desc v = make_view(&c);
+  tlod_frame_desc f = {.views = &v, .view_count = 1, .dt_ms = 16.0f};
+  tlod_scheduler_desc d = {.policy = TLOD_POLICY_ERROR,
+                           .morph = TLOD_MORPH_NONE,
+                           .epsilon_px = 0.5f,
+                           .max_level = MAX_LEVEL,
+                           .reference_path = true};
+  tlod_scheduler* probe = scheduler_create(w[0].ctx, w[0].surf[1], w[0].pat, d);
+  const tlod_draw_list* dl = probe ? scheduler_plan(w[0].ctx, probe, &f) : NULL;
+  bool ok = dl != NULL;
+  for (uint32_t p = 0, done = 0; ok && p < dl->patch_count && done < tries; p += 7) {
+    if (dl->levels[p] < 0 || !(dl->e_max[p] > 0.0f)) continue;
+    d.epsilon_px = dl->e_max[p], done++;
+    tlod_scheduler* s[2];
+    for (int i = 0; i < 2; ++i) {
+      d.reference_path = i == 0;
+      s[i] = scheduler_create(w[i].ctx, w[i].surf[1], w[i].pat, d);
+    }
+    ok = s[0] && s[1] && scheduler_plan(w[0].ctx, s[0], &f) && scheduler_plan(w[1].ctx, s[1], &f) &&
+         draw_lists_equal(tlod_scheduler_draw_list(s[0], 0), tlod_scheduler_draw_list(s[1], 0), 0, why, n);
+    if (!ok) snprintf(why + strlen(why), n - strlen(why), " (epsilon %.9g, the e_max of patch %u)", d.epsilon_px, p);
+    tlod_scheduler_destroy(s[0]);
+    tlod_scheduler_destroy(s[1]);
+  }
+  tlod_scheduler_destroy(probe);
+  return ok;
+}
+
+TEST(test_ladder_ties) {
+  world w[2];
+  char why[256] = "";
+  bool ok = world_make(&w[0], TLOD_SIMD_SCALAR, 1) && world_make(&w[1], best_simd(), 2);
+  CHECK_MSG(ok && ties_agree(w, 64, why, sizeof why), "%s: %s", tlod_simd_name(best_simd()), why);
+#if defined(__x86_64__)
+  unsigned csr = _mm_getcsr();
+  _mm_setcsr(csr | _MM_FLUSH_ZERO_ON | 0x0040u); /* FTZ and DAZ, as some engines run */
+  CHECK_MSG(ok && ties_agree(w, 16, why, sizeof why), "%s with FTZ and DAZ: %s", tlod_simd_name(best_simd()), why);
+  _mm_setcsr(csr);
+#endif
+  world_free(&w[0]);
+  world_free(&w[1]);
+}
+
 int main(void) {
   sources_make();
   RUN(test_cases_refine);
@@ -511,6 +567,7 @@ int main(void) {
   RUN(test_group_budget);
   RUN(test_culled_blocks);
   RUN(test_cluster_views);
+  RUN(test_ladder_ties);
   sources_free();
   TEST_END();
 }
