@@ -275,6 +275,31 @@ AVX512_ATTR static __m512 morphs16(const _tlod_list_in* in, uint32_t f, __m512i 
   return _mm512_mask_mov_ps(m, _mm512_cmpeq_epi32_mask(level, _mm512_setzero_si512()), one);
 }
 
+/* Instances {p[i], l[i], m[i]} for i < n at out: the three lane vectors
+ * interleaved into 3 x 16 dwords (dword 3 i + field), by two-source
+ * permutes of p and l and a masked permute of m, and stored up to 3 n.
+ * Output vector o, lane j holds dword g = 16 o + j: instance g / 3, field
+ * g mod 3 (k_from_pl: i from p or 16 + i from l; k_from_m: i; k_is_m:
+ * the lanes of field 2). */
+static const int32_t k_from_pl[3][16] = {{0, 16, 0, 1, 17, 1, 2, 18, 2, 3, 19, 3, 4, 20, 4, 5},
+                                         {21, 5, 6, 22, 6, 7, 23, 7, 8, 24, 8, 9, 25, 9, 10, 26},
+                                         {10, 11, 27, 11, 12, 28, 12, 13, 29, 13, 14, 30, 14, 15, 31, 15}};
+static const int32_t k_from_m[3][16] = {{0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5},
+                                        {5, 5, 6, 6, 6, 7, 7, 7, 8, 8, 8, 9, 9, 9, 10, 10},
+                                        {10, 11, 11, 11, 12, 12, 12, 13, 13, 13, 14, 14, 14, 15, 15, 15}};
+static const uint16_t k_is_m[3] = {0x4924, 0x2492, 0x9249};
+
+AVX512_ATTR static void store_instances(tlod_draw_instance* out, uint32_t n, __m512i p, __m512i l, __m512i m) {
+  _Static_assert(sizeof(tlod_draw_instance) == 12, "an instance is three dwords");
+  int32_t* to = (int32_t*)(void*)out;
+  for (uint32_t o = 0; o < 3 && 16 * o < 3 * n; o++) {
+    __m512i v = _mm512_permutex2var_epi32(p, _mm512_loadu_si512(k_from_pl[o]), l);
+    v = _mm512_mask_permutexvar_epi32(v, k_is_m[o], _mm512_loadu_si512(k_from_m[o]), m);
+    uint32_t dwords = 3 * n - 16 * o;
+    _mm512_mask_storeu_epi32(to + 16 * o, dwords >= 16 ? (__mmask16)0xFFFF : (__mmask16)((1u << dwords) - 1u), v);
+  }
+}
+
 /* The lanes of one bucket at a time, compressed, then stored as instances. */
 AVX512_ATTR static void write_avx512(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* slots) {
   uint32_t f = begin;
@@ -290,20 +315,16 @@ AVX512_ATTR static void write_avx512(const _tlod_list_in* in, uint32_t begin, ui
     __m512 morph = morphs16(in, f, level);
     __m512i patch = _mm512_add_epi32(_mm512_set1_epi32((int)f),
                                      _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0));
-    uint32_t b[16], p[16], l[16];
-    float m[16];
+    uint32_t b[16];
     _mm512_storeu_si512(b, bucket);
     for (__mmask16 left = seen; left;) {
       uint32_t k = b[__builtin_ctz(left)], n;
       __mmask16 same = left & _mm512_cmpeq_epi32_mask(bucket, _mm512_set1_epi32((int)k));
-      /* compress into a register, then store (Zen 4 microcodes the store form) */
-      _mm512_storeu_si512(p, _mm512_maskz_compress_epi32(same, patch));
-      _mm512_storeu_si512(l, _mm512_maskz_compress_epi32(same, level));
-      _mm512_storeu_ps(m, _mm512_maskz_compress_ps(same, morph));
+      /* compressed in registers (Zen 4 microcodes the store form) */
       n = bits16(same);
-      tlod_draw_instance* out = in->instances + slots[k];
-      for (uint32_t q = 0; q < n; q++)
-        out[q] = (tlod_draw_instance){.patch = p[q], .level = l[q], .morph = m[q]};
+      store_instances(in->instances + slots[k], n, _mm512_maskz_compress_epi32(same, patch),
+                      _mm512_maskz_compress_epi32(same, level),
+                      _mm512_castps_si512(_mm512_maskz_compress_ps(same, morph)));
       slots[k] += n;
       left &= (__mmask16)~same;
     }
