@@ -6,6 +6,10 @@
 #include <math.h>
 #include <string.h>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "scheduler_fast.h"
 #include "scheduler_math.h"
 
@@ -36,7 +40,9 @@
 
 #define FAST_ATTR __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
 #define FAST_NAME(x) x##_avx512
+#define FAST_SCALES8 /* the projection scale's loops fused in registers */
 #include "scheduler_fast.inc"
+#undef FAST_SCALES8
 #undef FAST_ATTR
 #undef FAST_NAME
 #endif

@@ -296,8 +296,7 @@ AVX512_ATTR static void store_instances(tlod_draw_instance* out, uint32_t n, __m
     __m512i v = _mm512_permutex2var_epi32(p, _mm512_loadu_si512(k_from_pl[o]), l);
     v = _mm512_mask_permutexvar_epi32(v, k_is_m[o], _mm512_loadu_si512(k_from_m[o]), m);
     uint32_t dwords = 3 * n - 16 * o;
-    _mm512_mask_storeu_epi32(to + (size_t)16 * o, dwords >= 16 ? (__mmask16)0xFFFF : (__mmask16)((1u << dwords) - 1u),
-                             v);
+    _mm512_mask_storeu_epi32(to + (size_t)16 * o, (__mmask16)(dwords >= 16 ? 0xFFFFu : (1u << dwords) - 1u), v);
   }
 }
 
