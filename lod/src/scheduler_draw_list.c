@@ -60,24 +60,6 @@ static void chunk_range(const _tlod_frame* fr, uint32_t c, uint32_t* begin, uint
   *end = *begin + _TLOD_LIST_CHUNK < fr->s->patch_count ? *begin + _TLOD_LIST_CHUNK : fr->s->patch_count;
 }
 
-/* The strip on up edge slot k of visible patch f, where pass 1 found one
- * (the neighbour visible, across a crease or at another level or blend:
- * see _tlod_strip_needed). Edges blend with their patch. */
-static tlod_draw_strip strip_at(const list_arrays* a, uint32_t f, uint32_t k) {
-  uint32_t s = a->in.slot[(size_t)k * a->in.patch_count + f], g = s & _TLOD_UP_FACE;
-  bool smooth = !(s & _TLOD_UP_CREASE);
-  uint32_t l = (uint32_t)a->in.levels[f];
-  float m = _tlod_morph_of(a->in.cont[f], l);
-  float cg = a->in.cont[g];
-  uint32_t lg = _tlod_drawn_level(cg);
-  float mg = _tlod_morph_of(cg, lg);
-  /* The coarser side's edge points are exact when its new vertices are at
-   * rest: then the finer side has the same points (all of lower level). */
-  bool exact = smooth && l != lg && (l < lg ? m : mg) == 1.0f;
-  uint8_t ea = (uint8_t)(s >> _TLOD_UP_EDGE_SHIFT & 3u), eb = (uint8_t)(s >> _TLOD_UP_EDGE_B_SHIFT & 3u);
-  return (tlod_draw_strip){f, g, ea, eb, (uint8_t)l, (uint8_t)lg, !smooth, exact};
-}
-
 /* The triangles of strip st (tlod_draw_strip_connection without its checks:
  * the levels are the scheduler's, never above the patterns'). */
 static uint32_t strip_triangles(const tlod_patterns* p, const tlod_draw_strip* st) {
@@ -164,35 +146,6 @@ static void count_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
   }
 }
 
-/* The masks of patches [f, min(f + 8, end)) as one word, patch f + i's
- * in byte i (its bits 8 i to 8 i + 7). */
-static uint64_t mask_word(const uint8_t* masks, uint32_t f, uint32_t end) {
-  uint64_t w = 0;
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-  if (end - f >= 8) {
-    memcpy(&w, masks + f, 8);
-    return w;
-  }
-#endif
-  for (uint32_t i = 0; i < 8 && f + i < end; i++)
-    w |= (uint64_t)masks[f + i] << (8 * i);
-  return w;
-}
-
-/* The strips of patches [f0, f1) (their slots found in pass 1), in patch
- * and edge order from *next: the slot masks of 8 patches as one word, bit
- * 8 i + k for slot k of the i-th (slots are in edge order), so its set
- * bits in order are the strips in order (a culled patch's mask is 0). */
-static void write_strips(const list_arrays* a, tlod_draw_strip** next, uint32_t f0, uint32_t f1) {
-  for (uint32_t f = f0; f < f1; f += 8) {
-    uint64_t w = mask_word(a->in.edges, f, f1);
-    for (; w; w &= w - 1) {
-      uint32_t bit = (uint32_t)__builtin_ctzll(w);
-      *(*next)++ = strip_at(a, f + bit / 8, bit % 8);
-    }
-  }
-}
-
 /* Pass 2 over busy chunks [begin, end): instances and strips at the
  * chunk's offsets (counts[] now holds each bucket's first slot of the chunk). */
 static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
@@ -208,7 +161,7 @@ static void write_task(void* data, uint32_t begin, uint32_t end, uint32_t worker
       block_range(f0, f1, k, &b0, &b1);
       if (!(ch->blocks & (UINT64_C(1) << k))) continue;
       a.kernels.write(&a.in, b0, b1, ch->counts);
-      if (next) write_strips(&a, &next, b0, b1);
+      if (next) next += a.kernels.strips(&a.in, b0, b1, next);
     }
     for (const tlod_draw_strip* st = first; st < next; st++)
       ch->strip_triangles += strip_triangles(a.pat, st);

@@ -60,7 +60,9 @@ typedef struct _tlod_up_edges {
  *   count: levels (drawn level, -1 culled), counts[bucket] += instances,
  *     the tally's culled patches and e_max range.
  *   write: each visible patch's instance at instances[slots[bucket]++]
- *     (after count: levels set). */
+ *     (after count: levels set).
+ *   strips: the strips of the slots strip_edges marked, in patch and edge
+ *     order, at out; returns how many (after count: levels set). */
 typedef struct _tlod_list_in {
   const uint32_t* slot; /* _tlod_up_edges */
   uint32_t patch_count; /* the slot stride */
@@ -81,6 +83,7 @@ typedef struct _tlod_list_kernels {
   uint32_t (*strip_edges)(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t slots);
   void (*count)(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* counts, _tlod_list_tally* t);
   void (*write)(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* slots);
+  uint32_t (*strips)(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out);
 } _tlod_list_kernels;
 /* The kernels of SIMD level simd (never DEFAULT): the best built not above it. */
 _tlod_list_kernels _tlod_list_kernels_for(tlod_simd simd);

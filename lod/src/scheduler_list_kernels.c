@@ -125,6 +125,65 @@ static void write_scalar(const _tlod_list_in* in, uint32_t begin, uint32_t end, 
   slots[bucket] = (uint32_t)(next - in->instances);
 }
 
+/* The strip on up edge slot k of visible patch f, where strip_edges found
+ * one (the neighbour visible, across a crease or at another level or
+ * blend: see _tlod_strip_needed). Edges blend with their patch. */
+static tlod_draw_strip strip_at(const _tlod_list_in* in, uint32_t f, uint32_t k) {
+  uint32_t s = in->slot[(size_t)k * in->patch_count + f], g = s & _TLOD_UP_FACE;
+  bool smooth = !(s & _TLOD_UP_CREASE);
+  uint32_t l = (uint32_t)in->levels[f];
+  float m = _tlod_morph_of(in->cont[f], l);
+  float cg = in->cont[g];
+  uint32_t lg = _tlod_drawn_level(cg);
+  float mg = _tlod_morph_of(cg, lg);
+  /* The coarser side's edge points are exact when its new vertices are at
+   * rest: then the finer side has the same points (all of lower level). */
+  bool exact = smooth && l != lg && (l < lg ? m : mg) == 1.0f;
+  uint8_t ea = (uint8_t)(s >> _TLOD_UP_EDGE_SHIFT & 3u), eb = (uint8_t)(s >> _TLOD_UP_EDGE_B_SHIFT & 3u);
+  return (tlod_draw_strip){f, g, ea, eb, (uint8_t)l, (uint8_t)lg, !smooth, exact};
+}
+
+/* The masks of patches [f, min(f + 8, end)) as one word, patch f + i's
+ * in byte i (its bits 8 i to 8 i + 7). */
+static uint64_t mask_word(const uint8_t* masks, uint32_t f, uint32_t end) {
+  uint64_t w = 0;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  if (end - f >= 8) {
+    memcpy(&w, masks + f, 8);
+    return w;
+  }
+#endif
+  for (uint32_t i = 0; i < 8 && f + i < end; i++)
+    w |= (uint64_t)masks[f + i] << (8 * i);
+  return w;
+}
+
+/* The marked slots of patches [begin, end) in order: the slot masks of 8
+ * patches as one word, bit 8 i + k for slot k of the i-th (slots are in
+ * edge order), so its set bits in order are the strips in order (a culled
+ * patch's mask is 0). Each as patch f and slot k into f[], k[]; returns
+ * how many. */
+static uint32_t marked_slots(const _tlod_list_in* in, uint32_t begin, uint32_t end, uint32_t* f, uint32_t* k) {
+  uint32_t n = 0;
+  for (uint32_t p = begin; p < end; p += 8)
+    for (uint64_t w = mask_word(in->edges, p, end); w; w &= w - 1) {
+      uint32_t bit = (uint32_t)__builtin_ctzll(w);
+      f[n] = p + bit / 8, k[n++] = bit % 8;
+    }
+  return n;
+}
+
+static uint32_t strips_scalar(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out) {
+  uint32_t f[FAST_BLOCK * _TLOD_UP_SLOTS], k[FAST_BLOCK * _TLOD_UP_SLOTS], n = 0;
+  for (uint32_t b = begin; b < end; b += FAST_BLOCK) { /* a block at a time: f[] and k[] hold its strips */
+    uint32_t e = end - b < FAST_BLOCK ? end : b + FAST_BLOCK, m = marked_slots(in, b, e, f, k);
+    for (uint32_t q = 0; q < m; q++)
+      out[n + q] = strip_at(in, f[q], k[q]);
+    n += m;
+  }
+  return n;
+}
+
 #if defined(__x86_64__)
 /* ---- AVX2: the strip test ---- */
 
@@ -207,14 +266,17 @@ typedef struct lanes16 {
   __m512i level, bucket;
 } lanes16;
 
-AVX512_ATTR static lanes16 lanes_at(const _tlod_list_in* in, uint32_t f) {
-  __m128i own = _mm_loadu_si128((const __m128i*)(in->visible + f));
-  __m512 c = _mm512_loadu_ps(in->cont + f);
-  /* _tlod_drawn_level: 0 unless c > 0, else i = (uint32_t)c, + 1 where (float)i < c. */
+/* _tlod_drawn_level of 16 lanes: 0 unless c > 0, else i = (uint32_t)c, + 1 where (float)i < c. */
+AVX512_ATTR static __m512i drawn_levels16(__m512 c) {
   __mmask16 up = _mm512_cmp_ps_mask(c, _mm512_setzero_ps(), _CMP_GT_OQ);
   __m512i i = _mm512_maskz_cvttps_epu32(up, c);
   __mmask16 below = _mm512_cmp_ps_mask(_mm512_cvtepu32_ps(i), c, _CMP_LT_OQ) & up;
-  __m512i level = _mm512_mask_add_epi32(i, below, i, _mm512_set1_epi32(1));
+  return _mm512_mask_add_epi32(i, below, i, _mm512_set1_epi32(1));
+}
+
+AVX512_ATTR static lanes16 lanes_at(const _tlod_list_in* in, uint32_t f) {
+  __m128i own = _mm_loadu_si128((const __m128i*)(in->visible + f));
+  __m512i level = drawn_levels16(_mm512_loadu_ps(in->cont + f));
   __m512i corners = _mm512_cvtepu8_epi32(_mm_loadu_si128((const __m128i*)(in->corners + f)));
   __mmask16 quad = _mm512_cmpeq_epi32_mask(corners, _mm512_set1_epi32(4));
   __m512i base = _mm512_maskz_mov_epi32(quad, _mm512_set1_epi32((int)(TLOD_PATTERN_QUAD * in->levels_n)));
@@ -266,10 +328,9 @@ AVX512_ATTR static void count_avx512(const _tlod_list_in* in, uint32_t begin, ui
 }
 
 /* _tlod_morph_of of 16 lanes: 1 at level 0, else c - (level - 1) clamped to [0, 1]. */
-AVX512_ATTR static __m512 morphs16(const _tlod_list_in* in, uint32_t f, __m512i level) {
+AVX512_ATTR static __m512 morphs16(__m512 c, __m512i level) {
   __m512 one = _mm512_set1_ps(1.0f), zero = _mm512_setzero_ps();
-  __m512 m =
-      _mm512_sub_ps(_mm512_loadu_ps(in->cont + f), _mm512_cvtepu32_ps(_mm512_sub_epi32(level, _mm512_set1_epi32(1))));
+  __m512 m = _mm512_sub_ps(c, _mm512_cvtepu32_ps(_mm512_sub_epi32(level, _mm512_set1_epi32(1))));
   m = _mm512_mask_mov_ps(m, _mm512_cmp_ps_mask(m, one, _CMP_GT_OQ), one);
   m = _mm512_mask_mov_ps(m, _mm512_cmp_ps_mask(m, zero, _CMP_LT_OQ), zero);
   return _mm512_mask_mov_ps(m, _mm512_cmpeq_epi32_mask(level, _mm512_setzero_si512()), one);
@@ -312,7 +373,7 @@ AVX512_ATTR static void write_avx512(const _tlod_list_in* in, uint32_t begin, ui
     __mmask16 quad = _mm512_cmpeq_epi32_mask(corners, _mm512_set1_epi32(4));
     __m512i bucket =
         _mm512_mask_add_epi32(level, quad, level, _mm512_set1_epi32((int)(TLOD_PATTERN_QUAD * in->levels_n)));
-    __m512 morph = morphs16(in, f, level);
+    __m512 morph = morphs16(_mm512_loadu_ps(in->cont + f), level);
     __m512i patch = _mm512_add_epi32(_mm512_set1_epi32((int)f),
                                      _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0));
     uint32_t b[16];
@@ -331,14 +392,68 @@ AVX512_ATTR static void write_avx512(const _tlod_list_in* in, uint32_t begin, ui
   }
   write_scalar(in, f, end, slots);
 }
+
+/* 16 strips from the marked slots (f[q], k[q]) into out: strip_at in
+ * lanes (slots, continuous levels gathered), the four dwords of each strip
+ * made in four vectors and transposed into 16-byte records (the padding
+ * zero). */
+AVX512_ATTR static void strips16(const _tlod_list_in* in, const uint32_t* f, const uint32_t* k, uint32_t n,
+                                 tlod_draw_strip* out) {
+  _Static_assert(sizeof(tlod_draw_strip) == 16, "a strip is four dwords");
+  __mmask16 lanes = (__mmask16)(n >= 16 ? 0xFFFFu : (1u << n) - 1u);
+  const __m512i three = _mm512_set1_epi32(3);
+  __m512i pa = _mm512_maskz_loadu_epi32(lanes, f), kk = _mm512_maskz_loadu_epi32(lanes, k);
+  __m512i at = _mm512_add_epi32(_mm512_mullo_epi32(kk, _mm512_set1_epi32((int)in->patch_count)), pa);
+  __m512i s = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), lanes, at, in->slot, 4);
+  __m512i pb = _mm512_and_si512(s, _mm512_set1_epi32((int)_TLOD_UP_FACE));
+  __m512 ca = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, pa, in->cont, 4);
+  __m512 cb = _mm512_mask_i32gather_ps(_mm512_setzero_ps(), lanes, pb, in->cont, 4);
+  __m512i la = drawn_levels16(ca), lb = drawn_levels16(cb);
+  __m512 ma = morphs16(ca, la), mb = morphs16(cb, lb);
+  __mmask16 crease = _mm512_movepi32_mask(s);
+  __m512 coarse = _mm512_mask_blend_ps(_mm512_cmplt_epu32_mask(la, lb), mb, ma);
+  __mmask16 exact = (__mmask16)(~crease & _mm512_cmpneq_epi32_mask(la, lb) &
+                                _mm512_cmp_ps_mask(coarse, _mm512_set1_ps(1.0f), _CMP_EQ_OQ));
+  __m512i ea = _mm512_and_si512(_mm512_srli_epi32(s, _TLOD_UP_EDGE_SHIFT), three);
+  __m512i eb = _mm512_and_si512(_mm512_srli_epi32(s, _TLOD_UP_EDGE_B_SHIFT), three);
+  __m512i d2 = _mm512_or_si512(_mm512_or_si512(ea, _mm512_slli_epi32(eb, 8)),
+                               _mm512_or_si512(_mm512_slli_epi32(la, 16), _mm512_slli_epi32(lb, 24)));
+  __m512i d3 = _mm512_or_si512(_mm512_maskz_mov_epi32(crease, _mm512_set1_epi32(1)),
+                               _mm512_maskz_mov_epi32(exact, _mm512_set1_epi32(0x100)));
+  /* a 4 x 4 transpose per 128-bit lane, then of the lanes: record i is out vector i / 4, lane i % 4 */
+  __m512i t0 = _mm512_unpacklo_epi32(pa, pb), t1 = _mm512_unpackhi_epi32(pa, pb);
+  __m512i t2 = _mm512_unpacklo_epi32(d2, d3), t3 = _mm512_unpackhi_epi32(d2, d3);
+  __m512i r0 = _mm512_unpacklo_epi64(t0, t2), r1 = _mm512_unpackhi_epi64(t0, t2);
+  __m512i r2 = _mm512_unpacklo_epi64(t1, t3), r3 = _mm512_unpackhi_epi64(t1, t3);
+  __m512i u0 = _mm512_shuffle_i32x4(r0, r1, 0x44), u1 = _mm512_shuffle_i32x4(r0, r1, 0xEE);
+  __m512i u2 = _mm512_shuffle_i32x4(r2, r3, 0x44), u3 = _mm512_shuffle_i32x4(r2, r3, 0xEE);
+  __m512i rec[4] = {_mm512_shuffle_i32x4(u0, u2, 0x88), _mm512_shuffle_i32x4(u0, u2, 0xDD),
+                    _mm512_shuffle_i32x4(u1, u3, 0x88), _mm512_shuffle_i32x4(u1, u3, 0xDD)};
+  for (uint32_t v = 0; v < 4 && 4 * v < n; v++) {
+    uint32_t records = n - 4 * v >= 4 ? 4 : n - 4 * v;
+    _mm512_mask_storeu_epi32((int32_t*)(void*)(out + 4 * v), (__mmask16)((1u << (4 * records)) - 1u), rec[v]);
+  }
+}
+
+AVX512_ATTR static uint32_t strips_avx512(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out) {
+  uint32_t f[FAST_BLOCK * _TLOD_UP_SLOTS], k[FAST_BLOCK * _TLOD_UP_SLOTS], n = 0;
+  for (uint32_t b = begin; b < end; b += FAST_BLOCK) {
+    uint32_t e = end - b < FAST_BLOCK ? end : b + FAST_BLOCK, m = marked_slots(in, b, e, f, k);
+    for (uint32_t q = 0; q < m; q += 16)
+      strips16(in, f + q, k + q, m - q, out + n + q);
+    n += m;
+  }
+  return n;
+}
 #endif
 
 _tlod_list_kernels _tlod_list_kernels_for(tlod_simd simd) {
 #if defined(__x86_64__)
-  if (simd == TLOD_SIMD_AVX512) return (_tlod_list_kernels){strip_edges_avx512, count_avx512, write_avx512};
-  if (simd == TLOD_SIMD_AVX2) return (_tlod_list_kernels){strip_edges_avx2, count_scalar, write_scalar};
+  if (simd == TLOD_SIMD_AVX512)
+    return (_tlod_list_kernels){strip_edges_avx512, count_avx512, write_avx512, strips_avx512};
+  if (simd == TLOD_SIMD_AVX2) return (_tlod_list_kernels){strip_edges_avx2, count_scalar, write_scalar, strips_scalar};
 #else
   (void)simd;
 #endif
-  return (_tlod_list_kernels){strip_edges_scalar, count_scalar, write_scalar};
+  return (_tlod_list_kernels){strip_edges_scalar, count_scalar, write_scalar, strips_scalar};
 }
