@@ -231,6 +231,9 @@ AVX512_ATTR static uint32_t strip_edges_avx512(const _tlod_list_in* in, uint32_t
   const __m512i face = _mm512_set1_epi32((int)_TLOD_UP_FACE), low = _mm512_set1_epi32(0xFF);
   const __m512i one = _mm512_set1_epi32(1);
   __m512i count = _mm512_setzero_si512();
+  for (uint32_t k = 0; k < slots; k++) /* the block's slot lines asked for at once: the loop waits on them */
+    for (uint32_t f = begin; f < end; f += 16)
+      _mm_prefetch((const char*)(in->slot + (size_t)k * in->patch_count + f), _MM_HINT_T0);
   uint32_t f = begin;
   for (; end - f >= 16; f += 16) {
     __m512 key = _mm512_max_ps(_mm512_loadu_ps(in->cont + f), zero);
