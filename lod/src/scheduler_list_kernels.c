@@ -6,18 +6,21 @@
  *                key (level and blend);
  *   count        drawn levels (-1 when culled), instances per bucket, the
  *                culled count and the e_max range;
- *   write        the instances at their buckets' next slots.
+ *   write        the instances at their buckets' next slots;
+ *   strips       the strips strip_edges marked, in patch and edge order.
  *
  * One copy per SIMD level, chosen at create (the scalar one on the
  * reference path): the scalar loops; AVX2 and AVX-512 copies of the strip
  * test (8 or 16 patches a step, the neighbours' keys and visibility
  * gathered, visibility 4 bytes at a byte offset with the low byte kept: the
- * array has 3 spare bytes); AVX-512 copies of count and write (16 patches a
- * step, the lanes of one bucket compressed together). Every copy gives
- * bitwise the scalar results: integer and compare work, the blend by the
- * scalar expression, the e_max range by the scalar rule (first of equal
- * zeros, NaN ignored). lod_list_test checks each level against the oracle,
- * lod_fast_test against the reference path's scalar copies. */
+ * array has 3 spare bytes); AVX-512 copies of count, write and strips (16
+ * patches or strips a step; the lanes of one bucket compressed together
+ * and interleaved into instances by permutes; a strip's four dwords
+ * transposed into its record). Every copy gives bitwise the scalar
+ * results: integer and compare work, the blends by the scalar expressions,
+ * the e_max range by the scalar rule (first of equal zeros, NaN ignored).
+ * lod_list_test checks each level against the oracle, lod_fast_test
+ * against the reference path's scalar copies. */
 #include <math.h>
 #include <string.h>
 
@@ -396,6 +399,25 @@ AVX512_ATTR static void write_avx512(const _tlod_list_in* in, uint32_t begin, ui
   write_scalar(in, f, end, slots);
 }
 
+/* Records {a[i], b[i], c[i], d[i]} for i < n (at most 16) at out: a 4 x 4
+ * transpose within each 128-bit lane, then of the lanes, so that record i
+ * is output vector i / 4, lane i % 4. */
+AVX512_ATTR static void store_records(__m512i a, __m512i b, __m512i c, __m512i d, uint32_t n, void* out) {
+  __m512i t0 = _mm512_unpacklo_epi32(a, b), t1 = _mm512_unpackhi_epi32(a, b);
+  __m512i t2 = _mm512_unpacklo_epi32(c, d), t3 = _mm512_unpackhi_epi32(c, d);
+  __m512i r0 = _mm512_unpacklo_epi64(t0, t2), r1 = _mm512_unpackhi_epi64(t0, t2);
+  __m512i r2 = _mm512_unpacklo_epi64(t1, t3), r3 = _mm512_unpackhi_epi64(t1, t3);
+  __m512i u0 = _mm512_shuffle_i32x4(r0, r1, 0x44), u1 = _mm512_shuffle_i32x4(r0, r1, 0xEE);
+  __m512i u2 = _mm512_shuffle_i32x4(r2, r3, 0x44), u3 = _mm512_shuffle_i32x4(r2, r3, 0xEE);
+  __m512i rec[4] = {_mm512_shuffle_i32x4(u0, u2, 0x88), _mm512_shuffle_i32x4(u0, u2, 0xDD),
+                    _mm512_shuffle_i32x4(u1, u3, 0x88), _mm512_shuffle_i32x4(u1, u3, 0xDD)};
+  int32_t* to = out;
+  for (uint32_t v = 0; v < 4 && 4 * v < n; v++) {
+    uint32_t records = n - 4 * v >= 4 ? 4 : n - 4 * v;
+    _mm512_mask_storeu_epi32(to + (size_t)16 * v, (__mmask16)((1u << (4 * records)) - 1u), rec[v]);
+  }
+}
+
 /* 16 strips from the marked slots (f[q], k[q]) into out: strip_at in
  * lanes (slots, continuous levels gathered), the four dwords of each strip
  * made in four vectors and transposed into 16-byte records (the padding
@@ -423,19 +445,7 @@ AVX512_ATTR static void strips16(const _tlod_list_in* in, const uint32_t* f, con
                                _mm512_or_si512(_mm512_slli_epi32(la, 16), _mm512_slli_epi32(lb, 24)));
   __m512i d3 = _mm512_or_si512(_mm512_maskz_mov_epi32(crease, _mm512_set1_epi32(1)),
                                _mm512_maskz_mov_epi32(exact, _mm512_set1_epi32(0x100)));
-  /* a 4 x 4 transpose per 128-bit lane, then of the lanes: record i is out vector i / 4, lane i % 4 */
-  __m512i t0 = _mm512_unpacklo_epi32(pa, pb), t1 = _mm512_unpackhi_epi32(pa, pb);
-  __m512i t2 = _mm512_unpacklo_epi32(d2, d3), t3 = _mm512_unpackhi_epi32(d2, d3);
-  __m512i r0 = _mm512_unpacklo_epi64(t0, t2), r1 = _mm512_unpackhi_epi64(t0, t2);
-  __m512i r2 = _mm512_unpacklo_epi64(t1, t3), r3 = _mm512_unpackhi_epi64(t1, t3);
-  __m512i u0 = _mm512_shuffle_i32x4(r0, r1, 0x44), u1 = _mm512_shuffle_i32x4(r0, r1, 0xEE);
-  __m512i u2 = _mm512_shuffle_i32x4(r2, r3, 0x44), u3 = _mm512_shuffle_i32x4(r2, r3, 0xEE);
-  __m512i rec[4] = {_mm512_shuffle_i32x4(u0, u2, 0x88), _mm512_shuffle_i32x4(u0, u2, 0xDD),
-                    _mm512_shuffle_i32x4(u1, u3, 0x88), _mm512_shuffle_i32x4(u1, u3, 0xDD)};
-  for (uint32_t v = 0; v < 4 && 4 * v < n; v++) {
-    uint32_t records = n - 4 * v >= 4 ? 4 : n - 4 * v;
-    _mm512_mask_storeu_epi32((int32_t*)(void*)(out + 4 * v), (__mmask16)((1u << (4 * records)) - 1u), rec[v]);
-  }
+  store_records(pa, pb, d2, d3, n, out);
 }
 
 AVX512_ATTR static uint32_t strips_avx512(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out) {
