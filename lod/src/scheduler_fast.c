@@ -40,9 +40,9 @@
 
 #define FAST_ATTR __attribute__((target("avx512f,avx512bw,avx512dq,avx512vl")))
 #define FAST_NAME(x) x##_avx512
-#define FAST_SCALES8 /* the projection scale's loops fused in registers */
+#define FAST_AVX512_KERNELS /* the scales and the ERROR ladder in registers (scales8, error_targets8) */
 #include "scheduler_fast.inc"
-#undef FAST_SCALES8
+#undef FAST_AVX512_KERNELS
 #undef FAST_ATTR
 #undef FAST_NAME
 #endif

@@ -280,13 +280,17 @@ AVX512_ATTR static __m512i drawn_levels16(__m512 c) {
   return _mm512_mask_add_epi32(i, below, i, _mm512_set1_epi32(1));
 }
 
+/* bucket_of of the 16 patches from f at levels level. */
+AVX512_ATTR static __m512i buckets16(const _tlod_list_in* in, uint32_t f, __m512i level) {
+  __m512i corners = _mm512_cvtepu8_epi32(_mm_loadu_si128((const __m128i*)(in->corners + f)));
+  __mmask16 quad = _mm512_cmpeq_epi32_mask(corners, _mm512_set1_epi32(4));
+  return _mm512_mask_add_epi32(level, quad, level, _mm512_set1_epi32((int)(TLOD_PATTERN_QUAD * in->levels_n)));
+}
+
 AVX512_ATTR static lanes16 lanes_at(const _tlod_list_in* in, uint32_t f) {
   __m128i own = _mm_loadu_si128((const __m128i*)(in->visible + f));
   __m512i level = drawn_levels16(_mm512_loadu_ps(in->cont + f));
-  __m512i corners = _mm512_cvtepu8_epi32(_mm_loadu_si128((const __m128i*)(in->corners + f)));
-  __mmask16 quad = _mm512_cmpeq_epi32_mask(corners, _mm512_set1_epi32(4));
-  __m512i base = _mm512_maskz_mov_epi32(quad, _mm512_set1_epi32((int)(TLOD_PATTERN_QUAD * in->levels_n)));
-  return (lanes16){_mm_test_epi8_mask(own, own), level, _mm512_add_epi32(base, level)};
+  return (lanes16){_mm_test_epi8_mask(own, own), level, buckets16(in, f, level)};
 }
 
 /* The e_max range over lanes seen, as tally_e over them in lane order:
@@ -374,11 +378,7 @@ AVX512_ATTR static void write_avx512(const _tlod_list_in* in, uint32_t begin, ui
     __m128i lv = _mm_loadu_si128((const __m128i*)(in->levels + f));
     __mmask16 seen = _mm_cmpgt_epi8_mask(lv, _mm_set1_epi8(-1));
     if (!seen) continue;
-    __m512i level = _mm512_cvtepi8_epi32(lv);
-    __m512i corners = _mm512_cvtepu8_epi32(_mm_loadu_si128((const __m128i*)(in->corners + f)));
-    __mmask16 quad = _mm512_cmpeq_epi32_mask(corners, _mm512_set1_epi32(4));
-    __m512i bucket =
-        _mm512_mask_add_epi32(level, quad, level, _mm512_set1_epi32((int)(TLOD_PATTERN_QUAD * in->levels_n)));
+    __m512i level = _mm512_cvtepi8_epi32(lv), bucket = buckets16(in, f, level);
     __m512 morph = morphs16(_mm512_loadu_ps(in->cont + f), level);
     __m512i patch = _mm512_add_epi32(_mm512_set1_epi32((int)f),
                                      _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0));

@@ -48,7 +48,7 @@ static tlod_context* uneven_context(void) {
 }
 
 /* threads threads at SIMD level simd or the best below it this processor
- * has (the draw list's strip test has a copy per level). */
+ * has (the draw list's kernels have a copy per level). */
 static tlod_context* simd_context(uint32_t threads, tlod_simd simd) {
   tlod_context_desc desc = {.thread_count = threads, .simd = simd};
   tlod_context* ctx = NULL;
