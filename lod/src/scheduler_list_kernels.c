@@ -11,14 +11,15 @@
  *
  * One copy per SIMD level, chosen at create (the scalar one on the
  * reference path): the scalar loops; AVX2 and AVX-512 copies of the strip
- * test (8 or 16 patches a step, the neighbours' keys and visibility
- * gathered, visibility 4 bytes at a byte offset with the low byte kept: the
- * array has 3 spare bytes); AVX-512 copies of count, write and strips (16
- * patches or strips a step; the lanes of one bucket compressed together
- * and interleaved into instances by permutes; a strip's four dwords
- * transposed into its record). Every copy gives bitwise the scalar
- * results: integer and compare work, the blends by the scalar expressions,
- * the e_max range by the scalar rule (first of equal zeros, NaN ignored).
+ * test (8 or 16 patches a step, the neighbours' keys gathered, and their
+ * visibility only where a key differs or a crease is crossed, 4 bytes at a
+ * byte offset with the low byte kept: the array has 3 spare bytes);
+ * AVX-512 copies of count, write and strips (16 patches or strips a step;
+ * the lanes of one bucket compressed together and interleaved into
+ * instances by permutes; a strip's four dwords transposed into its
+ * record). Every copy gives bitwise the scalar results: integer and
+ * compare work, the blends by the scalar expressions, the e_max range by
+ * the scalar rule (first of equal zeros, NaN ignored).
  * lod_list_test checks each level against the oracle, lod_fast_test
  * against the reference path's scalar copies. */
 #include <math.h>
@@ -207,10 +208,12 @@ AVX2_ATTR static uint32_t strip_edges_avx2(const _tlod_list_in* in, uint32_t beg
       __m256i s = _mm256_loadu_si256((const __m256i*)(in->slot + (size_t)k * in->patch_count + f));
       __m256i g = _mm256_and_si256(s, face);
       __m256 other = _mm256_max_ps(_mm256_i32gather_ps(in->cont, g, 4), zero);
-      __m256i vis = _mm256_and_si256(_mm256_i32gather_epi32((const int*)in->visible, g, 1), low);
       __m256i cross =
           _mm256_or_si256(_mm256_srai_epi32(s, 31), _mm256_castps_si256(_mm256_cmp_ps(other, key, _CMP_NEQ_UQ)));
-      __m256i bit = _mm256_andnot_si256(_mm256_cmpeq_epi32(vis, none), _mm256_and_si256(seen, cross));
+      cross = _mm256_and_si256(seen, cross);
+      if (!_mm256_movemask_epi8(cross)) continue; /* as strip_edges_avx512 */
+      __m256i vis = _mm256_and_si256(_mm256_i32gather_epi32((const int*)in->visible, g, 1), low);
+      __m256i bit = _mm256_andnot_si256(_mm256_cmpeq_epi32(vis, none), cross);
       mask = _mm256_or_si256(mask, _mm256_and_si256(bit, _mm256_set1_epi32(1 << k)));
       count = _mm256_sub_epi32(count, bit);
     }
@@ -247,9 +250,10 @@ AVX512_ATTR static uint32_t strip_edges_avx512(const _tlod_list_in* in, uint32_t
       __m512i s = _mm512_loadu_si512(in->slot + (size_t)k * in->patch_count + f);
       __m512i g = _mm512_and_si512(s, face);
       __m512 other = _mm512_max_ps(_mm512_mask_i32gather_ps(zero, seen, g, in->cont, 4), zero);
-      __m512i vis = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), seen, g, in->visible, 1);
-      __mmask16 cross = _mm512_movepi32_mask(s) | _mm512_cmp_ps_mask(other, key, _CMP_NEQ_UQ);
-      __mmask16 bit = seen & _mm512_test_epi32_mask(vis, low) & cross;
+      __mmask16 cross = seen & (_mm512_movepi32_mask(s) | _mm512_cmp_ps_mask(other, key, _CMP_NEQ_UQ));
+      if (!cross) continue; /* most neighbours draw the same key: their visibility is not needed */
+      __m512i vis = _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), cross, g, in->visible, 1);
+      __mmask16 bit = _mm512_test_epi32_mask(vis, low) & cross;
       mask = _mm512_mask_or_epi32(mask, bit, mask, _mm512_set1_epi32(1 << k));
       count = _mm512_mask_add_epi32(count, bit, count, one);
     }
