@@ -118,11 +118,17 @@ bool _tlod_blocks_build(tlod_context* ctx, _tlod_soa* a) {
 
 bool _tlod_blocks_hold(tlod_context* ctx, _tlod_soa* a, uint32_t views) {
   if (views <= a->held_views) return true;
-  uint8_t* grown = tlod_context_calloc(ctx, (size_t)views * a->block_count + 1, 1);
-  if (!grown) return false;
+  size_t bytes = (size_t)views * a->block_count + 1;
+  uint8_t *grown = tlod_context_calloc(ctx, bytes, 1), *seen = tlod_context_calloc(ctx, bytes, 1);
+  if (!grown || !seen) {
+    tlod_context_free(ctx, grown);
+    tlod_context_free(ctx, seen);
+    return false;
+  }
   if (a->held) memcpy(grown, a->held, (size_t)a->held_views * a->block_count);
   tlod_context_free(ctx, a->held);
-  a->held = grown, a->held_views = views;
+  tlod_context_free(ctx, a->seen);
+  a->held = grown, a->seen = seen, a->held_views = views;
   return true;
 }
 
@@ -162,7 +168,7 @@ void _tlod_blocks_classify(_tlod_soa* a, const _tlod_fast_kernels* kernels, cons
 }
 
 void _tlod_blocks_free(tlod_context* ctx, _tlod_soa* a) {
-  void* arrays[] = {a->bx, a->block_state, a->chunk_first, a->chunk_blocks, a->held};
+  void* arrays[] = {a->bx, a->block_state, a->chunk_first, a->chunk_blocks, a->held, a->seen};
   for (size_t i = 0; i < sizeof(arrays) / sizeof(arrays[0]); i++)
     tlod_context_free(ctx, arrays[i]);
 }

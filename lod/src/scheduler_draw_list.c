@@ -4,7 +4,8 @@
  * Built in parallel and deterministically: the patches are cut into fixed
  * chunks of _TLOD_LIST_CHUNK (never dependent on the thread count); a scan
  * finds each chunk's blocks with a visible patch (culled blocks are not
- * read again) and lists the busy chunks; a first pass over those counts
+ * read again; a fused frame's patch pass has marked them, and the scan
+ * reads those marks on the caller) and lists the busy chunks; a first pass over those counts
  * each chunk's instances per bucket, strips and statistics, a serial
  * prefix sum in chunk order gives each chunk its offsets, and a second
  * pass writes every chunk at its offsets (docs/design.md 1.4). The result is the serial
@@ -31,6 +32,7 @@ typedef struct list_arrays {
   _tlod_list_in in; /* the kernels' arrays */
   _tlod_list_kernels kernels;
   const uint8_t* block_slots; /* _tlod_up_edges */
+  const uint8_t* seen;        /* a fused frame's blocks with a visible patch (_tlod_soa.seen), else NULL */
   const tlod_patterns* pat;
   bool strips; /* FLAT draws no strip */
 } list_arrays;
@@ -49,6 +51,8 @@ static list_arrays arrays_of(const _tlod_frame* fr) {
                               .instances = vs->instances},
                        .kernels = fr->s->list,
                        .block_slots = fr->s->up.block_slots,
+                       .seen =
+                           fr->fused ? fr->s->soa.seen + (size_t)(vs - fr->s->views) * fr->s->soa.block_count : NULL,
                        .pat = fr->s->patterns,
                        .strips = fr->s->desc.policy != TLOD_POLICY_FLAT};
 }
@@ -100,7 +104,8 @@ static bool block_visible(const uint8_t* visible, uint32_t b0, uint32_t b1) {
 }
 
 /* Chunk c reset: its visible blocks found, its culled ones' levels set
- * to -1 and counted (nothing reads them again this frame). */
+ * to -1 and counted (nothing reads them again this frame). A fused frame's
+ * patch pass marked the blocks and set those levels already (a->seen). */
 static void scan_chunk(const _tlod_frame* fr, const list_arrays* a, uint32_t c) {
   _tlod_list_chunk* ch = &fr->vs->chunks[c];
   uint32_t f0, f1;
@@ -109,10 +114,10 @@ static void scan_chunk(const _tlod_frame* fr, const list_arrays* a, uint32_t c) 
   for (uint32_t k = 0; f0 + k * FAST_BLOCK < f1; k++) {
     uint32_t b0, b1;
     block_range(f0, f1, k, &b0, &b1);
-    if (block_visible(a->in.visible, b0, b1)) {
+    if (a->seen ? a->seen[b0 / FAST_BLOCK] != 0 : block_visible(a->in.visible, b0, b1)) {
       ch->blocks |= UINT64_C(1) << k;
     } else {
-      memset(a->in.levels + b0, -1, b1 - b0);
+      if (!a->seen) memset(a->in.levels + b0, -1, b1 - b0);
       ch->culled += b1 - b0;
     }
   }
@@ -272,7 +277,11 @@ tlod_result _tlod_fill_draw_list(_tlod_frame* fr) {
   vs->list.buckets = vs->buckets;
   vs->key_valid = vs->settled_known = false;
   _tlod_up_edges_refresh(fr->s, &fr->mesh);
-  tlod_context_parallel_for(fr->s->ctx, scan_task, fr, chunks);
+  if (fr->fused) { /* a byte per block: on the caller */
+    scan_task(fr, 0, chunks, 0);
+  } else {
+    tlod_context_parallel_for(fr->s->ctx, scan_task, fr, chunks);
+  }
   list_busy(vs, chunks);
   tlod_context_parallel_for(fr->s->ctx, count_task, fr, vs->busy_count);
   vs->list.pattern_triangles = 0;

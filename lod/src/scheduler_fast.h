@@ -66,9 +66,11 @@ typedef struct _tlod_soa {
   uint8_t* bvalid;
   uint32_t *chunk_first, *chunk_blocks; /* chunk_capacity entries */
   uint8_t* block_state;                 /* this frame's, one view at a time */
-  /* held[v * block_count + b]: view v's visible, e_max, target and cont of
-   * block b hold a culled block's constants (written by a fused frame). */
-  uint8_t* held;
+  /* held[v * block_count + b]: view v's visible, e_max, target, cont and
+   * draw-list levels of block b hold a culled block's constants (written by
+   * a fused frame). seen[v * block_count + b]: view v's block b has a
+   * visible patch (written by every fused frame, read by its draw list). */
+  uint8_t *held, *seen;
   uint32_t held_views;
   /* Per vertex, this frame: the bits of d_i, the sign bit set where
    * n . (eye - p) > 0 (the normal faces the camera). */
@@ -95,7 +97,8 @@ typedef struct _tlod_fast_frame {
   /* outputs, one view's arrays */
   float *depth, *scale, *e_max, *contour, *target, *cont;
   uint8_t* visible;
-  uint8_t* held; /* this view's row of soa->held */
+  uint8_t *held, *seen; /* this view's rows of soa->held and soa->seen */
+  int8_t* levels;        /* the view's draw-list levels (-1 culled), for a fused frame's culled blocks */
   /* A block measured gathered (_tlod_fast_local): soa->bound holds its
    * level 0 only, and the ladder gathers a level above it into
    * gather_into (stride FAST_BLOCK) from gather_bound (the whole table,
@@ -135,7 +138,7 @@ typedef struct _tlod_fast_kernels {
 /* scheduler_blocks.c. The block spheres and chunk lists of a (just
  * copied) a: false when out of memory. */
 bool _tlod_blocks_build(tlod_context* ctx, _tlod_soa* a);
-/* a->held for views views (new rows zero: nothing held). */
+/* a->held and a->seen for views views (new rows zero: nothing held). */
 bool _tlod_blocks_hold(tlod_context* ctx, _tlod_soa* a, uint32_t views);
 /* a->block_state of every block against planes; all IN unless cull. OUT
  * only if every patch's own float test culls it, IN only if every

@@ -66,7 +66,9 @@ static void view_arrays(const tlod_scheduler* s, _tlod_view_state* vs, _tlod_fas
   k->depth = vs->depth, k->scale = vs->scale, k->e_max = vs->e_max;
   k->contour = vs->contour, k->target = vs->target, k->cont = vs->cont;
   k->visible = vs->visible;
-  k->held = s->soa.held + (size_t)(vs - s->views) * s->soa.block_count;
+  size_t row = (size_t)(vs - s->views) * s->soa.block_count;
+  k->held = s->soa.held + row, k->seen = s->soa.seen + row;
+  k->levels = vs->levels;
 }
 
 void _tlod_fast_begin(_tlod_frame* fr, bool may_fuse) {
