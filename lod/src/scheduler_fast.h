@@ -98,7 +98,7 @@ typedef struct _tlod_fast_frame {
   float *depth, *scale, *e_max, *contour, *target, *cont;
   uint8_t* visible;
   uint8_t *held, *seen; /* this view's rows of soa->held and soa->seen */
-  int8_t* levels;        /* the view's draw-list levels (-1 culled), for a fused frame's culled blocks */
+  int8_t* levels;       /* the view's draw-list levels (-1 culled), for a fused frame's culled blocks */
   /* A block measured gathered (_tlod_fast_local): soa->bound holds its
    * level 0 only, and the ladder gathers a level above it into
    * gather_into (stride FAST_BLOCK) from gather_bound (the whole table,
