@@ -5,10 +5,11 @@
  * chunks of _TLOD_LIST_CHUNK (never dependent on the thread count); a scan
  * finds each chunk's blocks with a visible patch (culled blocks are not
  * read again; a fused frame's patch pass has marked them, and the scan
- * reads those marks on the caller) and lists the busy chunks; a first pass over those counts
- * each chunk's instances per bucket, strips and statistics, a serial
- * prefix sum in chunk order gives each chunk its offsets, and a second
- * pass writes every chunk at its offsets (docs/design.md 1.4). The result is the serial
+ * reads those marks on the caller) and lists the busy chunks; a first
+ * pass over those counts each chunk's instances per bucket, strips and
+ * statistics, a serial prefix sum in chunk order gives each chunk its
+ * offsets, and a second pass writes every chunk at its offsets
+ * (docs/design.md 1.4). The result is the serial
  * order (bucket-major, patch order inside a bucket; strips in patch order)
  * whatever the workers and however the engine splits the chunks.
  *

@@ -122,7 +122,6 @@ typedef struct _tlod_fast_local {
   uint32_t corner[4 * FAST_BLOCK];
   float e_max[FAST_BLOCK], target[FAST_BLOCK], cont[FAST_BLOCK];
   uint8_t visible[FAST_BLOCK];
-  uint16_t lanes[FAST_BLOCK / 16]; /* AVX-512: the visible lanes of each 16 patches gathered by vectors */
 } _tlod_fast_local;
 
 /* Over ranges of clusters: vertex chunks and patch blocks; classify sets

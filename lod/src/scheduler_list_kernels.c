@@ -177,15 +177,31 @@ static uint32_t marked_slots(const _tlod_list_in* in, uint32_t begin, uint32_t e
   return n;
 }
 
-static uint32_t strips_scalar(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out) {
+/* The m strips of the marked slots (f[q], k[q]) into out. */
+typedef void (*strips_of_fn)(const _tlod_list_in* in, const uint32_t* f, const uint32_t* k, uint32_t m,
+                             tlod_draw_strip* out);
+
+/* The strips of patches [begin, end) into out, a block at a time (f[] and
+ * k[] hold one block's marked slots) by make; returns how many. */
+static uint32_t strips_by_block(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out,
+                                strips_of_fn make) {
   uint32_t f[FAST_BLOCK * _TLOD_UP_SLOTS], k[FAST_BLOCK * _TLOD_UP_SLOTS], n = 0;
-  for (uint32_t b = begin; b < end; b += FAST_BLOCK) { /* a block at a time: f[] and k[] hold its strips */
+  for (uint32_t b = begin; b < end; b += FAST_BLOCK) {
     uint32_t e = end - b < FAST_BLOCK ? end : b + FAST_BLOCK, m = marked_slots(in, b, e, f, k);
-    for (uint32_t q = 0; q < m; q++)
-      out[n + q] = strip_at(in, f[q], k[q]);
+    make(in, f, k, m, out + n);
     n += m;
   }
   return n;
+}
+
+static void strips_of_scalar(const _tlod_list_in* in, const uint32_t* f, const uint32_t* k, uint32_t m,
+                             tlod_draw_strip* out) {
+  for (uint32_t q = 0; q < m; q++)
+    out[q] = strip_at(in, f[q], k[q]);
+}
+
+static uint32_t strips_scalar(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out) {
+  return strips_by_block(in, begin, end, out, strips_of_scalar);
 }
 
 #if defined(__x86_64__)
@@ -452,15 +468,14 @@ AVX512_ATTR static void strips16(const _tlod_list_in* in, const uint32_t* f, con
   store_records(pa, pb, d2, d3, n, out);
 }
 
-AVX512_ATTR static uint32_t strips_avx512(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out) {
-  uint32_t f[FAST_BLOCK * _TLOD_UP_SLOTS], k[FAST_BLOCK * _TLOD_UP_SLOTS], n = 0;
-  for (uint32_t b = begin; b < end; b += FAST_BLOCK) {
-    uint32_t e = end - b < FAST_BLOCK ? end : b + FAST_BLOCK, m = marked_slots(in, b, e, f, k);
-    for (uint32_t q = 0; q < m; q += 16)
-      strips16(in, f + q, k + q, m - q, out + n + q);
-    n += m;
-  }
-  return n;
+AVX512_ATTR static void strips_of_avx512(const _tlod_list_in* in, const uint32_t* f, const uint32_t* k, uint32_t m,
+                                         tlod_draw_strip* out) {
+  for (uint32_t q = 0; q < m; q += 16)
+    strips16(in, f + q, k + q, m - q, out + q);
+}
+
+static uint32_t strips_avx512(const _tlod_list_in* in, uint32_t begin, uint32_t end, tlod_draw_strip* out) {
+  return strips_by_block(in, begin, end, out, strips_of_avx512);
 }
 #endif
 
