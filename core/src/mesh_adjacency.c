@@ -349,14 +349,15 @@ static uint32_t face_edge_ends(const tlod_mesh* m, uint32_t f, uint32_t lo[4], u
   return k;
 }
 
+static uint64_t half_edge_key(half_edge h) { return (uint64_t)h.hi << 32 | h.slot; }
+
 static int half_edge_cmp(const void* pa, const void* pb) {
-  const half_edge *a = pa, *b = pb;
-  if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
-  return a->slot < b->slot ? -1 : (a->slot > b->slot);
+  uint64_t a = half_edge_key(*(const half_edge*)pa), b = half_edge_key(*(const half_edge*)pb);
+  return a < b ? -1 : (a > b);
 }
 
-/* Buckets are a few half-edges on ordinary meshes: insertion sort; qsort
- * only for large ones. Either way the order is (hi, slot): deterministic. */
+/* Buckets are a few half-edges on ordinary meshes: insertion sort on the
+ * (hi, slot) key; qsort only for large ones. Either way: deterministic. */
 static void sort_bucket(half_edge* h, uint32_t n) {
   if (n > 32) {
     qsort(h, n, sizeof(*h), half_edge_cmp);
@@ -364,11 +365,37 @@ static void sort_bucket(half_edge* h, uint32_t n) {
   }
   for (uint32_t i = 1; i < n; i++) {
     half_edge x = h[i];
+    uint64_t kx = half_edge_key(x);
     uint32_t j = i;
-    for (; j > 0 && half_edge_cmp(&h[j - 1], &x) > 0; j--)
+    for (; j > 0 && half_edge_key(h[j - 1]) > kx; j--)
       h[j] = h[j - 1];
     h[j] = x;
   }
+}
+
+/* Each half-edge's welded ends, in face order, are kept between the count
+ * and fill passes in the links' memory (8 bytes a slot, 3-4 slots a face:
+ * room for every half-edge), which is filled with links afterwards: the
+ * fill pass reads them in order instead of the weld ids again. */
+_Static_assert(sizeof(tlod_edge_link) >= 2 * sizeof(uint32_t), "a link slot holds a half-edge's two ends");
+
+static uint32_t count_ends(tlod_mesh* m, edge_buckets* b) {
+  uint32_t(*ends)[2] = (uint32_t(*)[2])(void*)m->links, h = 0, lo[4], hi[4];
+  for (uint32_t f = 0; f < m->face_count; f++)
+    for (uint32_t e = 0, k = face_edge_ends(m, f, lo, hi); e < k; e++, h++) {
+      ends[h][0] = lo[e], ends[h][1] = hi[e];
+      b->first[lo[e]]++;
+    }
+  return h;
+}
+
+static void fill_buckets(tlod_mesh* m, edge_buckets* b, uint32_t h) {
+  const uint32_t(*ends)[2] = (const uint32_t(*)[2])(void*)m->links;
+  for (uint32_t f = m->face_count; f-- > 0;)
+    for (uint32_t e = m->face_corners[f]; e-- > 0;) {
+      h--;
+      b->half[--b->first[ends[h][0]]] = (half_edge){ends[h][1], f * 4 + e};
+    }
 }
 
 static tlod_result buckets_build(tlod_mesh* m, edge_buckets* b) {
@@ -381,19 +408,13 @@ static tlod_result buckets_build(tlod_mesh* m, edge_buckets* b) {
     _tlod_free(ctx, b->half);
     return fail_oom(m, "edge buckets");
   }
-  uint32_t lo[4], hi[4];
-  for (uint32_t f = 0; f < m->face_count; f++)
-    for (uint32_t e = 0, k = face_edge_ends(m, f, lo, hi); e < k; e++)
-      b->first[lo[e]]++;
-  uint32_t total = 0;
+  uint32_t h = count_ends(m, b), total = 0;
   for (uint32_t w = 0; w < m->vertex_count; w++) {
     total += b->first[w];
     b->first[w] = total; /* end of bucket w; filled backwards to its start */
   }
   b->first[m->vertex_count] = total;
-  for (uint32_t f = m->face_count; f-- > 0;)
-    for (uint32_t e = face_edge_ends(m, f, lo, hi); e-- > 0;)
-      b->half[--b->first[lo[e]]] = (half_edge){hi[e], f * 4 + e};
+  fill_buckets(m, b, h);
   for (uint32_t w = 0; w < m->vertex_count; w++)
     sort_bucket(b->half + b->first[w], b->first[w + 1] - b->first[w]);
   return TLOD_SUCCESS;
@@ -462,13 +483,13 @@ tlod_result _tlod_mesh_build_adjacency(tlod_mesh* m) {
   if (r != TLOD_SUCCESS) return r;
   if (!m->links) m->links = _tlod_calloc(m->ctx, m->face_count, sizeof(*m->links));
   if (!m->links) return fail_oom(m, "edge links");
+  edge_buckets b;
+  r = buckets_build(m, &b); /* uses the links' memory as scratch */
+  if (r != TLOD_SUCCESS) return r;
   /* Boundary, non-manifold and a triangle's unused fourth slot: no link. */
   for (uint32_t f = 0; f < m->face_count; f++)
     for (uint32_t e = 0; e < 4; e++)
       m->links[f][e] = (tlod_edge_link){.face = _TLOD_NONE, .edge = UINT8_MAX, .smooth = false, .seam = false};
-  edge_buckets b;
-  r = buckets_build(m, &b);
-  if (r != TLOD_SUCCESS) return r;
   m->info.boundary_edges = m->info.non_manifold_edges = m->info.crease_edges = 0;
   m->info.attribute_seam_edges = 0;
   classify_edges(m, &b);

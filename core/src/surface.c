@@ -204,9 +204,53 @@ static void build_or_queue(tlod_surface* s, uint32_t f, quad_lanes* q) {
   if (q->n == _TLOD_QUAD_LANES) flush_quads(s, q);
 }
 
+/* Phong without tables: a patch's sphere is all it computes (at creation,
+ * and all that moves on a refresh), made in lanes of patches of one corner
+ * count (surface_spheres.c): bitwise build_phong_untabled's. */
+typedef struct sphere_queue {
+  uint32_t n[2], face[2][PATCH_LANES];
+} sphere_queue;
+
+static void flush_spheres(const tlod_surface* s, sphere_queue* q, uint32_t k) {
+  _tlod_phong_spheres(s, s->ctx->desc.simd, q->face[k], q->n[k]);
+  q->n[k] = 0;
+}
+
+static void queue_sphere(const tlod_surface* s, sphere_queue* q, uint32_t f) {
+  uint32_t k = s->mesh->face_corners[f] == 4;
+  q->face[k][q->n[k]++] = f;
+  if (q->n[k] == PATCH_LANES) flush_spheres(s, q, k);
+}
+
+static bool spheres_only(const tlod_surface* s) {
+  return s->desc.type == TLOD_SURFACE_PHONG && s->desc.error_tables == TLOD_ERROR_TABLES_NONE;
+}
+
+static void flush_all_spheres(const tlod_surface* s, sphere_queue* q) {
+  for (uint32_t k = 0; k < 2; k++)
+    if (q->n[k]) flush_spheres(s, q, k);
+}
+
+/* Patch f without tables: what does not move, its sphere queued. */
+static void untabled_patch(tlod_surface* s, uint32_t f, sphere_queue* q) {
+  tlod_patch_info* info = &s->info[f];
+  info->corner_count = s->mesh->face_corners[f];
+  info->error_bound = INFINITY;
+  info->d_max = INFINITY;
+  no_tables(info);
+  queue_sphere(s, q, f);
+}
+
 static void build_range(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   tlod_surface* s = data;
+  if (spheres_only(s)) {
+    sphere_queue sq = {.n = {0}};
+    for (uint32_t f = begin; f < end; f++)
+      untabled_patch(s, f, &sq);
+    flush_all_spheres(s, &sq);
+    return;
+  }
   quad_lanes q = {0};
   for (uint32_t f = begin; f < end; f++)
     build_or_queue(s, f, &q);
@@ -339,29 +383,12 @@ static bool face_changed(const tlod_surface* s, uint32_t f) {
   return false;
 }
 
-/* Phong without tables: a changed patch's sphere is all that moves, made
- * in lanes of patches of one corner count (surface_spheres.c). */
-typedef struct sphere_queue {
-  uint32_t n[2], face[2][PATCH_LANES];
-} sphere_queue;
-
-static void flush_spheres(const tlod_surface* s, sphere_queue* q, uint32_t k) {
-  _tlod_phong_spheres(s, s->ctx->desc.simd, q->face[k], q->n[k]);
-  q->n[k] = 0;
-}
-
-static void queue_sphere(const tlod_surface* s, sphere_queue* q, uint32_t f) {
-  uint32_t k = s->mesh->face_corners[f] == 4;
-  q->face[k][q->n[k]++] = f;
-  if (q->n[k] == PATCH_LANES) flush_spheres(s, q, k);
-}
-
 /* Rebuilds the patches some vertex of which changed; flags them. */
 static void rebuild_range(void* data, uint32_t begin, uint32_t end, uint32_t worker) {
   (void)worker;
   tlod_surface* s = data;
   uint8_t* dirty = s->changed + s->mesh->vertex_count;
-  bool spheres = s->desc.type == TLOD_SURFACE_PHONG && s->desc.error_tables == TLOD_ERROR_TABLES_NONE;
+  bool spheres = spheres_only(s);
   quad_lanes q = {0};
   sphere_queue sq = {.n = {0}};
   for (uint32_t f = begin; f < end; f++) {
@@ -373,8 +400,7 @@ static void rebuild_range(void* data, uint32_t begin, uint32_t end, uint32_t wor
       build_or_queue(s, f, &q);
   }
   flush_quads(s, &q);
-  for (uint32_t k = 0; k < 2; k++)
-    if (sq.n[k]) flush_spheres(s, &sq, k);
+  flush_all_spheres(s, &sq);
 }
 
 /* Flags are kept between calls: a refresh allocates only the first time. */

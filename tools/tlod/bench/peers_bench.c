@@ -4,6 +4,8 @@
  * output vertices/s per level for positions (OpenSubdiv: PrimvarRefiner) and
  * positions + normals (its limit evaluation), static and deforming, and how
  * far each surface is from the input vertices and volume. */
+#include <limits.h>
+#include <malloc.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -114,22 +116,44 @@ static int run_case(peers_run* r, const peers_case* c, peers_pair* p) {
   return CLI_OK;
 }
 
-static void report_preprocess(peers_run* r, const peers_case* c, const double us[2], uint64_t up, const double them[2],
-                              uint64_t tp) {
-  printf("  L%u %-17s preprocess ours %8.2f ms %8.2f MB  osd %8.2f ms %8.2f MB  osd/ours time %.1fx memory %.1fx\n",
-         c->level, path_name(c->normals), us[0], up * 1e-6, them[0], tp * 1e-6, them[0] / us[0], (double)tp / up);
+/* Preprocessing figures of one side, min and median: cold, warm, and (ours)
+ * warm with the scheduler's error tables. */
+enum { PREP_COLD, PREP_WARM, PREP_ADAPTIVE, PREP_WAYS };
+typedef struct peers_prep {
+  double ms[PREP_WAYS][2];
+  uint64_t peak, adaptive_peak;
+} peers_prep;
+
+static void put_prep(json_writer* j, const char* who, const peers_prep* p, bool ours) {
+  static const char* const names[PREP_WAYS] = {"", "warm_", "adaptive_"};
+  char key[64];
+  for (int w = 0; w < (ours ? PREP_WAYS : PREP_ADAPTIVE); w++) {
+    snprintf(key, sizeof(key), "%s_%sms_min", who, names[w]);
+    json_number(j, key, p->ms[w][0]);
+    snprintf(key, sizeof(key), "%s_%sms_median", who, names[w]);
+    json_number(j, key, p->ms[w][1]);
+  }
+  snprintf(key, sizeof(key), "%s_peak_bytes", who);
+  json_uint(j, key, p->peak);
+  if (ours) json_uint(j, "ours_adaptive_peak_bytes", p->adaptive_peak);
+}
+
+static void report_preprocess(peers_run* r, const peers_case* c, const peers_prep* us, const peers_prep* them) {
+  printf("  L%u %-17s preprocess ours %8.2f ms (warm %7.2f, adaptive %7.2f) %6.2f MB  osd %8.2f ms (warm %7.2f) "
+         "%8.2f MB  osd/ours time %.1fx (warm %.1fx, adaptive %.1fx) memory %.1fx\n",
+         c->level, path_name(c->normals), us->ms[PREP_COLD][0], us->ms[PREP_WARM][0], us->ms[PREP_ADAPTIVE][0],
+         us->peak * 1e-6, them->ms[PREP_COLD][0], them->ms[PREP_WARM][0], them->peak * 1e-6,
+         them->ms[PREP_COLD][0] / us->ms[PREP_COLD][0], them->ms[PREP_WARM][0] / us->ms[PREP_WARM][0],
+         them->ms[PREP_WARM][0] / us->ms[PREP_ADAPTIVE][0], (double)them->peak / us->peak);
   if (r->csv)
     fprintf(r->csv, "preprocess,%s,%u,%u,%s,-,%.4f,%.4f,%llu,%.4f,%.4f,%llu,%.4f\n", c->m->kind, c->m->face_count,
-            c->level, path_name(c->normals), us[0], us[1], (unsigned long long)up, them[0], them[1],
-            (unsigned long long)tp, them[0] / us[0]);
+            c->level, path_name(c->normals), us->ms[PREP_COLD][0], us->ms[PREP_COLD][1], (unsigned long long)us->peak,
+            them->ms[PREP_COLD][0], them->ms[PREP_COLD][1], (unsigned long long)them->peak,
+            them->ms[PREP_COLD][0] / us->ms[PREP_COLD][0]);
   if (!r->json) return;
   json_object_begin(r->json, "preprocess");
-  json_number(r->json, "ours_ms_min", us[0]);
-  json_number(r->json, "ours_ms_median", us[1]);
-  json_uint(r->json, "ours_peak_bytes", up);
-  json_number(r->json, "osd_ms_min", them[0]);
-  json_number(r->json, "osd_ms_median", them[1]);
-  json_uint(r->json, "osd_peak_bytes", tp);
+  put_prep(r->json, "ours", us, true);
+  put_prep(r->json, "osd", them, false);
   json_object_end(r->json);
 }
 
@@ -147,24 +171,50 @@ static peers_osd* osd_create(const peers_case* c, double* ms, uint64_t* peak) {
   return o;
 }
 
-/* Both created --repeat times, alternating; the last pair is kept. */
+/* One side's preprocessing, timed cold, after the allocator gave its free
+ * pages back (malloc_trim: every page touched for the first time, as when a
+ * program loads its first mesh), then warm, just after the same
+ * preprocessing was freed (the allocator keeps the pages: hold_freed_pages).
+ * A uniform level needs no error bounds (TLOD_ERROR_TABLES_NONE, as
+ * OpenSubdiv's refiner computes none); ours is timed a third time, warm, with
+ * the MEASURED tables a scheduler's levels need. The last one is kept. */
+static bool create_side(const peers_case* c, peers_pair* p, bool ours, double ms[PREP_WAYS], uint64_t peak[2]) {
+  for (int w = 0; w < (ours ? PREP_WAYS : PREP_ADAPTIVE); w++) {
+    if (w == PREP_COLD) malloc_trim(0);
+    if (w != PREP_COLD && ours) peers_ours_destroy(&p->ours);
+    if (w != PREP_COLD && !ours) peers_osd_destroy(p->osd), p->osd = NULL;
+    tlod_error_tables tables = w == PREP_ADAPTIVE ? TLOD_ERROR_TABLES_MEASURED : TLOD_ERROR_TABLES_NONE;
+    if (ours && !peers_ours_create(&p->ours, c->m, c->level, tables, &ms[w], &peak[w == PREP_ADAPTIVE]))
+      return cli_error(CLI_FAILED, "bench --peers: %s", tlod_context_last_error(p->ours.ctx)), false;
+    if (!ours && !(p->osd = osd_create(c, &ms[w], &peak[0]))) return false;
+  }
+  return true;
+}
+
+/* Both created --repeat times, who goes first alternating round by round;
+ * the last pair is kept. t[side][way][round]. */
 static int preprocess(peers_run* r, const peers_case* c, peers_pair* p) {
   uint32_t n = r->o->repeat;
-  double* t = malloc(sizeof(double) * 2 * n);
-  uint64_t peak[2] = {0, 0};
+  double* t = malloc(sizeof(double) * 2 * PREP_WAYS * n);
+  peers_prep prep[2];
+  memset(prep, 0, sizeof(prep));
   int rc = t ? CLI_OK : cli_error(CLI_FAILED, "bench --peers: out of memory");
   for (uint32_t i = 0; i < n && rc == CLI_OK; i++) {
     if (i) peers_ours_destroy(&p->ours), peers_osd_destroy(p->osd), p->osd = NULL;
-    if (!peers_ours_create(&p->ours, c->m, c->level, TLOD_ERROR_TABLES_MEASURED, &t[i], &peak[0]))
-      rc = cli_error(CLI_FAILED, "bench --peers: %s", tlod_context_last_error(p->ours.ctx));
-    if (rc == CLI_OK && !(p->osd = osd_create(c, &t[n + i], &peak[1]))) rc = CLI_FAILED;
+    for (uint32_t s = 0; s < 2 && rc == CLI_OK; s++) {
+      uint32_t side = (s + i) % 2; /* 0: ours */
+      double ms[PREP_WAYS] = {0, 0, 0};
+      uint64_t peak[2] = {0, 0};
+      if (!create_side(c, p, side == 0, ms, peak)) rc = CLI_FAILED;
+      prep[side].peak = peak[0], prep[side].adaptive_peak = peak[1];
+      for (int w = 0; w < PREP_WAYS; w++)
+        t[(side * PREP_WAYS + w) * n + i] = ms[w];
+    }
   }
-  if (rc == CLI_OK) {
-    double us[2], them[2];
-    bench_min_median(t, n, 1.0, us);
-    bench_min_median(t + n, n, 1.0, them);
-    report_preprocess(r, c, us, peak[0], them, peak[1]);
-  }
+  for (uint32_t side = 0; side < 2 && rc == CLI_OK; side++)
+    for (int w = 0; w < PREP_WAYS; w++)
+      bench_min_median(t + (side * PREP_WAYS + w) * n, n, 1.0, prep[side].ms[w]);
+  if (rc == CLI_OK) report_preprocess(r, c, &prep[0], &prep[1]);
   free(t);
   return rc;
 }
@@ -302,7 +352,18 @@ static int run_mesh(peers_run* r, const char* kind, uint32_t faces) {
   return rc;
 }
 
+/* glibc gives freed memory back to the system past a trim threshold and
+ * serves blocks past a (moving) size from fresh mappings; with both fixed,
+ * a warm preprocessing finds the pages its previous run freed, and a cold
+ * one is made by malloc_trim. Blocks past 32 MB (glibc's largest threshold)
+ * are still mapped afresh: the same for both sides. */
+static void hold_freed_pages(void) {
+  mallopt(M_TRIM_THRESHOLD, INT_MAX);
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+}
+
 int bench_peers(const bench_options* o, json_writer* json, FILE* csv) {
+  hold_freed_pages();
   static const char* const kinds[] = {"triangle", "quad", "mixed"};
   uint32_t sizes[2] = {100000, 1000000}, size_count = o->peer_faces ? 1 : 2;
   if (o->peer_faces) sizes[0] = o->peer_faces;
