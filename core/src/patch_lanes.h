@@ -31,9 +31,9 @@ static inline void _tlod_lanes_gather(const tlod_surface* s, _tlod_patch_lanes* 
 }
 
 /* surface_spheres.c: the bounding spheres (center, radius) of Phong
- * patches without tables, bitwise build_phong_untabled's; the other fields
- * of their tlod_patch_info (every bound +INFINITY) do not depend on the
- * mesh and stay as the surface's creation wrote them. */
+ * patches without tables (surface_spheres.inc states the rule), at creation
+ * and on a refresh; the other fields of their tlod_patch_info (every bound
+ * +INFINITY) do not depend on the mesh and are written by surface.c. */
 void _tlod_phong_spheres(const tlod_surface* s, tlod_simd simd, const uint32_t* patches, uint32_t count);
 
 #endif

@@ -85,51 +85,13 @@ static void no_tables(tlod_patch_info* info) {
   info->error_slack = 0.0f;
 }
 
-/* A cheap rigorous bound on |S - q| for the Phong sphere without tables:
- * S - q = -a sum_x w_x ((q - p_x).n_x) n_x with q = sum_y w_y p_y, so
- * |S - q| <= a_max sum_{x != y} w_x w_y |(p_y - p_x).n_x| <= a_max D (1 -
- * sum w_x^2) <= a_max D (n - 1) / n, D = max |(p_y - p_x).n_x|, the weights
- * being non-negative and summing to 1 inside the patch. The float rounding
- * of n_x (|n_x| within 2^-23 of 1) and of the evaluation is inside the
- * sphere's relative slack (_tlod_sphere_of) and _tlod_bound_slack. */
-static float phong_grow(const _tlod_corners* c) {
-  /* Maxima per y, independent chains across x (not one chain of n^2). */
-  double d[4] = {0.0, 0.0, 0.0, 0.0}, a = 0.0, extent2 = 0.0;
-  for (uint32_t x = 0; x < c->n; x++) {
-    a = c->alpha[x] > a ? c->alpha[x] : a;
-    double q[3] = {(double)c->p[x].x - c->p[0].x, (double)c->p[x].y - c->p[0].y, (double)c->p[x].z - c->p[0].z};
-    double e2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-    extent2 = e2 > extent2 ? e2 : extent2;
-    for (uint32_t y = 0; y < c->n; y++) {
-      double e = ((double)c->p[y].x - c->p[x].x) * c->nrm[x].x + ((double)c->p[y].y - c->p[x].y) * c->nrm[x].y +
-                 ((double)c->p[y].z - c->p[x].z) * c->nrm[x].z;
-      d[y] = fabs(e) > d[y] ? fabs(e) : d[y];
-    }
-  }
-  double dm = d[0] > d[1] ? d[0] : d[1], dn = d[2] > d[3] ? d[2] : d[3];
-  dm = dm > dn ? dm : dn;
-  /* 1e-6 of the extent, as _tlod_bound_slack (without its libm fmax calls). */
-  return (float)(a * dm * (double)(c->n - 1) / (double)c->n * (1.0 + 0x1p-20) + 1e-6 * sqrt(extent2));
-}
-
-/* Phong without tables: the sphere alone, no error bound. */
-static void build_phong_untabled(const _tlod_corners* c, tlod_patch_info* info) {
-  info->error_bound = INFINITY;
-  info->d_max = INFINITY;
-  _tlod_sphere_of(c, NULL, 0, phong_grow(c), info);
-  no_tables(info);
-}
-
 static void build_patch(tlod_surface* s, uint32_t f) {
   _tlod_corners c;
   gather(s, f, &c);
   tlod_patch_info* info = &s->info[f];
   info->corner_count = c.n;
+  /* Phong without tables never comes here: build_range's untabled_patch. */
   bool none = s->desc.error_tables == TLOD_ERROR_TABLES_NONE;
-  if (none && s->desc.type == TLOD_SURFACE_PHONG) {
-    build_phong_untabled(&c, info);
-    return;
-  }
   double quad_net[4][4][3], alpha_net[10][3];
   bool per_vertex = false;
   switch (s->desc.type) {
@@ -206,7 +168,7 @@ static void build_or_queue(tlod_surface* s, uint32_t f, quad_lanes* q) {
 
 /* Phong without tables: a patch's sphere is all it computes (at creation,
  * and all that moves on a refresh), made in lanes of patches of one corner
- * count (surface_spheres.c): bitwise build_phong_untabled's. */
+ * count (surface_spheres.c; the rule: docs/design.md 3.5b, "Two modes"). */
 typedef struct sphere_queue {
   uint32_t n[2], face[2][PATCH_LANES];
 } sphere_queue;

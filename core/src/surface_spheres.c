@@ -1,9 +1,9 @@
-/* tesslod::core -- the refresh of Phong surfaces without error tables
- * (TLOD_ERROR_TABLES_NONE) in lanes of patches: their only per-patch
- * values that move with the mesh are the bounding spheres (surface.c's
- * build_phong_untabled: phong_grow, then _tlod_sphere_of), computed here
- * for a block of patches at once by the kernel of surface_spheres.inc
- * (per instruction set). Bitwise the scalar spheres. */
+/* tesslod::core -- the bounding spheres of Phong surfaces without error
+ * tables (TLOD_ERROR_TABLES_NONE), at creation and on a refresh: the only
+ * per-patch values such a patch computes, and the only ones that move with
+ * the mesh. Computed for a block of patches at once by the kernel of
+ * surface_spheres.inc (per instruction set), which states the rule; every
+ * level gives the same bits. */
 #include <math.h>
 
 #include "patch_lanes.h"
