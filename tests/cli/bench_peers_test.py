@@ -1,6 +1,7 @@
 """tlod bench --peers (issue 15): tesslod against OpenSubdiv on small meshes, cheap.
 Usage: bench_peers_test.py TLOD DATA_DIR WORK_DIR osd|noosd
-osd: the build has OpenSubdiv; every case of the JSON "peers" key has positive figures for both libraries, the
+osd: the build has OpenSubdiv; every case of the JSON "peers" key has positive figures for both libraries
+(preprocessing cold and warm, ours also with the scheduler's tables: "adaptive"), the
 input vertices lie on our Phong surface (it interpolates: distance exactly 0) and not on OpenSubdiv's Loop /
 Catmull-Clark limit (distance > 0: it approximates), and a bad --json path fails with one error line naming it.
 noosd: --peers fails, saying OpenSubdiv is missing and how to install it (never a silent skip)."""
@@ -26,6 +27,10 @@ def check_case(c):
     for path in ("positions", "positions+normals"):
         for part in ("preprocess", "static", "deforming"):
             check_sides("%s %s %s" % (name, path, part), c[path][part])
+        p = c[path]["preprocess"]
+        keys = ("ours_ms_min", "ours_warm_ms_min", "ours_adaptive_ms_min", "osd_ms_min", "osd_warm_ms_min",
+                "ours_peak_bytes", "ours_adaptive_peak_bytes", "osd_peak_bytes")
+        t.check("%s %s: preprocessing cold, warm and adaptive for both" % (name, path), all(k in p for k in keys), p)
     a = c["accuracy"]
     t.check(name + ": input vertices on our Phong surface (distance 0)", a["ours_vertex_distance"] == 0.0, a)
     t.check(name + ": not on OpenSubdiv's limit surface (distance > 0)", a["osd_limit_vertex_distance"] > 1e-4, a)
