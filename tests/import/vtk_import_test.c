@@ -653,7 +653,11 @@ static tlod_result import_reproducer(const char* file, const char* name) {
  * - a "<VTKFile" without a compressor inside the appended data: the pre-flight took its attributes
  *   for the root's, read the compressed offsets as raw, and VTK asked for 8 GB (CI fuzz_vtk);
  * - a compressed header with blocks of 0 bytes: VTK divided by the block size (FPE); one with no
- *   blocks but a last block: VTK's total size wrapped and it read a block it had no table for. */
+ *   blocks but a last block: VTK's total size wrapped and it read a block it had no table for;
+ * - "% _" opening the appended data: VTK reads from the first byte after the spaces (it only warns
+ *   when that is not the '_'), the pre-flight read from after the '_', and VTK sized a
+ *   connectivity by an offset three bytes off (192 GB; CI fuzz_vtk);
+ * - a comment before the data: VTK's parser skips it, the pre-flight's tag scan would not. */
 TEST(xml_reproducers_refused_naming_the_fault) {
   static const struct {
     const char *file, *name, *needle, *needle2;
@@ -671,6 +675,9 @@ TEST(xml_reproducers_refused_naming_the_fault) {
        "z.vtp: DataArray 2: its compression header is inconsistent (1 blocks of 0 bytes, the last of 2)", ""},
       {"compressed_no_blocks_but_last.vtu", "n.vtu",
        "n.vtu: DataArray 5: its compression header is inconsistent (0 blocks of 8 bytes, the last of 2)", ""},
+      {"appended_data_not_after_underscore.vtp", "u.vtp",
+       "u.vtp: <AppendedData>: its data starts with byte 0x25, not the '_' it must start with", ""},
+      {"xml_comment_before_data.vtp", "c.vtp", "c.vtp: the XML holds a comment: not read", ""},
   };
   for (size_t i = 0; i < sizeof k / sizeof k[0]; ++i) {
     const tlod_result res = import_reproducer(k[i].file, k[i].name);

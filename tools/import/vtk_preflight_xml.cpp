@@ -87,6 +87,7 @@ public:
   void run() {
     const char* tag = static_cast<const char*>(memmem(data_, size_t(end_ - data_), "<AppendedData", 13));
     xml_end_ = tag ? tag : end_;
+    no_hidden_markup();
     file_attributes();
     for (const char* p = data_; (p = static_cast<const char*>(memchr(p, '<', size_t(xml_end_ - p)))) != nullptr; ++p) {
       const char* close = static_cast<const char*>(memchr(p, '>', size_t(xml_end_ - p)));
@@ -129,8 +130,35 @@ private:
     if (!close) return;
     std::string enc;
     appended_base64_ = xml_attribute(tag, close, "encoding", &enc) && enc == "base64";
-    const char* u = static_cast<const char*>(memchr(close, '_', size_t(end_ - close)));
-    appended_ = u ? u + 1 : nullptr;
+    appended_ = appended_start(close + 1);
+  }
+
+  // Where VTK's reader starts the appended data: after the tag, spaces skipped, past the '_'
+  // that must come next. VTK only warns when it is not a '_' and reads the data from that
+  // character on, where every offset of ours would be off: refused.
+  const char* appended_start(const char* p) const {
+    while (p < end_ && is_space(*p))
+      ++p;
+    if (p < end_ && *p != '_')
+      fail(TLOD_ERROR_PARSE, format("<AppendedData>: its data starts with byte 0x%02x, not the '_' it must start with",
+                                    unsigned(static_cast<unsigned char>(*p))));
+    return p < end_ ? p + 1 : nullptr;
+  }
+
+  // Comments, CDATA sections and processing instructions (but the <?xml?> declaration) are
+  // refused before the data: VTK's XML parser skips them, this scan would read a DataArray or
+  // an <AppendedData in one as real (and so check other arrays than VTK reads).
+  void no_hidden_markup() const {
+    static const char* const kinds[][2] = {
+        {"<!--", "a comment"}, {"<![CDATA[", "a CDATA section"}, {"<!DOCTYPE", "a DOCTYPE"}};
+    const size_t n = size_t(xml_end_ - data_);
+    for (const auto& k : kinds)
+      if (memmem(data_, n, k[0], strlen(k[0])))
+        fail(TLOD_ERROR_PARSE, format("the XML holds %s: not read (VTK files have none)", k[1]));
+    for (const char* q = data_; (q = static_cast<const char*>(memmem(q, size_t(xml_end_ - q), "<?", 2))) != nullptr;
+         q += 2)
+      if (q != data_ || size_t(xml_end_ - q) < 5 || memcmp(q, "<?xml", 5) != 0)
+        fail(TLOD_ERROR_PARSE, "the XML holds a processing instruction: not read (VTK files have none)");
   }
 
   // Whether [p, close] is the tag <name ...>, <name> or <name/>.
