@@ -522,6 +522,10 @@ static const struct hostile_case {
     /* A garbled keyword: VTK's reader leaked what it had read (fuzz_vtk: unknown_keyword_after_cells.vtk). */
     {"garbled.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TY:PES 1\n5\n", TLOD_ERROR_PARSE,
      "unknown keyword 'cell_ty:pes' where a section should start"},
+    /* METADATA after CELL_TYPES: VTK's reader stopped at it and leaked (fuzz_vtk:
+     * metadata_after_cell_types.vtk); after an array (VTK's own output) it is read. */
+    {"meta.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\nMETADATA\nC\n\n",
+     TLOD_ERROR_PARSE, "METADATA: not after an array VTK reads it with"},
     /* A cell type VTK's stream reader cannot take whole (fuzz_vtk: cell_type_with_nul_bytes.vtk). */
     {"type.vtk", 1, "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5.5\n", TLOD_ERROR_PARSE,
      "CELL_TYPES: value 0 '5.5' is not a finite integer"},
